@@ -1,0 +1,78 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_SOLVE_REPORT_H
+#define CGAL_TRIVIAL_CONNECTIONS_SOLVE_REPORT_H
+
+#include <CGAL/Trivial_connections/Singularity_index.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+The two kinds of non-contractible dual loops whose holonomy carries a free integer.
+*/
+enum class Loop_kind {
+  boundary, ///< goes once counter-clockwise around a boundary loop (as if the hole were a vertex)
+  generator ///< one of the 2g homology generators of a component (tree-cotree)
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+What a solve did on one loop. For a loop `L` with Levi-Civita holonomy `H_L` and connection sum
+`X_L = sum_L x`, the connection satisfies `H_L + X_L = 2 pi period / n`:
+for a boundary loop `H_L` is its geodesic curvature `kappa_B` (exact, not wrapped) and
+`period / n` is its index `k_B`; for a generator `H_L` is the Levi-Civita holonomy wrapped to `(-pi, pi]`.
+*/
+struct Loop_report
+{
+  Loop_kind kind = Loop_kind::generator;
+  std::size_t component = 0;
+  std::int64_t period = 0;          ///< the integer (n times the index, for a boundary loop)
+  Singularity_index index;          ///< `period / n`: the index of a boundary loop (also filled for generators)
+  bool prescribed = false;          ///< given by the user rather than chosen by the solver
+  double residual = 0;              ///< `|H_L + X_L - 2 pi period / n|`
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+Topology of one connected component (faces connected through edges).
+*/
+struct Component_report
+{
+  std::size_t number_of_faces = 0;
+  std::int64_t euler_characteristic = 0;   ///< `V - E + F` of the component
+  std::int64_t genus = 0;                  ///< `(2 - chi - b) / 2`
+  std::size_t number_of_boundary_loops = 0;
+  Singularity_index vertex_index_sum;      ///< sum of the prescribed interior-vertex indices
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+What `Trivial_connection_solver::solve()` returns.
+*/
+struct Solve_report
+{
+  int symmetry_order = 1;
+  double energy = 0;                    ///< `sum_e w_e x_e^2` over interior edges
+  double max_vertex_residual = 0;       ///< max over interior vertices of `|K_v + sum x - 2 pi k_v|`
+  double max_loop_residual = 0;         ///< max of the `Loop_report::residual`
+  /// energy the same solve would have with the integers rounded one by one (for comparison)
+  double rounding_energy = 0;
+  /// `true` when the integer choice was proven optimal by exhaustive enumeration (or prescribed, or empty)
+  bool integers_proven_optimal = true;
+  std::vector<Loop_report> loops;       ///< in the order of `Trivial_connection_solver::loops()`
+  std::vector<Component_report> components;
+};
+
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_SOLVE_REPORT_H

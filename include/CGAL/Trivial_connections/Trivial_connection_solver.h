@@ -1,0 +1,683 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_TRIVIAL_CONNECTION_SOLVER_H
+#define CGAL_TRIVIAL_CONNECTIONS_TRIVIAL_CONNECTION_SOLVER_H
+
+#include <CGAL/disable_warnings.h>
+
+#include <CGAL/Trivial_connections/Singularity_index.h>
+#include <CGAL/Trivial_connections/Solve_report.h>
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/parameters.h>
+#include <CGAL/Trivial_connections/internal/geometry.h>
+#include <CGAL/Trivial_connections/internal/integer_periods.h>
+#include <CGAL/Trivial_connections/internal/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/topology.h>
+
+#include <CGAL/Default.h>
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#ifdef CGAL_EIGEN3_ENABLED
+#include <CGAL/Eigen_solver_traits.h>
+#include <Eigen/SparseCholesky>
+#endif
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+A closed dual loop given by the halfedges it crosses: `halfedges[i]` is crossed from `face(halfedges[i])`
+to `face(opposite(halfedges[i]))`, and `face(opposite(halfedges[i])) == face(halfedges[i+1])` cyclically.
+A boundary loop crosses, vertex after vertex of the boundary, every interior edge of each vertex's open
+fan counter-clockwise (an interior edge joining two of its vertices is crossed twice, once each way).
+*/
+template <class HalfedgeDescriptor>
+struct Dual_loop
+{
+  Loop_kind kind = Loop_kind::generator;
+  std::size_t component = 0;
+  std::vector<HalfedgeDescriptor> halfedges;
+};
+
+namespace internal {
+
+template <class TriangleMesh, class GeomTraits, class SolverTraits>
+struct Trivial_connection_solver_types
+{
+  using Vertex_point_map = typename CGAL::GetVertexPointMap<TriangleMesh>::const_type;
+  using Point = typename boost::property_traits<Vertex_point_map>::value_type;
+  using Geom_traits = typename CGAL::Default::Get<GeomTraits, typename CGAL::Kernel_traits<Point>::Kernel>::type;
+#ifdef CGAL_EIGEN3_ENABLED
+  using Default_solver =
+    CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<typename CGAL::Eigen_sparse_matrix<double>::EigenType>>;
+#else
+  using Default_solver = void;
+#endif
+  using Solver_traits = typename CGAL::Default::Get<SolverTraits, Default_solver>::type;
+  static_assert(!std::is_same<Solver_traits, void>::value,
+                "Trivial_connection_solver needs a sparse solver: link CGAL::Eigen3_support (which defines "
+                "CGAL_EIGEN3_ENABLED) or pass a model of SparseLinearAlgebraWithFactorTraits_d as SolverTraits");
+};
+
+} // namespace internal
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+
+Computes trivial connections closest to Levi-Civita and the direction fields they define on a triangle
+mesh. Everything that depends only on the mesh (flat arrays, angles, weights, tree-cotree loops, the
+sparse factorization) is done once in the constructor; each `solve()` then costs back-substitutions only.
+
+The unknown is one angle `x_e` per interior edge. The constraints are one row per node of the surface in
+which every boundary loop is collapsed to a point (each interior vertex, each boundary loop) and one row
+per homology generator; in every connected component the node rows sum to zero, so the row of one node
+(the last boundary loop, or on a closed component its first vertex) is dropped: its constraint follows
+from the others and Poincare-Hopf, which is checked exactly beforehand. The minimiser of
+`sum_e w_e x_e^2` is `x = W^-1 A^T lambda` with `(A W^-1 A^T) lambda = b`, factored once.
+
+\tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph` with triangle faces
+\tparam GeomTraits a kernel with `Point_3`, `Vector_3`, `Compute_x_3` (y, z), `Collinear_3`,
+        `Construct_vector_3`. The default is the kernel of the vertex point map's value type.
+\tparam SolverTraits a model of `SparseLinearAlgebraWithFactorTraits_d` whose `Matrix` is constructible from
+        `Eigen::SparseMatrix<double>`. The default is
+        `CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<CGAL::Eigen_sparse_matrix<double>::EigenType>>`.
+
+\warning Computations use `double`, whatever the kernel.
+*/
+template <class TriangleMesh, class GeomTraits = CGAL::Default, class SolverTraits = CGAL::Default>
+class Trivial_connection_solver
+{
+  using Types = internal::Trivial_connection_solver_types<TriangleMesh, GeomTraits, SolverTraits>;
+  using Graph_traits = boost::graph_traits<TriangleMesh>;
+  using Mesh = internal::Mesh_arrays<TriangleMesh>;
+  using Sparse = Eigen::SparseMatrix<double>;
+
+public:
+  using Geom_traits = typename Types::Geom_traits;
+  using Solver_traits = typename Types::Solver_traits;
+  using Vector_3 = typename Geom_traits::Vector_3;
+  using vertex_descriptor = typename Graph_traits::vertex_descriptor;
+  using halfedge_descriptor = typename Graph_traits::halfedge_descriptor;
+  using edge_descriptor = typename Graph_traits::edge_descriptor;
+  using face_descriptor = typename Graph_traits::face_descriptor;
+  using Loop = Dual_loop<halfedge_descriptor>;
+
+  /*!
+  Prepares everything that depends on the mesh only. `tm` is never modified and must outlive the solver.
+  \cgalNamedParamsBegin
+    \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
+    \cgalParamNBegin{geom_traits} \cgalParamDefault{a default-constructed `Geom_traits`} \cgalParamNEnd
+    \cgalParamNBegin{weighting} \cgalParamType{`Weighting`} \cgalParamDefault{`Weighting::hodge_star`} \cgalParamNEnd
+  \cgalNamedParamsEnd
+  \throws Invalid_input `empty_mesh`, `not_triangle_mesh`, `non_manifold`, `degenerate_face`, `solver_failure`
+  */
+  template <class NamedParameters = parameters::Default_named_parameters>
+  explicit Trivial_connection_solver(const TriangleMesh& tm,
+                                     const NamedParameters& np = parameters::default_values())
+    : m_tm(tm),
+      m_traits(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits),
+                                                  Geom_traits())),
+      m_weighting(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::weighting),
+                                                     Weighting::hodge_star)),
+      m_mesh(tm,
+             CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                                                get_const_property_map(CGAL::vertex_point, tm)),
+             m_traits),
+      m_geometry(m_mesh, m_weighting),
+      m_topology(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner)
+  {
+    build_loops();
+    build_constraints();
+    factor();
+  }
+
+  Trivial_connection_solver(const Trivial_connection_solver&) = delete;
+  Trivial_connection_solver& operator=(const Trivial_connection_solver&) = delete;
+
+  /// \name Mesh information
+  /// @{
+
+  /// per component: its boundary loops, then its 2g generators; the order of `Solve_report::loops`
+  const std::vector<Loop>& loops() const { return m_loops; }
+  /// topology of each connected component (`vertex_index_sum` is 0 here)
+  const std::vector<Component_report>& components() const { return m_components; }
+  /// the component of a face
+  std::size_t component(face_descriptor f) const
+  {
+    return std::size_t(m_topology.component_of_face[get(m_mesh.face_index, f)]);
+  }
+  bool is_interior(edge_descriptor e) const { return !is_border(e, m_tm); }
+  /// `w_e` of an interior edge. \pre `is_interior(e)`
+  double weight(edge_descriptor e) const
+  {
+    CGAL_precondition(is_interior(e));
+    return m_geometry.weight[m_geometry.edge_of_corner[m_mesh.corner_of_edge(e, m_tm)]];
+  }
+  /// interior vertex: `2 pi - sum of its corner angles`; boundary vertex: `pi - sum`; isolated vertex: 0
+  double angle_defect(vertex_descriptor v) const
+  {
+    const int i = int(get(m_mesh.vertex_index, v));
+    return m_mesh.faces_at_vertex[i] > 0 ? m_geometry.angle_defect(i) : 0.;
+  }
+  /*!
+  The change of frame angle of Levi-Civita transport from `face(h)` to `face(opposite(h))`, in
+  `(-pi, pi]`: a direction at angle `t` (counter-clockwise from `halfedge(face(h))`) arrives at angle
+  `t + transport_angle(h)` (counter-clockwise from `halfedge(face(opposite(h)))`), before the rotation by
+  the connection. \pre `h` is a halfedge of an interior edge
+  */
+  double transport_angle(halfedge_descriptor h) const
+  {
+    const int i = m_mesh.corner_of(h, m_tm);
+    CGAL_precondition(i >= 0 && m_mesh.opposite_corner[i] >= 0);
+    return m_geometry.transport_angle(i);
+  }
+  /// Levi-Civita holonomy `H_L` of `loops()[l]`: the exact geodesic curvature of a boundary loop, the
+  /// holonomy wrapped to `(-pi, pi]` for a generator
+  double levi_civita_holonomy(std::size_t l) const { return m_loop_holonomy[l]; }
+  Weighting weighting() const { return m_weighting; }
+  const Geom_traits& geom_traits() const { return m_traits; }
+  /// @}
+
+  /*!
+  Computes the trivial connection closest to Levi-Civita with the given singularities and writes it.
+  \param singularities a range whose value type has `first` (a `vertex_descriptor`) and `second`
+         (a `Singularity_index`); vertices not listed have index 0
+  \param x a writable property map `halfedge_descriptor -> double`: receives `x(h)` for both halfedges of
+         every interior edge (`x(opposite(h)) = -x(h)`), and 0 for the halfedges of border edges
+  \cgalNamedParamsBegin
+    \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd
+    \cgalParamNBegin{loop_periods}
+      \cgalParamDescription{the integer of every loop of `loops()`: `period` with `H_L + sum_L x = 2 pi period / n`}
+      \cgalParamType{`std::vector<std::int64_t>`}
+      \cgalParamDefault{the integers minimising the energy}
+    \cgalParamNEnd
+  \cgalNamedParamsEnd
+  \throws Invalid_input `invalid_symmetry_order`, `invalid_vertex`, `singularity_on_boundary`,
+          `duplicate_singularity`, `index_not_multiple`, `poincare_hopf_violated`, `invalid_loop_periods`,
+          `solver_failure`
+  */
+  template <class SingularityRange, class HalfedgeAngleMap,
+            class NamedParameters = parameters::Default_named_parameters>
+  Solve_report solve(const SingularityRange& singularities, HalfedgeAngleMap x,
+                     const NamedParameters& np = parameters::default_values())
+  {
+    const int n = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::symmetry_order), 1);
+    if(n < 1)
+      throw Invalid_input(Error_code::invalid_symmetry_order,
+                          "the symmetry order n must be at least 1 (got " + std::to_string(n) + ")");
+    Solve_report report;
+    report.symmetry_order = n;
+    report.components = m_components;
+
+    const std::vector<std::int64_t> k = vertex_indices(singularities, n, report);
+
+    std::vector<std::int64_t> periods(m_loops.size(), 0);
+    std::vector<char> prescribed(m_loops.size(), 0);
+    const bool user_periods =
+      !CGAL::parameters::is_default_parameter<NamedParameters, tc_np::loop_periods_t>::value;
+    if(user_periods) {
+      periods = read_periods(CGAL::parameters::choose_parameter(
+                               CGAL::parameters::get_parameter(np, tc_np::loop_periods), std::vector<std::int64_t>()),
+                             k, n);
+      prescribed.assign(m_loops.size(), 1);
+    }
+
+    const double unit = 2 * CGAL_PI / n;
+    Eigen::VectorXd b = right_hand_side(k, periods, n);
+    Eigen::VectorXd lambda = solve_system(b);
+    double rounding_energy = b.dot(lambda);
+
+    if(!user_periods && !m_free_rows.empty()) {
+      ensure_loop_gram();
+      bool proven = true;
+      rounding_energy = b.dot(lambda);
+      for(std::size_t c = 0; c < m_components.size(); ++c) {
+        const std::vector<int>& free = m_free_loops[c];
+        if(free.empty())
+          continue;
+        const Eigen::Index kc = Eigen::Index(free.size());
+        // energy(m) = b.lambda + 2 unit m.lambda_F + unit^2 m^T Ginv m with Ginv = (M^-1)_FF
+        const Eigen::MatrixXd& Ginv = m_loop_gram[c];
+        Eigen::VectorXd lf(kc);
+        for(Eigen::Index a = 0; a < kc; ++a)
+          lf[a] = lambda[m_row_of_loop[free[a]]];
+        const Eigen::VectorXd center = -Ginv.ldlt().solve(lf) / unit;
+        const Eigen::MatrixXd G = unit * unit * Ginv;
+        std::vector<std::int64_t> rounded(kc), own(kc);
+        for(Eigen::Index a = 0; a < kc; ++a) {
+          rounded[a] = std::int64_t(std::llround(center[a]));
+          // each loop on its own: the integer making its own connection sum smallest
+          own[a] = std::int64_t(std::llround(m_loop_holonomy[free[a]] / unit));
+        }
+        const internal::Closest_vector_result best = internal::closest_vector(G, center, {rounded, own});
+        proven = proven && best.proven;
+        auto energy_change = [&](const std::vector<std::int64_t>& m) {
+          Eigen::VectorXd mv(kc);
+          for(Eigen::Index a = 0; a < kc; ++a) mv[a] = double(m[a]);
+          return 2 * unit * mv.dot(lf) + mv.dot(G * mv);
+        };
+        rounding_energy += energy_change(rounded);
+        for(Eigen::Index a = 0; a < kc; ++a)
+          periods[free[a]] = best.m[a];
+      }
+      report.integers_proven_optimal = proven;
+      b = right_hand_side(k, periods, n);
+      lambda = solve_system(b);
+    }
+
+    // x = W^-1 A^T lambda
+    const Eigen::VectorXd xe = m_inverse_weight.cwiseProduct(m_A.transpose() * lambda);
+    write_connection(xe, x);
+
+    fill_report(xe, k, periods, prescribed, n, report);
+    report.rounding_energy = user_periods ? report.energy : rounding_energy;
+    return report;
+  }
+
+  /*!
+  Writes the direction field defined by a trivial connection: starting from the seed face, a unit
+  tangent vector is moved along a breadth-first dual spanning tree of each component by Levi-Civita
+  transport followed by the rotation `x(h)`. For an n-direction field it is one of the n directions.
+  \param x a readable property map `halfedge_descriptor -> double` holding a connection (from `solve()`)
+  \param field a writable property map `face_descriptor -> Vector_3`
+  \cgalNamedParamsBegin
+    \cgalParamNBegin{seed_face} \cgalParamType{`face_descriptor`} \cgalParamDefault{the first face} \cgalParamNEnd
+    \cgalParamNBegin{seed_angle}
+      \cgalParamDescription{angle of the field in the seed face, counter-clockwise from the direction of `halfedge(seed_face)`}
+      \cgalParamType{`double`} \cgalParamDefault{0}
+    \cgalParamNEnd
+  \cgalNamedParamsEnd
+  Other components start with angle 0 in their first face (in face-index order).
+  */
+  template <class HalfedgeAngleMap, class FaceVectorMap,
+            class NamedParameters = parameters::Default_named_parameters>
+  void compute_field(HalfedgeAngleMap x, FaceVectorMap field,
+                     const NamedParameters& np = parameters::default_values()) const
+  {
+    const double seed_angle =
+      CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::seed_angle), 0.);
+    int seed = -1;
+    if(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::seed_face_t>::value) {
+      const face_descriptor f = CGAL::parameters::choose_parameter(
+        CGAL::parameters::get_parameter(np, tc_np::seed_face), face_descriptor());
+      seed = f == Graph_traits::null_face() ? -1 : int(get(m_mesh.face_index, f));
+      if(seed < 0 || seed >= m_mesh.nf || m_mesh.faces[seed] != f)
+        throw Invalid_input(Error_code::invalid_argument, "the seed face is not a face of the mesh");
+    }
+    if(!std::isfinite(seed_angle))
+      throw Invalid_input(Error_code::invalid_argument, "the seed angle is not finite");
+
+    std::vector<double> angle(m_mesh.nf, 0.);
+    for(int f : m_topology.face_order) {
+      const int i = m_topology.parent_corner[f];
+      if(i >= 0)
+        angle[f] = internal::wrap_angle(angle[Mesh::face_of(i)] + m_geometry.transport_angle(i) +
+                                        get(x, m_mesh.halfedges[i]));
+    }
+    if(seed >= 0) {
+      const int c = m_topology.component_of_face[seed];
+      const double shift = seed_angle - angle[seed];
+      for(int f = 0; f < m_mesh.nf; ++f)
+        if(m_topology.component_of_face[f] == c)
+          angle[f] = internal::wrap_angle(angle[f] + shift);
+    }
+    typename Geom_traits::Construct_vector_3 vector = m_traits.construct_vector_3_object();
+    for(int f = 0; f < m_mesh.nf; ++f) {
+      const double c = std::cos(angle[f]), s = std::sin(angle[f]);
+      const internal::Vec3& ex = m_geometry.frame_x[f];
+      const internal::Vec3& ey = m_geometry.frame_y[f];
+      put(field, m_mesh.faces[f],
+          vector(c * ex[0] + s * ey[0], c * ex[1] + s * ey[1], c * ex[2] + s * ey[2]));
+    }
+  }
+
+private:
+  void build_loops()
+  {
+    const std::vector<internal::Mesh_topology::Component>& comps = m_topology.components;
+    m_components.resize(comps.size());
+    for(std::size_t c = 0; c < comps.size(); ++c) {
+      m_components[c].number_of_faces = std::size_t(comps[c].faces);
+      m_components[c].euler_characteristic = comps[c].euler_characteristic;
+      m_components[c].genus = comps[c].genus;
+      m_components[c].number_of_boundary_loops = std::size_t(comps[c].boundary_loops);
+    }
+    // exact geodesic curvature of each boundary loop: sum over its vertices of pi - their angle sums
+    std::vector<double> geodesic_curvature(m_topology.number_of_nodes - m_topology.number_of_interior_nodes, 0.);
+    for(int v = 0; v < m_mesh.nv; ++v)
+      if(m_mesh.faces_at_vertex[v] > 0 && m_geometry.on_boundary[v])
+        geodesic_curvature[m_topology.node_of_vertex[v] - m_topology.number_of_interior_nodes] +=
+          m_geometry.angle_defect(v);
+    for(const internal::Mesh_topology::Loop& l : m_topology.loops) {
+      Loop loop;
+      loop.kind = l.kind;
+      loop.component = std::size_t(l.component);
+      loop.halfedges.reserve(l.crossings.size());
+      double holonomy = 0;
+      for(int i : l.crossings) {
+        loop.halfedges.push_back(m_mesh.halfedges[i]);
+        holonomy += m_geometry.transport_angle(i);
+      }
+      if(l.kind == Loop_kind::boundary) {
+        holonomy = geodesic_curvature[l.node - m_topology.number_of_interior_nodes];
+      } else {
+        holonomy = internal::wrap_angle(holonomy);
+      }
+      m_loops.push_back(std::move(loop));
+      m_loop_holonomy.push_back(holonomy);
+    }
+  }
+
+  // Rows: every node except the pinned one of its component, then every generator.
+  void build_constraints()
+  {
+    const internal::Mesh_topology& t = m_topology;
+    m_row_of_node.assign(t.number_of_nodes, -1);
+    int rows = 0;
+    std::vector<char> pinned(t.number_of_nodes, 0);
+    for(const auto& c : t.components)
+      pinned[c.pinned_node] = 1;
+    for(int node = 0; node < t.number_of_nodes; ++node)
+      if(!pinned[node])
+        m_row_of_node[node] = rows++;
+    m_row_of_loop.assign(t.loops.size(), -1);
+    m_free_loops.assign(t.components.size(), {});
+    for(std::size_t l = 0; l < t.loops.size(); ++l) {
+      const auto& loop = t.loops[l];
+      m_row_of_loop[l] = loop.kind == Loop_kind::boundary ? m_row_of_node[loop.node] : rows++;
+      if(m_row_of_loop[l] >= 0) {
+        m_free_loops[loop.component].push_back(int(l));
+        m_free_rows.push_back(m_row_of_loop[l]);
+      }
+    }
+    m_vertex_of_node.assign(t.number_of_interior_nodes, -1);
+    for(int v = 0; v < m_mesh.nv; ++v) {
+      const int node = t.node_of_vertex[v];
+      if(node >= 0 && node < t.number_of_interior_nodes)
+        m_vertex_of_node[node] = v;
+    }
+
+    const int ne = m_geometry.number_of_interior_edges();
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(2 * std::size_t(ne));
+    for(int e = 0; e < ne; ++e) {
+      // x_e = x(i) is crossed into target(i)'s star and, reversed, into source(i)'s star
+      const int i = m_geometry.edge_corner[e];
+      const int a = t.node_of_vertex[m_mesh.source_of(i)], b = t.node_of_vertex[m_mesh.target_of(i)];
+      if(a == b)
+        continue;
+      if(m_row_of_node[b] >= 0) entries.emplace_back(m_row_of_node[b], e, 1.);
+      if(m_row_of_node[a] >= 0) entries.emplace_back(m_row_of_node[a], e, -1.);
+    }
+    for(std::size_t l = 0; l < t.loops.size(); ++l)
+      if(t.loops[l].kind == Loop_kind::generator)
+        for(int i : t.loops[l].crossings) {
+          const int e = m_geometry.edge_of_corner[i];
+          entries.emplace_back(m_row_of_loop[l], e, m_geometry.edge_corner[e] == i ? 1. : -1.);
+        }
+    m_A.resize(rows, ne);
+    m_A.setFromTriplets(entries.begin(), entries.end());
+    m_A.prune(0.);
+    m_inverse_weight.resize(ne);
+    for(int e = 0; e < ne; ++e)
+      m_inverse_weight[e] = 1 / m_geometry.weight[e];
+  }
+
+  void factor()
+  {
+    if(m_A.rows() == 0)
+      return;
+    const Sparse AW = m_A * m_inverse_weight.asDiagonal();
+    Sparse M = AW * m_A.transpose();
+    M.makeCompressed();
+    m_system.reset(new typename Solver_traits::Matrix(M));
+    double d = 1;
+    if(!m_solver.factor(*m_system, d))
+      throw Invalid_input(Error_code::solver_failure,
+                          "the sparse factorization of the constraint system failed");
+  }
+
+  // M^-1 b with one step of iterative refinement; the residual is checked.
+  Eigen::VectorXd solve_system(const Eigen::VectorXd& b)
+  {
+    if(b.size() == 0)
+      return b;
+    typename Solver_traits::Vector rhs(b.size()), sol(b.size());
+    rhs = b;
+    if(!m_solver.linear_solver(rhs, sol))
+      throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
+    Eigen::VectorXd lambda = sol;
+    const Sparse& M = m_system->eigen_object();
+    rhs = b - M * lambda;
+    if(!m_solver.linear_solver(rhs, sol))
+      throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
+    lambda += sol;
+    const double res = (b - M * lambda).lpNorm<Eigen::Infinity>();
+    if(!std::isfinite(res) || !lambda.allFinite() || res > 1e-8 * (1 + b.lpNorm<Eigen::Infinity>()))
+      throw Invalid_input(Error_code::solver_failure,
+                          "the linear solve is inaccurate (residual " + std::to_string(res) + ")");
+    return lambda;
+  }
+
+  // (M^-1) restricted to the free loop rows of each component: the metric of the integer problem.
+  void ensure_loop_gram()
+  {
+    if(m_loop_gram_ready)
+      return;
+    m_loop_gram.assign(m_components.size(), Eigen::MatrixXd());
+    for(std::size_t c = 0; c < m_components.size(); ++c) {
+      const std::vector<int>& free = m_free_loops[c];
+      const Eigen::Index kc = Eigen::Index(free.size());
+      Eigen::MatrixXd G(kc, kc);
+      for(Eigen::Index a = 0; a < kc; ++a) {
+        Eigen::VectorXd unit_rhs = Eigen::VectorXd::Zero(m_A.rows());
+        unit_rhs[m_row_of_loop[free[a]]] = 1;
+        const Eigen::VectorXd column = solve_system(unit_rhs);
+        for(Eigen::Index r = 0; r < kc; ++r)
+          G(r, a) = column[m_row_of_loop[free[r]]];
+      }
+      m_loop_gram[c] = (G + G.transpose()) / 2;
+    }
+    m_loop_gram_ready = true;
+  }
+
+  template <class SingularityRange>
+  std::vector<std::int64_t> vertex_indices(const SingularityRange& singularities, int n, Solve_report& report) const
+  {
+    std::vector<std::int64_t> k(m_mesh.nv, 0);
+    std::vector<char> listed(m_mesh.nv, 0);
+    std::vector<Singularity_index> sums(m_components.size());
+    for(const auto& s : singularities) {
+      const vertex_descriptor vd = s.first;
+      const Singularity_index& index = s.second;
+      const std::size_t v = std::size_t(get(m_mesh.vertex_index, vd));
+      if(v >= std::size_t(m_mesh.nv) || m_mesh.vertices[v] != vd)
+        throw Invalid_input(Error_code::invalid_vertex, "a singularity is placed on a vertex that is not in the mesh");
+      if(m_mesh.faces_at_vertex[v] == 0)
+        throw Invalid_input(Error_code::invalid_vertex,
+                            "vertex " + std::to_string(v) + " carries a singularity but belongs to no face", v);
+      if(listed[v])
+        throw Invalid_input(Error_code::duplicate_singularity,
+                            "vertex " + std::to_string(v) + " is given a singularity twice", v);
+      listed[v] = 1;
+      if(m_geometry.on_boundary[v])
+        throw Invalid_input(Error_code::singularity_on_boundary,
+                            "vertex " + std::to_string(v) + " is on the boundary: singularities must be interior "
+                            "(boundary loops get their index from the solver or from loop_periods)", v);
+      if(!index.is_multiple_of_one_over(n))
+        throw Invalid_input(Error_code::index_not_multiple,
+                            "the index " + index.to_string() + " of vertex " + std::to_string(v) +
+                              " is not a multiple of 1/" + std::to_string(n), v);
+      k[v] = index.times(n);
+      const int c = m_topology.component_of_node[m_topology.node_of_vertex[v]];
+      sums[c] = sums[c] + index;
+    }
+    std::string violations;
+    std::size_t first_bad = Invalid_input::no_location;
+    for(std::size_t c = 0; c < m_components.size(); ++c) {
+      report.components[c].vertex_index_sum = sums[c];
+      if(m_components[c].number_of_boundary_loops == 0 &&
+         sums[c] != Singularity_index(m_components[c].euler_characteristic)) {
+        violations += (violations.empty() ? "" : "; ") + std::string("component ") + std::to_string(c) +
+                      " (closed, genus " + std::to_string(m_components[c].genus) + "): indices sum to " +
+                      sums[c].to_string() + ", expected " + std::to_string(m_components[c].euler_characteristic);
+        if(first_bad == Invalid_input::no_location)
+          first_bad = c;
+      }
+    }
+    if(!violations.empty())
+      throw Invalid_input(Error_code::poincare_hopf_violated,
+                          "Poincare-Hopf violated: " + violations, first_bad);
+    return k;
+  }
+
+  std::vector<std::int64_t> read_periods(const std::vector<std::int64_t>& given,
+                                         const std::vector<std::int64_t>& k, int n) const
+  {
+    if(given.size() != m_loops.size())
+      throw Invalid_input(Error_code::invalid_loop_periods,
+                          "loop_periods has " + std::to_string(given.size()) + " values, the mesh has " +
+                            std::to_string(m_loops.size()) + " loops");
+    std::vector<std::int64_t> total(m_components.size(), 0);
+    for(int v = 0; v < m_mesh.nv; ++v)
+      if(k[v] != 0)
+        total[m_topology.component_of_node[m_topology.node_of_vertex[v]]] += k[v];
+    for(std::size_t l = 0; l < m_loops.size(); ++l)
+      if(m_loops[l].kind == Loop_kind::boundary)
+        total[m_loops[l].component] += given[l];
+    for(std::size_t c = 0; c < m_components.size(); ++c)
+      if(m_components[c].number_of_boundary_loops > 0 && total[c] != n * m_components[c].euler_characteristic)
+        throw Invalid_input(Error_code::invalid_loop_periods,
+                            "Poincare-Hopf violated by the prescribed boundary loop indices of component " +
+                              std::to_string(c) + ": vertex and boundary indices sum to " +
+                              Singularity_index(total[c], n).to_string() + ", expected " +
+                              std::to_string(m_components[c].euler_characteristic),
+                            c);
+    return given;
+  }
+
+  Eigen::VectorXd right_hand_side(const std::vector<std::int64_t>& k, const std::vector<std::int64_t>& periods,
+                                  int n) const
+  {
+    const double unit = 2 * CGAL_PI / n;
+    Eigen::VectorXd b(m_A.rows());
+    for(std::size_t node = 0; node < m_vertex_of_node.size(); ++node) {
+      const int r = m_row_of_node[node];
+      if(r >= 0) {
+        const int v = m_vertex_of_node[node];
+        b[r] = unit * double(k[v]) - m_geometry.angle_defect(v);
+      }
+    }
+    for(std::size_t l = 0; l < m_loops.size(); ++l)
+      if(m_row_of_loop[l] >= 0)
+        b[m_row_of_loop[l]] = unit * double(periods[l]) - m_loop_holonomy[l];
+    return b;
+  }
+
+  template <class HalfedgeAngleMap>
+  void write_connection(const Eigen::VectorXd& xe, HalfedgeAngleMap x) const
+  {
+    for(int i = 0; i < 3 * m_mesh.nf; ++i) {
+      if(m_mesh.opposite_corner[i] < 0) {
+        put(x, m_mesh.halfedges[i], 0.);
+        put(x, opposite(m_mesh.halfedges[i], m_tm), 0.);
+      } else {
+        put(x, m_mesh.halfedges[i], m_geometry.oriented(xe, i));
+      }
+    }
+  }
+
+  void fill_report(const Eigen::VectorXd& xe, const std::vector<std::int64_t>& k,
+                   std::vector<std::int64_t>& periods, const std::vector<char>& prescribed, int n,
+                   Solve_report& report) const
+  {
+    const double unit = 2 * CGAL_PI / n;
+    report.energy = 0;
+    for(Eigen::Index e = 0; e < xe.size(); ++e)
+      report.energy += m_geometry.weight[e] * xe[e] * xe[e];
+
+    // star sums: x(i) enters target(i)'s star, -x(i) = x(opposite(i)) enters source(i)'s star
+    std::vector<double> star(m_mesh.nv, 0.);
+    for(int e = 0; e < int(xe.size()); ++e) {
+      const int i = m_geometry.edge_corner[e];
+      star[m_mesh.target_of(i)] += xe[e];
+      star[m_mesh.source_of(i)] -= xe[e];
+    }
+    report.max_vertex_residual = 0;
+    for(int v = 0; v < m_mesh.nv; ++v)
+      if(m_mesh.faces_at_vertex[v] > 0 && !m_geometry.on_boundary[v])
+        report.max_vertex_residual = (std::max)(
+          report.max_vertex_residual, std::abs(m_geometry.angle_defect(v) + star[v] - unit * double(k[v])));
+
+    // the pinned boundary loop's integer follows from Poincare-Hopf
+    std::vector<std::int64_t> total(m_components.size(), 0);
+    for(int v = 0; v < m_mesh.nv; ++v)
+      if(k[v] != 0)
+        total[m_topology.component_of_node[m_topology.node_of_vertex[v]]] += k[v];
+    for(std::size_t l = 0; l < m_loops.size(); ++l)
+      if(m_loops[l].kind == Loop_kind::boundary && m_row_of_loop[l] >= 0)
+        total[m_loops[l].component] += periods[l];
+    for(std::size_t l = 0; l < m_loops.size(); ++l)
+      if(m_loops[l].kind == Loop_kind::boundary && m_row_of_loop[l] < 0 && !prescribed[l])
+        periods[l] = n * m_components[m_loops[l].component].euler_characteristic - total[m_loops[l].component];
+
+    report.max_loop_residual = 0;
+    report.loops.resize(m_loops.size());
+    for(std::size_t l = 0; l < m_loops.size(); ++l) {
+      double sum = 0;
+      for(int i : m_topology.loops[l].crossings)
+        sum += m_geometry.oriented(xe, i);
+      Loop_report& r = report.loops[l];
+      r.kind = m_loops[l].kind;
+      r.component = m_loops[l].component;
+      r.period = periods[l];
+      r.index = Singularity_index(periods[l], n);
+      r.prescribed = prescribed[l] != 0;
+      r.residual = std::abs(m_loop_holonomy[l] + sum - unit * double(periods[l]));
+      report.max_loop_residual = (std::max)(report.max_loop_residual, r.residual);
+    }
+  }
+
+  const TriangleMesh& m_tm;
+  Geom_traits m_traits;
+  Weighting m_weighting;
+  Mesh m_mesh;
+  internal::Mesh_geometry m_geometry;
+  internal::Mesh_topology m_topology;
+  std::vector<Loop> m_loops;
+  std::vector<double> m_loop_holonomy;
+  std::vector<Component_report> m_components;
+
+  std::vector<int> m_row_of_node, m_row_of_loop, m_vertex_of_node, m_free_rows;
+  std::vector<std::vector<int>> m_free_loops;  // per component: loops whose integer is free
+  Sparse m_A;                                  // rows x interior edges
+  Eigen::VectorXd m_inverse_weight;
+  std::unique_ptr<typename Solver_traits::Matrix> m_system;  // the solver keeps a pointer to it
+  Solver_traits m_solver;
+  bool m_loop_gram_ready = false;
+  std::vector<Eigen::MatrixXd> m_loop_gram;
+};
+
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#include <CGAL/enable_warnings.h>
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_TRIVIAL_CONNECTION_SOLVER_H

@@ -1,0 +1,157 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_GEOMETRY_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_GEOMETRY_H
+
+#include <CGAL/Trivial_connections/internal/mesh_arrays.h>
+#include <CGAL/Trivial_connections/parameters.h>
+
+#include <CGAL/number_type_config.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+using Vec3 = std::array<double, 3>;
+
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b)
+{
+  return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
+}
+inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+inline Vec3 scaled(const Vec3& a, double s) { return {{a[0] * s, a[1] * s, a[2] * s}}; }
+
+// Angle in (-pi, pi] congruent to a modulo 2 pi.
+inline double wrap_angle(double a)
+{
+  const double two_pi = 2 * CGAL_PI;
+  double r = std::fmod(a, two_pi);
+  if(r > CGAL_PI) r -= two_pi;
+  else if(r <= -CGAL_PI) r += two_pi;
+  return r;
+}
+
+// Unsigned angle between two vectors, accurate for every angle (atan2 of |u x w| and u.w).
+inline double angle_between(const Vec3& u, const Vec3& w) { return std::atan2(norm(cross(u, w)), dot(u, w)); }
+
+/*
+  Intrinsic quantities of the flattened mesh. Each face f has the frame (e_f, N_f x e_f) with e_f the
+  unit direction of its corner halfedge 3f; a tangent direction of f is an angle in that frame.
+  Interior edges are numbered in the order of their smaller corner halfedge, which is their "canonical"
+  halfedge: x_e = x(canonical halfedge).
+*/
+struct Mesh_geometry
+{
+  std::vector<double> corner_angle;     // per corner halfedge i: angle at source(i)
+  std::vector<double> direction;        // per corner halfedge i: angle of its direction in the frame of its face
+  std::vector<double> angle_sum;        // per vertex
+  std::vector<bool> on_boundary;        // per vertex
+  std::vector<Vec3> normal, frame_x, frame_y;  // per face
+
+  std::vector<int> edge_of_corner;      // per corner halfedge: interior edge id, -1 on a border edge
+  std::vector<int> edge_corner;         // per interior edge: its canonical corner halfedge
+  std::vector<double> weight;           // per interior edge: w_e
+  std::vector<double> transport;        // per interior edge: rho of its canonical halfedge
+
+  int number_of_interior_edges() const { return int(edge_corner.size()); }
+
+  // x(i) for corner halfedge i of an interior edge, given x per interior edge
+  template <class Values>
+  double oriented(const Values& per_edge, int i) const
+  {
+    const int e = edge_of_corner[i];
+    return edge_corner[e] == i ? per_edge[e] : -per_edge[e];
+  }
+
+  // rho(i): the angle a direction gains in frame coordinates when moved by Levi-Civita transport from
+  // face(i) to the face of opposite(i). The edge keeps its direction while the frames change.
+  double transport_angle(int i) const { return oriented(transport, i); }
+
+  double angle_defect(int v) const { return (on_boundary[v] ? CGAL_PI : 2 * CGAL_PI) - angle_sum[v]; }
+
+  template <class TriangleMesh>
+  Mesh_geometry(const Mesh_arrays<TriangleMesh>& m, Weighting weighting)
+  {
+    using MA = Mesh_arrays<TriangleMesh>;
+    const int nc = 3 * m.nf;
+    corner_angle.resize(nc);
+    direction.resize(nc);
+    angle_sum.assign(m.nv, 0.);
+    on_boundary.assign(m.nv, false);
+    normal.resize(m.nf); frame_x.resize(m.nf); frame_y.resize(m.nf);
+
+    for(int f = 0; f < m.nf; ++f) {
+      const Vec3& p0 = m.points[m.corner_vertex[3 * f]];
+      const Vec3& p1 = m.points[m.corner_vertex[3 * f + 1]];
+      const Vec3& p2 = m.points[m.corner_vertex[3 * f + 2]];
+      const Vec3 e01 = sub(p1, p0), e12 = sub(p2, p1), e20 = sub(p0, p2);
+      const double a0 = angle_between(e01, scaled(e20, -1));
+      const double a1 = angle_between(e12, scaled(e01, -1));
+      const double a2 = angle_between(e20, scaled(e12, -1));
+      corner_angle[3 * f] = a0; corner_angle[3 * f + 1] = a1; corner_angle[3 * f + 2] = a2;
+      for(int k = 0; k < 3; ++k)
+        angle_sum[m.corner_vertex[3 * f + k]] += corner_angle[3 * f + k];
+      const Vec3 n = cross(e01, sub(p2, p0));
+      normal[f] = scaled(n, 1 / norm(n));
+      frame_x[f] = scaled(e01, 1 / norm(e01));
+      frame_y[f] = cross(normal[f], frame_x[f]);
+      // directions measured in the frame itself, not accumulated from corner angles
+      direction[3 * f] = 0;
+      direction[3 * f + 1] = std::atan2(dot(e12, frame_y[f]), dot(e12, frame_x[f]));
+      direction[3 * f + 2] = std::atan2(dot(e20, frame_y[f]), dot(e20, frame_x[f]));
+    }
+
+    edge_of_corner.assign(nc, -1);
+    for(int i = 0; i < nc; ++i) {
+      const int o = m.opposite_corner[i];
+      if(o < 0) {
+        on_boundary[m.source_of(i)] = true;
+        on_boundary[m.target_of(i)] = true;
+      } else if(i < o) {
+        edge_of_corner[i] = edge_of_corner[o] = int(edge_corner.size());
+        edge_corner.push_back(i);
+      }
+    }
+
+    const int ne = number_of_interior_edges();
+    weight.resize(ne);
+    transport.resize(ne);
+    for(int e = 0; e < ne; ++e) {
+      const int i = edge_corner[e], o = m.opposite_corner[i];
+      // the edge direction seen from the other face is that of o reversed
+      transport[e] = wrap_angle(direction[o] + CGAL_PI - direction[i]);
+      if(weighting == Weighting::unit) {
+        weight[e] = 1;
+        continue;
+      }
+      const Vec3& a = m.points[m.source_of(i)];
+      const Vec3& b = m.points[m.target_of(i)];
+      const Vec3 mid = scaled({{a[0] + b[0], a[1] + b[1], a[2] + b[2]}}, 0.5);
+      double dual = 0;
+      for(int c : {i, o}) {
+        const int f = MA::face_of(c);
+        Vec3 bary = {{0, 0, 0}};
+        for(int k = 0; k < 3; ++k)
+          for(int d = 0; d < 3; ++d)
+            bary[d] += m.points[m.corner_vertex[3 * f + k]][d] / 3;
+        dual += norm(sub(bary, mid));
+      }
+      weight[e] = norm(sub(b, a)) / dual;
+    }
+  }
+};
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_GEOMETRY_H

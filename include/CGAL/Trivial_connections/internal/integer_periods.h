@@ -1,0 +1,154 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGER_PERIODS_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGER_PERIODS_H
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  Closest vector problem of the loop integers: minimise q(m) = (m - c)^T G (m - c) over integer vectors m,
+  with G symmetric positive definite (the energy restricted to the loop integers) and c its real minimiser.
+
+  - Candidates given by the caller (componentwise rounding of c, ...) and the best of them is kept, so the
+    result is never worse than any of them.
+  - Greedy descent: shift one coordinate by its best integer step while q decreases.
+  - Schnorr-Euchner enumeration inside the ellipsoid q < best, depth first with zig-zag order, on the
+    Cholesky factor of G. When it finishes within `node_budget` nodes the result is the exact optimum
+    (`proven`); otherwise the best point met so far is kept.
+*/
+struct Closest_vector_result
+{
+  std::vector<std::int64_t> m;
+  double value = 0;    // q(m)
+  bool proven = false;
+};
+
+inline double quadratic_distance(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, const std::vector<std::int64_t>& m)
+{
+  Eigen::VectorXd d(c.size());
+  for(Eigen::Index i = 0; i < c.size(); ++i)
+    d[i] = double(m[i]) - c[i];
+  return d.dot(G * d);
+}
+
+struct Enumeration
+{
+  Eigen::MatrixXd R;
+  const Eigen::VectorXd& c;
+  std::vector<std::int64_t> best_m;
+  double best_value;
+  std::size_t nodes;
+  std::size_t node_budget;
+  bool out_of_budget;
+  std::vector<std::int64_t> m;
+
+  void search(Eigen::Index level, double partial)
+  {
+    const Eigen::Index k = c.size();
+    double s = 0;
+    for(Eigen::Index j = level + 1; j < k; ++j)
+      s += R(level, j) * (double(m[j]) - c[j]);
+    const double r = R(level, level);
+    const double center = c[level] - s / r;
+    // candidates by increasing distance to the center: the first one beyond the bound ends the level
+    std::int64_t up = std::int64_t(std::ceil(center)), down = up - 1;
+    while(true) {
+      if(out_of_budget)
+        return;
+      if(++nodes > node_budget) {
+        out_of_budget = true;
+        return;
+      }
+      const bool take_up = (double(up) - center) <= (center - double(down));
+      const std::int64_t v = take_up ? up++ : down--;
+      const double d = double(v) - center;
+      const double cost = partial + r * r * d * d;
+      if(!(cost < best_value))
+        return;
+      m[level] = v;
+      if(level == 0) {
+        best_value = cost;
+        best_m = m;
+      } else {
+        search(level - 1, cost);
+      }
+    }
+  }
+};
+
+inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eigen::VectorXd& c,
+                                            const std::vector<std::vector<std::int64_t>>& candidates,
+                                            std::size_t node_budget = 2000000)
+{
+  const Eigen::Index k = c.size();
+  Closest_vector_result best;
+  best.value = std::numeric_limits<double>::infinity();
+  if(k == 0) {
+    best.value = 0;
+    best.proven = true;
+    return best;
+  }
+  for(const std::vector<std::int64_t>& m : candidates) {
+    const double q = quadratic_distance(G, c, m);
+    if(q < best.value) { best.value = q; best.m = m; }
+  }
+
+  // greedy coordinate descent from the best candidate: the gradient of q is 2 G (m - c)
+  {
+    Eigen::VectorXd r(k);
+    for(Eigen::Index i = 0; i < k; ++i)
+      r[i] = double(best.m[i]) - c[i];
+    Eigen::VectorXd Gr = G * r;
+    for(int sweep = 0; sweep < 100; ++sweep) {
+      bool improved = false;
+      for(Eigen::Index i = 0; i < k; ++i) {
+        const double step = std::round(-Gr[i] / G(i, i));
+        if(step == 0)
+          continue;
+        const double gain = 2 * step * Gr[i] + step * step * G(i, i);
+        if(gain < -1e-12 * (1 + best.value)) {
+          best.m[i] += std::int64_t(step);
+          best.value += gain;
+          r[i] += step;
+          Gr += step * G.col(i);
+          improved = true;
+        }
+      }
+      if(!improved)
+        break;
+    }
+    best.value = r.dot(G * r);
+  }
+
+  // Schnorr-Euchner: q = sum_i R_ii^2 (m_i - center_i)^2 with G = R^T R, R upper triangular and
+  // center_i = c_i - sum_{j>i} R_ij (m_j - c_j) / R_ii; levels are fixed from k-1 down to 0.
+  Eigen::LLT<Eigen::MatrixXd> llt(G);
+  if(llt.info() != Eigen::Success)
+    return best;
+  Enumeration e{llt.matrixU(), c, best.m, best.value, 0, node_budget, false};
+  e.m.assign(std::size_t(k), 0);
+  e.search(k - 1, 0.);
+  best.m = e.best_m;
+  best.value = e.best_value;
+  best.proven = !e.out_of_budget;
+  return best;
+}
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGER_PERIODS_H

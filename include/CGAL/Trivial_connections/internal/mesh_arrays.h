@@ -1,0 +1,195 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_ARRAYS_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_ARRAYS_H
+
+#include <CGAL/Trivial_connections/exceptions.h>
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/number_utils.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  The mesh flattened once into int arrays, so that the numerics never touch descriptors or
+  (possibly hashed) property maps. Face f owns the "corner halfedges" 3f, 3f+1, 3f+2:
+  3f is halfedge(f), then next, next. Corner halfedge i goes from corner_vertex[i] to
+  corner_vertex[next_corner(i)]; opposite_corner[i] is the corner halfedge on the other side, or -1 on a border edge.
+*/
+template <class TriangleMesh>
+struct Mesh_arrays
+{
+  using GT = boost::graph_traits<TriangleMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using Vertex_index_map = typename CGAL::GetInitializedVertexIndexMap<TriangleMesh>::const_type;
+  using Face_index_map = typename CGAL::GetInitializedFaceIndexMap<TriangleMesh>::const_type;
+
+  static int next_corner(int i) { return i % 3 == 2 ? i - 2 : i + 1; }
+  static int prev_corner(int i) { return i % 3 == 0 ? i + 2 : i - 1; }
+  static int face_of(int i) { return i / 3; }
+
+  int nv = 0, nf = 0;
+  std::vector<vertex_descriptor> vertices;   // by index
+  std::vector<face_descriptor> faces;        // by index
+  std::vector<halfedge_descriptor> halfedges; // corner halfedge -> descriptor
+  std::vector<int> corner_vertex;
+  std::vector<int> opposite_corner;
+  std::vector<int> faces_at_vertex;          // number of corners at each vertex (0: isolated)
+  std::vector<std::array<double, 3>> points;
+  Vertex_index_map vertex_index;
+  Face_index_map face_index;
+
+  int source_of(int i) const { return corner_vertex[i]; }
+  int target_of(int i) const { return corner_vertex[next_corner(i)]; }
+  bool is_border_edge(int i) const { return opposite_corner[i] < 0; }
+
+  // Corner halfedge of a descriptor; -1 for a border halfedge.
+  int corner_of(halfedge_descriptor h, const TriangleMesh& tm) const
+  {
+    const face_descriptor f = face(h, tm);
+    if(f == GT::null_face())
+      return -1;
+    const int fi = int(get(face_index, f));
+    for(int k = 0; k < 3; ++k)
+      if(halfedges[3 * fi + k] == h)
+        return 3 * fi + k;
+    return -1;
+  }
+
+  // Corner halfedge of an edge: one of its halfedges with a face.
+  template <class Edge>
+  int corner_of_edge(Edge e, const TriangleMesh& tm) const
+  {
+    const int i = corner_of(halfedge(e, tm), tm);
+    return i >= 0 ? i : corner_of(opposite(halfedge(e, tm), tm), tm);
+  }
+
+  template <class VertexPointMap, class Traits>
+  Mesh_arrays(const TriangleMesh& tm, VertexPointMap vpm, const Traits& traits)
+    : vertex_index(CGAL::get_initialized_vertex_index_map(tm)),
+      face_index(CGAL::get_initialized_face_index_map(tm))
+  {
+    nv = int(num_vertices(tm));
+    nf = int(num_faces(tm));
+    if(nf == 0)
+      throw Invalid_input(Error_code::empty_mesh, "the mesh has no face");
+
+    vertices.resize(nv);
+    for(vertex_descriptor v : CGAL::vertices(tm))
+      vertices[get(vertex_index, v)] = v;
+    faces.resize(nf);
+    for(face_descriptor f : CGAL::faces(tm))
+      faces[get(face_index, f)] = f;
+
+    halfedges.resize(3 * std::size_t(nf));
+    corner_vertex.resize(3 * std::size_t(nf));
+    opposite_corner.assign(3 * std::size_t(nf), -1);
+    faces_at_vertex.assign(nv, 0);
+    for(int f = 0; f < nf; ++f) {
+      const halfedge_descriptor h0 = halfedge(faces[f], tm);
+      halfedge_descriptor h = h0;
+      int k = 0;
+      do {
+        if(k == 3)
+          break;
+        halfedges[3 * f + k] = h;
+        ++k;
+        h = next(h, tm);
+      } while(h != h0);
+      if(k != 3 || h != h0)
+        throw Invalid_input(Error_code::not_triangle_mesh,
+                            "face " + std::to_string(f) + " is not a triangle", std::size_t(f));
+      for(int j = 0; j < 3; ++j) {
+        const int v = int(get(vertex_index, source(halfedges[3 * f + j], tm)));
+        corner_vertex[3 * f + j] = v;
+        ++faces_at_vertex[v];
+      }
+    }
+    for(int i = 0; i < 3 * nf; ++i) {
+      const halfedge_descriptor o = CGAL::opposite(halfedges[i], tm);
+      opposite_corner[i] = corner_of(o, tm);
+    }
+
+    check_manifold_vertices(tm);
+
+    typename Traits::Compute_x_3 x = traits.compute_x_3_object();
+    typename Traits::Compute_y_3 y = traits.compute_y_3_object();
+    typename Traits::Compute_z_3 z = traits.compute_z_3_object();
+    points.resize(nv);
+    for(int v = 0; v < nv; ++v) {
+      const auto& p = get(vpm, vertices[v]);
+      points[v] = {{CGAL::to_double(x(p)), CGAL::to_double(y(p)), CGAL::to_double(z(p))}};
+    }
+    check_degenerate_faces(vpm, traits);
+  }
+
+private:
+  // Every face at v must be reached by turning around v from one of its halfedges: otherwise v joins
+  // several umbrellas (pinched or non-manifold vertex). Linear in the mesh size.
+  void check_manifold_vertices(const TriangleMesh& tm) const
+  {
+    for(int v = 0; v < nv; ++v) {
+      if(faces_at_vertex[v] == 0)
+        continue;
+      int reached = 0, borders = 0;
+      for(halfedge_descriptor h : halfedges_around_target(halfedge(vertices[v], tm), tm)) {
+        if(is_border(h, tm))
+          ++borders;
+        else
+          ++reached;
+      }
+      if(reached != faces_at_vertex[v] || borders > 1)
+        throw Invalid_input(Error_code::non_manifold,
+                            "vertex " + std::to_string(v) + " is non-manifold (its faces form " +
+                              (borders > 1 ? "a pinched fan" : "more than one fan") + ")",
+                            std::size_t(v));
+    }
+  }
+
+  template <class VertexPointMap, class Traits>
+  void check_degenerate_faces(VertexPointMap vpm, const Traits& traits) const
+  {
+    typename Traits::Collinear_3 collinear = traits.collinear_3_object();
+    for(int f = 0; f < nf; ++f) {
+      const int a = corner_vertex[3 * f], b = corner_vertex[3 * f + 1], c = corner_vertex[3 * f + 2];
+      bool bad = (a == b || b == c || c == a);
+      for(int v : {a, b, c})
+        for(double t : points[v])
+          bad = bad || !std::isfinite(t);
+      if(!bad)
+        bad = collinear(get(vpm, vertices[a]), get(vpm, vertices[b]), get(vpm, vertices[c]));
+      if(!bad) {
+        // a face that is not collinear exactly can still have a zero or subnormal area in double
+        const auto& p = points[a]; const auto& q = points[b]; const auto& r = points[c];
+        const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+        const double w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+        const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        bad = !(nn > 0) || !std::isnormal(nn);
+      }
+      if(bad)
+        throw Invalid_input(Error_code::degenerate_face,
+                            "face " + std::to_string(f) + " is degenerate (zero area)", std::size_t(f));
+    }
+  }
+};
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_ARRAYS_H

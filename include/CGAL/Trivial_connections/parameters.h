@@ -1,0 +1,75 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_PARAMETERS_H
+#define CGAL_TRIVIAL_CONNECTIONS_PARAMETERS_H
+
+#include <CGAL/Named_function_parameters.h>
+
+namespace CGAL {
+namespace Trivial_connections {
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+The weights `w_e` of the energy `sum_e w_e x_e^2`.
+*/
+enum class Weighting {
+  hodge_star, ///< `w_e = |e| / |e*|`, with the barycentric dual length `|e*|` (see the user manual)
+  unit        ///< `w_e = 1`
+};
+
+// Tags of our own named parameters. Not called `internal_np`: that would hide CGAL::internal_np.
+namespace tc_np {
+enum weighting_t { weighting };
+enum symmetry_order_t { symmetry_order };
+enum loop_periods_t { loop_periods };
+enum seed_face_t { seed_face };
+enum seed_angle_t { seed_angle };
+} // namespace tc_np
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+Named parameters of this package. It also re-exports CGAL's own (`vertex_point_map`, `geom_traits`,
+`default_values()`, ...), so `CGAL::Trivial_connections::parameters::` is the only prefix users need.
+Each of our parameters comes as a starter, `symmetry_order(4)`, and as an appender that takes any pack,
+`symmetry_order(4, CGAL::parameters::vertex_point_map(vpm))`; CGAL's own parameters chain after ours as
+members: `symmetry_order(4).vertex_point_map(vpm)`.
+*/
+namespace parameters {
+using namespace CGAL::parameters;
+
+#define CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(NAME)                                           \
+  template <class T>                                                                             \
+  CGAL::Named_function_parameters<T, tc_np::NAME##_t> NAME(const T& v)                           \
+  {                                                                                              \
+    return CGAL::Named_function_parameters<T, tc_np::NAME##_t>(v);                               \
+  }                                                                                              \
+  template <class T, class NP_T, class NP_Tag, class NP_Base>                                    \
+  CGAL::Named_function_parameters<T, tc_np::NAME##_t,                                            \
+                                  CGAL::Named_function_parameters<NP_T, NP_Tag, NP_Base>>        \
+  NAME(const T& v, const CGAL::Named_function_parameters<NP_T, NP_Tag, NP_Base>& np)             \
+  {                                                                                              \
+    return CGAL::Named_function_parameters<T, tc_np::NAME##_t,                                   \
+                                           CGAL::Named_function_parameters<NP_T, NP_Tag, NP_Base>>(v, np); \
+  }
+
+/// `Weighting::hodge_star` (default) or `Weighting::unit`; read by the solver's constructor
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(weighting)
+/// n of the n-direction field (`int`, default 1); read by `solve()`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(symmetry_order)
+/// prescribed integers of the loops (`std::vector<long long>`, one per loop of `loops()`); read by `solve()`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(loop_periods)
+/// the face the field is seeded from (a `face_descriptor`); read by `compute_field()`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(seed_face)
+/// angle of the field in the seed face, counter-clockwise from `halfedge(seed_face)` (`double`, default 0)
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(seed_angle)
+
+#undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
+} // namespace parameters
+
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_PARAMETERS_H

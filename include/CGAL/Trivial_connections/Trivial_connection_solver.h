@@ -503,7 +503,7 @@ private:
   {
     std::vector<std::int64_t> k(m_mesh.nv, 0);
     std::vector<char> listed(m_mesh.nv, 0);
-    std::vector<Singularity_index> sums(m_components.size());
+    std::vector<std::int64_t> sums(m_components.size(), 0); // n times the index sums
     for(const auto& s : singularities) {
       const vertex_descriptor vd = s.first;
       const Singularity_index& index = s.second;
@@ -525,23 +525,29 @@ private:
         throw Invalid_input(Error_code::index_not_multiple,
                             "the index " + index.to_string() + " of vertex " + std::to_string(v) +
                               " is not a multiple of 1/" + std::to_string(n), v);
+      // bounded so that the sums over all vertices stay far from overflow
+      if(std::abs(index.numerator()) > (std::int64_t(1) << 30) / (n / index.denominator()))
+        throw Invalid_input(Error_code::invalid_index,
+                            "the index " + index.to_string() + " of vertex " + std::to_string(v) + " is too large", v);
       k[v] = index.times(n);
-      const int c = m_topology.component_of_node[m_topology.node_of_vertex[v]];
-      sums[c] = sums[c] + index;
+      sums[m_topology.component_of_node[m_topology.node_of_vertex[v]]] += k[v];
     }
     std::string violations;
-    std::size_t first_bad = Invalid_input::no_location;
+    std::size_t first_bad = Invalid_input::no_location, bad = 0;
     for(std::size_t c = 0; c < m_components.size(); ++c) {
-      report.components[c].vertex_index_sum = sums[c];
-      if(m_components[c].number_of_boundary_loops == 0 &&
-         sums[c] != Singularity_index(m_components[c].euler_characteristic)) {
+      const Singularity_index sum(sums[c], n);
+      report.components[c].vertex_index_sum = sum;
+      if(m_components[c].number_of_boundary_loops == 0 && sums[c] != n * m_components[c].euler_characteristic &&
+         ++bad <= 5) {
         violations += (violations.empty() ? "" : "; ") + std::string("component ") + std::to_string(c) +
                       " (closed, genus " + std::to_string(m_components[c].genus) + "): indices sum to " +
-                      sums[c].to_string() + ", expected " + std::to_string(m_components[c].euler_characteristic);
+                      sum.to_string() + ", expected " + std::to_string(m_components[c].euler_characteristic);
         if(first_bad == Invalid_input::no_location)
           first_bad = c;
       }
     }
+    if(bad > 5)
+      violations += "; and " + std::to_string(bad - 5) + " more components";
     if(!violations.empty())
       throw Invalid_input(Error_code::poincare_hopf_violated,
                           "Poincare-Hopf violated: " + violations, first_bad);

@@ -22,8 +22,7 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 
 #ifdef CGAL_EIGEN3_ENABLED
-#include <CGAL/Eigen_solver_traits.h>
-#include <Eigen/SparseCholesky>
+#include <CGAL/Trivial_connections/solver_traits.h>
 #endif
 
 #include <Eigen/Dense>
@@ -65,8 +64,7 @@ struct Trivial_connection_solver_types
   using Point = typename boost::property_traits<Vertex_point_map>::value_type;
   using Geom_traits = typename CGAL::Default::Get<GeomTraits, typename CGAL::Kernel_traits<Point>::Kernel>::type;
 #ifdef CGAL_EIGEN3_ENABLED
-  using Default_solver =
-    CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<typename CGAL::Eigen_sparse_matrix<double>::EigenType>>;
+  using Default_solver = Default_solver_traits;
 #else
   using Default_solver = void;
 #endif

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -83,17 +84,29 @@ struct Mesh_arrays
     : vertex_index(CGAL::get_initialized_vertex_index_map(tm)),
       face_index(CGAL::get_initialized_face_index_map(tm))
   {
-    nv = int(num_vertices(tm));
-    nf = int(num_faces(tm));
+    // counted by iteration: num_faces() of a Surface_mesh also counts removed faces
+    nv = int(std::distance(CGAL::vertices(tm).begin(), CGAL::vertices(tm).end()));
+    nf = int(std::distance(CGAL::faces(tm).begin(), CGAL::faces(tm).end()));
     if(nf == 0)
       throw Invalid_input(Error_code::empty_mesh, "the mesh has no face");
 
-    vertices.resize(nv);
-    for(vertex_descriptor v : CGAL::vertices(tm))
-      vertices[get(vertex_index, v)] = v;
-    faces.resize(nf);
-    for(face_descriptor f : CGAL::faces(tm))
-      faces[get(face_index, f)] = f;
+    // indices must be a permutation of 0..n-1 (not so in a Surface_mesh with removed elements)
+    const std::string not_contiguous =
+      " indices are not 0..n-1 (a Surface_mesh with removed elements? call collect_garbage() first)";
+    vertices.assign(nv, GT::null_vertex());
+    for(vertex_descriptor v : CGAL::vertices(tm)) {
+      const std::size_t i = std::size_t(get(vertex_index, v));
+      if(i >= std::size_t(nv) || vertices[i] != GT::null_vertex())
+        throw Invalid_input(Error_code::invalid_argument, "vertex" + not_contiguous);
+      vertices[i] = v;
+    }
+    faces.assign(nf, GT::null_face());
+    for(face_descriptor f : CGAL::faces(tm)) {
+      const std::size_t i = std::size_t(get(face_index, f));
+      if(i >= std::size_t(nf) || faces[i] != GT::null_face())
+        throw Invalid_input(Error_code::invalid_argument, "face" + not_contiguous);
+      faces[i] = f;
+    }
 
     halfedges.resize(3 * std::size_t(nf));
     corner_vertex.resize(3 * std::size_t(nf));

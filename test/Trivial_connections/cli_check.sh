@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Runs the command-line program on a mesh, then the independent checker on what it wrote.
+# Fails (non-zero) when either fails or an output file is missing. Used by ctest (CMakeLists.txt).
+# Usage: cli_check.sh --cli PROGRAM --checker check_connection.py --out DIR --mesh MESH
+#                     [--python PY] [--singularities FILE|none] [--n N] [--weights hodge|unit]
+set -euo pipefail
+cli="" checker="" python="" out="" mesh="" sing="none" n=1 weights=hodge
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --cli) cli="$2"; shift 2 ;;
+    --checker) checker="$2"; shift 2 ;;
+    --python) python="$2"; shift 2 ;;
+    --out) out="$2"; shift 2 ;;
+    --mesh) mesh="$2"; shift 2 ;;
+    --singularities) sing="$2"; shift 2 ;;
+    --n) n="$2"; shift 2 ;;
+    --weights) weights="$2"; shift 2 ;;
+    *) echo "cli_check.sh: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+done
+for var in cli checker out mesh; do
+  if [ -z "${!var}" ]; then echo "cli_check.sh: --$var is required" >&2; exit 2; fi
+done
+if [ ! -f "$mesh" ]; then
+  echo "cli_check.sh: mesh not found: $mesh (CGAL meshes: bash scripts/fetch_cgal_data.sh)" >&2
+  exit 1
+fi
+if [ -z "$python" ]; then
+  # the checker needs numpy; the python3 on PATH may lack it while Debian's has python3-numpy
+  for p in python3 /usr/bin/python3; do
+    if command -v "$p" >/dev/null 2>&1 && "$p" -c 'import numpy' 2>/dev/null; then python="$p"; break; fi
+  done
+  if [ -z "$python" ]; then echo "cli_check.sh: no python3 with numpy found" >&2; exit 1; fi
+fi
+
+mkdir -p "$out"
+conn="$out/connection.txt"
+field="$out/field.txt"
+rm -f "$conn" "$field"
+
+sing_args=()
+if [ "$sing" != "none" ] && [ -n "$sing" ]; then sing_args=(--singularities "$sing"); fi
+
+echo "+ $cli $mesh ${sing_args[*]} --n $n --weights $weights --connection $conn --field $field"
+"$cli" "$mesh" "${sing_args[@]}" --n "$n" --weights "$weights" --connection "$conn" --field "$field"
+
+for f in "$conn" "$field"; do
+  if [ ! -s "$f" ]; then echo "cli_check.sh: the program exited 0 but did not write $f" >&2; exit 1; fi
+done
+
+echo "+ $python $checker $mesh --connection $conn --field $field ${sing_args[*]} --n $n"
+"$python" "$checker" "$mesh" --connection "$conn" --field "$field" "${sing_args[@]}" --n "$n"

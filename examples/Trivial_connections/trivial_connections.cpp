@@ -1,0 +1,360 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+//
+// The command-line program: computes the trivial connection closest to Levi-Civita with prescribed
+// singularities on a triangle mesh, and the n-direction field it defines, and writes both to files.
+//
+//   trivial_connections MESH [--singularities FILE] [--n N] [--weights hodge|unit]
+//                            [--connection OUT] [--field OUT] [--help]
+//
+// Exit status: 0 on success, 1 on an input error (mesh, singularities, solver, output files), 2 on a usage
+// error. On any error one line `trivial_connections: error: <message>` goes to stderr and no output file is
+// written (both files are committed together, only after everything succeeded).
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <CGAL/Trivial_connections/IO/atomic_file.h>
+#include <CGAL/Trivial_connections/IO/connection_file.h>
+#include <CGAL/Trivial_connections/IO/field_file.h>
+#include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
+#include <CGAL/Trivial_connections/IO/singularities.h>
+#include <CGAL/Trivial_connections/Trivial_connection_solver.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <new>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace TC = CGAL::Trivial_connections;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using Solver = TC::Trivial_connection_solver<Mesh, CGAL::Default, TC::Recommended_solver_traits>;
+using vertex_descriptor = boost::graph_traits<Mesh>::vertex_descriptor;
+using halfedge_descriptor = boost::graph_traits<Mesh>::halfedge_descriptor;
+using face_descriptor = boost::graph_traits<Mesh>::face_descriptor;
+
+namespace {
+
+const char* const program = "trivial_connections";
+
+const char* const usage_text =
+  "Usage: trivial_connections MESH [--singularities FILE] [--n N] [--weights hodge|unit]\n"
+  "                           [--connection OUT] [--field OUT] [--help]\n"
+  "\n"
+  "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
+  "singularity indices at vertices, and the n-direction field it defines.\n"
+  "\n"
+  "  MESH                  triangle mesh: .off, .obj, .ply or .stl (oriented 2-manifold, boundary allowed)\n"
+  "  --singularities FILE  one line 'v k' per singular vertex: 0-based vertex index (file order) and index k,\n"
+  "                        an integer or a fraction p/q that is a multiple of 1/N; '#' starts a comment.\n"
+  "                        Default: no singularity (then every closed component must have genus 1).\n"
+  "                        On each closed component the indices must sum to its Euler characteristic.\n"
+  "  --n N                 symmetry order: 1 vector field, 2 line field, 4 cross field, ... (default 1)\n"
+  "  --weights W           energy weights: hodge (|e|/|e*|, default) or unit\n"
+  "  --connection OUT      connection file, one line 'i j x w' per interior edge\n"
+  "                        (default: <mesh stem>.connection.txt in the current directory)\n"
+  "  --field OUT           field file, one line 'x y z' per face in input face order\n"
+  "                        (default: <mesh stem>.field.txt in the current directory)\n"
+  "  --help, -h            print this help and exit\n"
+  "\n"
+  "The integers of the homology generators and boundary loops are chosen to minimise the energy.\n"
+  "Both output files are written only if everything succeeded. Exit status: 0 success, 1 input error,\n"
+  "2 usage error; errors are reported as one line on stderr.\n";
+
+// A bad command line (exit status 2).
+struct Usage_error : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+struct Options
+{
+  bool help = false;
+  std::string mesh;
+  std::string singularities;
+  int n = 1;
+  TC::Weighting weighting = TC::Weighting::hodge_star;
+  std::string weights_name = "hodge";
+  std::string connection;
+  std::string field;
+};
+
+int parse_symmetry_order(const std::string& text)
+{
+  const std::string digits = (!text.empty() && text[0] == '+') ? text.substr(1) : text;
+  if(digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) {
+    if(!text.empty() && text[0] == '-' && text.size() > 1 &&
+       text.find_first_not_of("0123456789", 1) == std::string::npos)
+      throw Usage_error("--n must be at least 1 (got " + text + ")");
+    throw Usage_error("--n expects a positive integer, got '" + text + "'");
+  }
+  const std::string trimmed = digits.substr((std::min)(digits.find_first_not_of('0'), digits.size()));
+  if(trimmed.size() > 9)
+    throw Usage_error("--n is too large (got " + text + ")");
+  const int n = trimmed.empty() ? 0 : std::stoi(trimmed);
+  if(n < 1)
+    throw Usage_error("--n must be at least 1 (got " + text + ")");
+  return n;
+}
+
+Options parse_arguments(int argc, char** argv)
+{
+  Options o;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  for(const std::string& a : args)
+    if(a == "--help" || a == "-h") {
+      o.help = true;
+      return o;
+    }
+  bool seen_singularities = false, seen_n = false, seen_weights = false, seen_connection = false, seen_field = false;
+  for(std::size_t i = 0; i < args.size(); ++i) {
+    std::string a = args[i];
+    if(a.size() > 1 && a[0] == '-' && a != "-") {
+      std::string name = a, value;
+      bool has_value = false;
+      const std::string::size_type eq = a.find('=');
+      if(a.compare(0, 2, "--") == 0 && eq != std::string::npos) {
+        name = a.substr(0, eq);
+        value = a.substr(eq + 1);
+        has_value = true;
+      }
+      bool* seen = nullptr;
+      if(name == "--singularities") seen = &seen_singularities;
+      else if(name == "--n") seen = &seen_n;
+      else if(name == "--weights") seen = &seen_weights;
+      else if(name == "--connection") seen = &seen_connection;
+      else if(name == "--field") seen = &seen_field;
+      else
+        throw Usage_error("unknown option '" + name + "' (see --help)");
+      if(*seen)
+        throw Usage_error("option " + name + " given twice");
+      *seen = true;
+      if(!has_value) {
+        if(i + 1 >= args.size())
+          throw Usage_error("option " + name + " needs a value (see --help)");
+        value = args[++i];
+      }
+      if(value.empty())
+        throw Usage_error("option " + name + " needs a non-empty value");
+      if(name == "--singularities") o.singularities = value;
+      else if(name == "--connection") o.connection = value;
+      else if(name == "--field") o.field = value;
+      else if(name == "--n") o.n = parse_symmetry_order(value);
+      else if(name == "--weights") {
+        if(value == "hodge") o.weighting = TC::Weighting::hodge_star;
+        else if(value == "unit") o.weighting = TC::Weighting::unit;
+        else throw Usage_error("unknown weights '" + value + "' (expected hodge or unit)");
+        o.weights_name = value;
+      }
+    } else {
+      if(!o.mesh.empty())
+        throw Usage_error("more than one mesh given ('" + o.mesh + "' and '" + a + "')");
+      if(a.empty())
+        throw Usage_error("empty mesh file name");
+      o.mesh = a;
+    }
+  }
+  if(o.mesh.empty())
+    throw Usage_error("no mesh given (usage: trivial_connections MESH [options], see --help)");
+  const std::string stem = std::filesystem::path(o.mesh).stem().string();
+  if(o.connection.empty())
+    o.connection = stem + ".connection.txt";
+  if(o.field.empty())
+    o.field = stem + ".field.txt";
+
+  auto same_file = [](const std::string& a, const std::string& b) {
+    std::error_code ec1, ec2;
+    // absolute() first: weakly_canonical() leaves a relative path relative when its first element does not exist
+    const std::filesystem::path pa = std::filesystem::weakly_canonical(std::filesystem::absolute(a, ec1), ec1);
+    const std::filesystem::path pb = std::filesystem::weakly_canonical(std::filesystem::absolute(b, ec2), ec2);
+    return !ec1 && !ec2 ? pa == pb : a == b;
+  };
+  if(same_file(o.connection, o.field))
+    throw Usage_error("the connection and field outputs are the same file '" + o.connection + "'");
+  for(const std::string* out : {&o.connection, &o.field}) {
+    if(same_file(*out, o.mesh))
+      throw Usage_error("the output '" + *out + "' would overwrite the input mesh");
+    if(!o.singularities.empty() && same_file(*out, o.singularities))
+      throw Usage_error("the output '" + *out + "' would overwrite the singularity file");
+  }
+  return o;
+}
+
+std::string one_line(std::string s)
+{
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  std::replace(s.begin(), s.end(), '\r', ' ');
+  return s;
+}
+
+int fail(const std::string& message, int status)
+{
+  std::cerr << program << ": error: " << one_line(message) << std::endl;
+  return status;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+std::string fixed(double x, int digits)
+{
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << x;
+  return s.str();
+}
+
+std::string scientific(double x)
+{
+  std::ostringstream s;
+  s << std::scientific << std::setprecision(2) << x;
+  return s.str();
+}
+
+int run(const Options& o)
+{
+  using clock = std::chrono::steady_clock;
+  const auto t_start = clock::now();
+
+  Mesh mesh;
+  const TC::Mesh_input_order<Mesh> order = TC::read_triangle_mesh(o.mesh, mesh);
+  const double t_read = seconds_since(t_start);
+
+  std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> singularities;
+  if(!o.singularities.empty()) {
+    for(const auto& s : TC::read_singularities(o.singularities, order.vertices.size()))
+      singularities.emplace_back(order.vertices[s.first], s.second);
+  }
+
+  auto t = clock::now();
+  Solver solver(mesh, TC::parameters::weighting(o.weighting));
+  const double t_setup = seconds_since(t);
+
+  t = clock::now();
+  Mesh::Property_map<halfedge_descriptor, double> x =
+    mesh.add_property_map<halfedge_descriptor, double>("h:tc_connection", 0.).first;
+  Mesh::Property_map<face_descriptor, Kernel::Vector_3> field =
+    mesh.add_property_map<face_descriptor, Kernel::Vector_3>("f:tc_field", CGAL::NULL_VECTOR).first;
+  const TC::Solve_report report = solver.solve(singularities, x, TC::parameters::symmetry_order(o.n));
+  solver.compute_field(x, field);
+  const double t_solve = seconds_since(t);
+
+  std::size_t interior_edges = 0;
+  for(auto e : edges(mesh))
+    if(!CGAL::is_border(e, mesh))
+      ++interior_edges;
+
+  t = clock::now();
+  const std::string provenance = "# computed by trivial_connections from '" + o.mesh + "'" +
+                                 (o.singularities.empty() ? std::string(", no singularity")
+                                                          : ", singularities '" + o.singularities + "'") +
+                                 ", n = " + std::to_string(o.n) + ", weights " + o.weights_name + "\n";
+  const auto vertex_index = get(boost::vertex_index, mesh);
+  TC::write_files_atomically(
+    {{o.connection,
+      [&](std::ostream& os) {
+        os << provenance;
+        TC::write_connection(os, mesh, x, vertex_index, solver);
+      }},
+     {o.field, [&](std::ostream& os) {
+        os << provenance;
+        TC::write_field(os, mesh, field);
+      }}});
+  const double t_write = seconds_since(t);
+
+  // ---- report
+  std::ostream& out = std::cout;
+  out << "mesh: " << o.mesh << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh) << " faces, "
+      << num_edges(mesh) << " edges (" << interior_edges << " interior), " << report.components.size()
+      << (report.components.size() == 1 ? " component\n" : " components\n");
+  const std::size_t max_lines = 10;
+  for(std::size_t c = 0; c < report.components.size() && c < max_lines; ++c) {
+    const TC::Component_report& r = report.components[c];
+    out << "  component " << c << ": " << r.number_of_faces << " faces, chi = " << r.euler_characteristic
+        << ", genus " << r.genus << ", " << r.number_of_boundary_loops << " boundary loop"
+        << (r.number_of_boundary_loops == 1 ? "" : "s") << ", vertex index sum " << r.vertex_index_sum << "\n";
+  }
+  if(report.components.size() > max_lines)
+    out << "  ... and " << report.components.size() - max_lines << " more components\n";
+  out << "singularities: " << singularities.size()
+      << (o.singularities.empty() ? std::string() : " (from " + o.singularities + ")") << "; n = " << o.n
+      << "; weights " << o.weights_name << "\n";
+  out << "energy: " << std::setprecision(10) << report.energy;
+  if(!report.loops.empty())
+    out << " (with the loop integers rounded one by one: " << report.rounding_energy << ")";
+  out << "\n";
+  out << "max residual: vertices " << scientific(report.max_vertex_residual) << ", loops "
+      << scientific(report.max_loop_residual) << "\n";
+  if(report.loops.empty()) {
+    out << "loops: none (no generator, no boundary loop)\n";
+  } else {
+    std::size_t boundary = 0, generators = 0;
+    for(const TC::Loop_report& l : report.loops)
+      (l.kind == TC::Loop_kind::boundary ? boundary : generators) += 1;
+    out << "loops: " << boundary << " boundary, " << generators << " generators; integers "
+        << (report.integers_proven_optimal ? "proven optimal" : "chosen by a heuristic (not proven optimal)")
+        << "\n";
+    const std::size_t max_loops = 20;
+    for(std::size_t l = 0; l < report.loops.size() && l < max_loops; ++l) {
+      const TC::Loop_report& r = report.loops[l];
+      out << "  loop " << l << " (component " << r.component << "): ";
+      if(r.kind == TC::Loop_kind::boundary)
+        out << "boundary, index " << r.index;
+      else
+        out << "generator, holonomy 2pi*" << r.period << "/" << o.n;
+      out << (r.prescribed ? " (prescribed)" : "") << ", residual " << scientific(r.residual) << "\n";
+    }
+    if(report.loops.size() > max_loops)
+      out << "  ... and " << report.loops.size() - max_loops << " more loops\n";
+  }
+  std::error_code ec;
+  const std::filesystem::path connection_path = std::filesystem::absolute(o.connection, ec);
+  const std::filesystem::path field_path = std::filesystem::absolute(o.field, ec);
+  out << "connection: " << connection_path.string() << " (" << interior_edges << " interior edges)\n";
+  out << "field: " << field_path.string() << " (" << num_faces(mesh) << " faces)\n";
+  out << "time: read " << fixed(t_read, 3) << " s, set-up " << fixed(t_setup, 3) << " s, solve "
+      << fixed(t_solve, 3) << " s, write " << fixed(t_write, 3) << " s\n";
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  Options options;
+  try {
+    options = parse_arguments(argc, argv);
+  } catch(const Usage_error& e) {
+    return fail(e.what(), 2);
+  } catch(const std::exception& e) {
+    return fail(e.what(), 2);
+  }
+  if(options.help) {
+    std::cout << usage_text;
+    return 0;
+  }
+  try {
+    return run(options);
+  } catch(const TC::Invalid_input& e) {
+    return fail(e.what(), 1);
+  } catch(const std::bad_alloc&) {
+    return fail("out of memory", 1);
+  } catch(const std::exception& e) {
+    return fail(e.what(), 1);
+  } catch(...) {
+    return fail("unexpected error", 1);
+  }
+}

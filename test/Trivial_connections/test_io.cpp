@@ -1,0 +1,685 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+//
+// Tests of the file formats (singularities, connection, field), of the atomic writes and of the mesh
+// reader (validation with precise errors, input order kept) on Surface_mesh and Polyhedron_3.
+// Self-contained: the meshes are written by the tests to a temporary directory.
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+
+#include <CGAL/Trivial_connections/IO/atomic_file.h>
+#include <CGAL/Trivial_connections/IO/connection_file.h>
+#include <CGAL/Trivial_connections/IO/field_file.h>
+#include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
+#include <CGAL/Trivial_connections/IO/singularities.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace {
+
+namespace TC = CGAL::Trivial_connections;
+namespace fs = std::filesystem;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Vector = Kernel::Vector_3;
+using Surface_mesh = CGAL::Surface_mesh<Point>;
+using Polyhedron = CGAL::Polyhedron_3<Kernel>;
+
+// A fresh directory under the system's temporary directory, removed at the end of the test.
+class Temp_dir
+{
+public:
+  Temp_dir()
+  {
+    static std::atomic<int> counter{0};
+    std::mt19937_64 random(std::uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()));
+    m_path = fs::temp_directory_path() /
+             ("tc_test_io_" + std::to_string(random() % 1000000000ull) + "_" + std::to_string(counter++));
+    fs::create_directories(m_path);
+  }
+  ~Temp_dir()
+  {
+    std::error_code ec;
+    fs::remove_all(m_path, ec);
+  }
+  const fs::path& path() const { return m_path; }
+  std::string file(const std::string& name) const { return (m_path / name).string(); }
+  std::string write(const std::string& name, const std::string& content) const
+  {
+    std::ofstream os(file(name), std::ios::binary);
+    os << content;
+    return file(name);
+  }
+  std::vector<std::string> entries() const
+  {
+    std::vector<std::string> out;
+    for(const auto& e : fs::directory_iterator(m_path))
+      out.push_back(e.path().filename().string());
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+private:
+  fs::path m_path;
+};
+
+std::string slurp(const std::string& path)
+{
+  std::ifstream is(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(is), std::istreambuf_iterator<char>());
+}
+
+// Runs `f`, expects Invalid_input with `code` and a message containing every string of `parts`.
+template <class F>
+TC::Invalid_input expect_error(F f, TC::Error_code code, const std::vector<std::string>& parts)
+{
+  try {
+    f();
+  } catch(const TC::Invalid_input& e) {
+    EXPECT_EQ(TC::error_code_name(e.code()), std::string(TC::error_code_name(code))) << "message: " << e.what();
+    for(const std::string& p : parts)
+      EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
+        << "message '" << e.what() << "' does not contain '" << p << "'";
+    return e;
+  }
+  ADD_FAILURE() << "no Invalid_input thrown (expected " << TC::error_code_name(code) << ")";
+  return TC::Invalid_input(code, "not thrown");
+}
+
+std::vector<std::pair<std::size_t, TC::Singularity_index>> parse(const std::string& text,
+                                                                 std::size_t nv = TC::unchecked_vertex_count)
+{
+  std::istringstream is(text);
+  return TC::read_singularities(is, "test.sing", nv);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Singularity files
+
+TEST(IoSingularities, ParsesIntegersFractionsCommentsAndBlankLines)
+{
+  const auto s = parse("# header comment\n"
+                       "\n"
+                       "0 1\n"
+                       "   12\t-1   # trailing comment\n"
+                       "7 1/4\n"
+                       "3 -3/6\r\n"
+                       "  # indented comment\n"
+                       "40 +2\n"
+                       "5 0\n");
+  ASSERT_EQ(s.size(), 6u);
+  EXPECT_EQ(s[0].first, 0u);
+  EXPECT_EQ(s[0].second, TC::Singularity_index(1));
+  EXPECT_EQ(s[1].first, 12u);
+  EXPECT_EQ(s[1].second, TC::Singularity_index(-1));
+  EXPECT_EQ(s[2].first, 7u);
+  EXPECT_EQ(s[2].second, TC::Singularity_index(1, 4));
+  EXPECT_EQ(s[3].first, 3u);
+  EXPECT_EQ(s[3].second, TC::Singularity_index(-1, 2));
+  EXPECT_EQ(s[4].first, 40u);
+  EXPECT_EQ(s[4].second, TC::Singularity_index(2));
+  EXPECT_EQ(s[5].second, TC::Singularity_index(0));
+}
+
+TEST(IoSingularities, EmptyInputGivesNoSingularity)
+{
+  EXPECT_TRUE(parse("").empty());
+  EXPECT_TRUE(parse("# only a comment\n\n   \n").empty());
+}
+
+TEST(IoSingularities, MalformedLinesAreParseErrorsWithTheLine)
+{
+  const TC::Error_code pe = TC::Error_code::parse_error;
+  expect_error([] { parse("0 1\n5\n"); }, pe, {"test.sing:2:", "1 field"});                 // missing field
+  expect_error([] { parse("0 1\n\n5 1 2\n"); }, pe, {"test.sing:3:", "3 fields"});          // extra field
+  expect_error([] { parse("# c\nabc 1\n"); }, pe, {"test.sing:2:", "abc"});                 // not an integer
+  expect_error([] { parse("1.5 1\n"); }, pe, {"test.sing:1:", "1.5"});                      // not an integer
+  expect_error([] { parse("0 1\n-3 1\n"); }, pe, {"test.sing:2:", "negative", "-3"});       // negative vertex
+  expect_error([] { parse("4 1/x\n"); }, pe, {"test.sing:1:", "1/x"});                      // bad fraction
+  expect_error([] { parse("4 1/2/3\n"); }, pe, {"test.sing:1:"});                           // bad fraction
+  expect_error([] { parse("4 1/-2\n"); }, pe, {"test.sing:1:"});                            // signed denominator
+  expect_error([] { parse("4 0.5\n"); }, pe, {"test.sing:1:", "0.5"});                      // not rational syntax
+  expect_error([] { parse("0 1\n1 1\n4 3/0\n"); }, pe, {"test.sing:3:", "zero denominator"}); // zero denominator
+  expect_error([] { parse("99999999999999999999999 1\n"); }, pe, {"test.sing:1:", "too large"});
+}
+
+TEST(IoSingularities, DuplicateVertexNamesTheVertexAndBothLines)
+{
+  const TC::Invalid_input e =
+    expect_error([] { parse("# two +1\n17 1\n3 1\n\n17 1/2\n"); }, TC::Error_code::duplicate_singularity,
+                 {"test.sing:5:", "vertex 17", "lines 2 and 5"});
+  EXPECT_EQ(e.where(), 17u);
+}
+
+TEST(IoSingularities, VertexRangeIsCheckedWhenTheVertexCountIsGiven)
+{
+  EXPECT_EQ(parse("9 1\n", 10).size(), 1u);
+  const TC::Invalid_input e =
+    expect_error([] { parse("0 1\n10 1\n", 10); }, TC::Error_code::invalid_vertex,
+                 {"test.sing:2:", "vertex 10", "10 vertices"});
+  EXPECT_EQ(e.where(), 10u);
+}
+
+TEST(IoSingularities, FileOverloadReportsUnreadableFiles)
+{
+  Temp_dir dir;
+  const std::string path = dir.write("s.txt", "1 1\n2 1\n");
+  EXPECT_EQ(TC::read_singularities(path).size(), 2u);
+  expect_error([&] { TC::read_singularities(dir.file("missing.txt")); }, TC::Error_code::io_error, {"missing.txt"});
+  expect_error([&] { TC::read_singularities(dir.path().string()); }, TC::Error_code::io_error, {"directory"});
+  const std::string bad = dir.write("bad.txt", "1 1\n2\n");
+  expect_error([&] { TC::read_singularities(bad); }, TC::Error_code::parse_error, {bad + ":2:"});
+}
+
+TEST(IoSingularities, WriteThenReadRoundTrips)
+{
+  const std::vector<std::pair<std::size_t, TC::Singularity_index>> s = {
+    {3, TC::Singularity_index(1)}, {0, TC::Singularity_index(-1, 4)}, {1000000, TC::Singularity_index(5, 2)}};
+  std::ostringstream os;
+  TC::write_singularities(os, s);
+  const auto back = parse(os.str());
+  ASSERT_EQ(back.size(), s.size());
+  for(std::size_t i = 0; i < s.size(); ++i) {
+    EXPECT_EQ(back[i].first, s[i].first);
+    EXPECT_EQ(back[i].second, s[i].second);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Small meshes built in the tests
+
+// An octahedron: closed, 6 vertices, 8 faces oriented outwards.
+const std::vector<Point> octahedron_points = {Point(1, 0, 0),  Point(-1, 0, 0), Point(0, 1, 0),
+                                              Point(0, -1, 0), Point(0, 0, 1),  Point(0, 0, -1)};
+const std::vector<std::vector<std::size_t>> octahedron_faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                                                {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+
+// A bordered grid of (n x n) squares split in two triangles, with an unused vertex inserted at `unused`.
+void grid_soup(int n, std::size_t unused, std::vector<Point>& points, std::vector<std::vector<std::size_t>>& polys)
+{
+  points.clear();
+  polys.clear();
+  std::vector<std::size_t> id((n + 1) * (n + 1));
+  for(int j = 0; j <= n; ++j)
+    for(int i = 0; i <= n; ++i) {
+      if(points.size() == unused)
+        points.push_back(Point(-5, -5, 3)); // used by no face
+      id[std::size_t(j * (n + 1) + i)] = points.size();
+      points.push_back(Point(i, j, 0.1 * std::sin(i + 2. * j)));
+    }
+  for(int j = 0; j < n; ++j)
+    for(int i = 0; i < n; ++i) {
+      const std::size_t a = id[std::size_t(j * (n + 1) + i)], b = id[std::size_t(j * (n + 1) + i + 1)];
+      const std::size_t c = id[std::size_t((j + 1) * (n + 1) + i + 1)], d = id[std::size_t((j + 1) * (n + 1) + i)];
+      polys.push_back({a, b, c});
+      polys.push_back({a, c, d});
+    }
+}
+
+std::string to_off(const std::vector<Point>& points, const std::vector<std::vector<std::size_t>>& polys)
+{
+  std::ostringstream os;
+  os.precision(17);
+  os << "OFF\n" << points.size() << ' ' << polys.size() << " 0\n";
+  for(const Point& p : points)
+    os << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  for(const auto& f : polys) {
+    os << f.size();
+    for(std::size_t v : f)
+      os << ' ' << v;
+    os << '\n';
+  }
+  return os.str();
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Connection and field files
+
+template <class Mesh>
+void check_connection_round_trip()
+{
+  using GT = boost::graph_traits<Mesh>;
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  grid_soup(3, 5, points, polygons);
+  Mesh mesh;
+  const TC::Mesh_input_order<Mesh> order = TC::triangle_soup_to_mesh(points, polygons, mesh);
+
+  std::map<typename GT::vertex_descriptor, std::size_t> vindex;
+  for(std::size_t i = 0; i < order.vertices.size(); ++i)
+    vindex[order.vertices[i]] = i;
+  const auto vim = boost::make_assoc_property_map(vindex);
+
+  // an antisymmetric "connection" with awkward values, and per-edge weights
+  std::map<typename GT::halfedge_descriptor, double> xs;
+  std::map<std::pair<std::size_t, std::size_t>, double> expected_x, expected_w;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(-10, 10);
+  for(auto e : edges(mesh)) {
+    const auto h = halfedge(e, mesh);
+    const double value = uniform(random) / 3.;
+    xs[h] = value;
+    xs[opposite(h, mesh)] = -value;
+  }
+  auto weight_of = [&](typename GT::edge_descriptor e) {
+    const auto h = halfedge(e, mesh);
+    return 1. / 7. + double(vindex[source(h, mesh)] + vindex[target(h, mesh)]);
+  };
+  std::size_t interior = 0;
+  for(auto e : edges(mesh)) {
+    if(CGAL::is_border(e, mesh))
+      continue;
+    ++interior;
+    const auto h = halfedge(e, mesh);
+    const std::size_t i = vindex[source(h, mesh)], j = vindex[target(h, mesh)];
+    expected_x[{i, j}] = xs[h];
+    expected_x[{j, i}] = -xs[h];
+    expected_w[{i, j}] = expected_w[{j, i}] = weight_of(e);
+  }
+
+  std::ostringstream os;
+  TC::write_connection(os, mesh, boost::make_assoc_property_map(xs), vim, weight_of);
+  std::istringstream is(os.str());
+  const auto back = TC::read_connection(is, "c.txt");
+  EXPECT_EQ(back.size(), interior); // border edges are not written
+  for(const auto& entry : back) {
+    const std::size_t i = entry.first.first, j = entry.first.second;
+    EXPECT_LT(i, j);
+    ASSERT_EQ(expected_x.count({i, j}), 1u) << i << " " << j << " is not an interior edge";
+    const std::pair<std::size_t, std::size_t> key(i, j);
+    EXPECT_EQ(entry.second.x, expected_x[key]) << "not exact"; // exact round trip
+    EXPECT_EQ(entry.second.w, expected_w[key]) << "not exact";
+  }
+
+  // the weight may also come from an object with a member weight(e), e.g. the solver
+  struct Weights
+  {
+    decltype(weight_of) f;
+    double weight(typename GT::edge_descriptor e) const { return f(e); }
+  } weights{weight_of};
+  std::ostringstream os2;
+  TC::write_connection(os2, mesh, boost::make_assoc_property_map(xs), vim, weights);
+  EXPECT_EQ(os.str(), os2.str());
+}
+
+TEST(IoConnectionFile, RoundTripSurfaceMesh) { check_connection_round_trip<Surface_mesh>(); }
+TEST(IoConnectionFile, RoundTripPolyhedron) { check_connection_round_trip<Polyhedron>(); }
+
+TEST(IoConnectionFile, ReaderReportsMalformedLines)
+{
+  auto read = [](const std::string& text) {
+    std::istringstream is(text);
+    return TC::read_connection(is, "c.txt");
+  };
+  const auto ok = read("# header\n0 1 0.5 2\n\n2 1 -1e-3 0.25 # comment\n");
+  ASSERT_EQ(ok.size(), 2u);
+  EXPECT_EQ((ok.at({2, 1}).x), -1e-3);
+  EXPECT_EQ((ok.at({2, 1}).w), 0.25);
+  const TC::Error_code pe = TC::Error_code::parse_error;
+  expect_error([&] { read("0 1 0.5 2\n0 1\n"); }, pe, {"c.txt:2:"});
+  expect_error([&] { read("0 1 abc 2\n"); }, pe, {"c.txt:1:", "abc"});
+  expect_error([&] { read("0 1 0.5 2 7\n"); }, pe, {"c.txt:1:"});
+  expect_error([&] { read("0 1 0.5 2\n\n1 0 0.5 2\n"); }, pe, {"c.txt:3:", "twice", "lines 1 and 3"});
+}
+
+template <class Mesh>
+void check_field_round_trip()
+{
+  Mesh mesh;
+  const TC::Mesh_input_order<Mesh> order = TC::triangle_soup_to_mesh(octahedron_points, octahedron_faces, mesh);
+  std::map<typename boost::graph_traits<Mesh>::face_descriptor, Vector> field;
+  std::vector<Vector> expected;
+  for(std::size_t f = 0; f < order.faces.size(); ++f) {
+    const Vector v(std::cos(0.1 * double(f)) / 3., std::sin(0.1 * double(f)) / 3., 1e-300 * double(f) - 1. / 7.);
+    field[order.faces[f]] = v;
+    expected.push_back(v);
+  }
+  std::ostringstream os;
+  TC::write_field(os, mesh, boost::make_assoc_property_map(field));
+  std::istringstream is(os.str());
+  const auto back = TC::read_field(is, "f.txt");
+  ASSERT_EQ(back.size(), expected.size());
+  for(std::size_t f = 0; f < back.size(); ++f) { // face-index order, exact
+    EXPECT_EQ(back[f][0], expected[f].x());
+    EXPECT_EQ(back[f][1], expected[f].y());
+    EXPECT_EQ(back[f][2], expected[f].z());
+  }
+}
+
+TEST(IoFieldFile, RoundTripSurfaceMesh) { check_field_round_trip<Surface_mesh>(); }
+TEST(IoFieldFile, RoundTripPolyhedron) { check_field_round_trip<Polyhedron>(); }
+
+TEST(IoFieldFile, ReaderReportsMalformedLines)
+{
+  std::istringstream bad("# h\n1 2 3\n1 2\n");
+  expect_error([&] { TC::read_field(bad, "f.txt"); }, TC::Error_code::parse_error, {"f.txt:3:", "2 fields"});
+  std::istringstream nan("1 2 x\n");
+  expect_error([&] { TC::read_field(nan, "f.txt"); }, TC::Error_code::parse_error, {"f.txt:1:"});
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Atomic writes
+
+TEST(IoAtomicFile, WritesAndReplacesWithoutLeavingTemporaries)
+{
+  Temp_dir dir;
+  const std::string target = dir.file("out.txt");
+  TC::write_file_atomically(target, [](std::ostream& os) { os << "first\n"; });
+  EXPECT_EQ(slurp(target), "first\n");
+  TC::write_file_atomically(target, [](std::ostream& os) { os << "second\n"; });
+  EXPECT_EQ(slurp(target), "second\n");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.txt"});
+}
+
+TEST(IoAtomicFile, TargetInMissingDirectoryFailsAndWritesNothing)
+{
+  Temp_dir dir;
+  const std::string target = (dir.path() / "no_such_dir" / "out.txt").string();
+  expect_error([&] { TC::write_file_atomically(target, [](std::ostream& os) { os << "x"; }); },
+               TC::Error_code::io_error, {"no_such_dir"});
+  EXPECT_FALSE(fs::exists(target));
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoAtomicFile, SetIsAllOrNothingWhenOneTargetIsADirectory)
+{
+  Temp_dir dir;
+  fs::create_directory(dir.path() / "a_directory");
+  const std::string good = dir.file("good.txt");
+  expect_error(
+    [&] {
+      TC::write_files_atomically({{good, [](std::ostream& os) { os << "complete\n"; }},
+                                  {dir.file("a_directory"), [](std::ostream& os) { os << "x\n"; }}});
+    },
+    TC::Error_code::io_error, {"a_directory"});
+  EXPECT_FALSE(fs::exists(good)); // the first file of the set was not committed
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"a_directory"});
+  EXPECT_TRUE(fs::is_empty(dir.path() / "a_directory"));
+}
+
+TEST(IoAtomicFile, FailingWriterLeavesExistingTargetsUntouched)
+{
+  Temp_dir dir;
+  const std::string a = dir.write("a.txt", "old a\n");
+  const std::string b = dir.write("b.txt", "old b\n");
+  EXPECT_THROW(TC::write_files_atomically({{a, [](std::ostream& os) { os << "new a\n"; }},
+                                           {b,
+                                            [](std::ostream& os) {
+                                              os << "half of b";
+                                              throw std::runtime_error("writer failed");
+                                            }}}),
+               std::runtime_error);
+  EXPECT_EQ(slurp(a), "old a\n");
+  EXPECT_EQ(slurp(b), "old b\n");
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"a.txt", "b.txt"}));
+
+  TC::write_files_atomically({{a, [](std::ostream& os) { os << "new a\n"; }},
+                              {b, [](std::ostream& os) { os << "new b\n"; }}});
+  EXPECT_EQ(slurp(a), "new a\n");
+  EXPECT_EQ(slurp(b), "new b\n");
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"a.txt", "b.txt"}));
+}
+
+TEST(IoAtomicFile, RelativeTargetInCurrentDirectory)
+{
+  Temp_dir dir;
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir.path());
+  try {
+    TC::write_file_atomically("relative.txt", [](std::ostream& os) { os << "r\n"; });
+  } catch(...) {
+    fs::current_path(cwd);
+    throw;
+  }
+  fs::current_path(cwd);
+  EXPECT_EQ(slurp(dir.file("relative.txt")), "r\n");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"relative.txt"});
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Mesh reader, on both mesh types
+
+template <class Mesh>
+class IoMeshReader : public ::testing::Test
+{};
+using Mesh_types = ::testing::Types<Surface_mesh, Polyhedron>;
+TYPED_TEST_SUITE(IoMeshReader, Mesh_types);
+
+template <class Mesh>
+std::size_t index_in(const std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& vs,
+                     typename boost::graph_traits<Mesh>::vertex_descriptor v)
+{
+  return std::size_t(std::find(vs.begin(), vs.end(), v) - vs.begin());
+}
+
+// vertex i / face f of the input are the i-th / f-th elements, with the input's points and corners
+template <class Mesh>
+void expect_input_order(const Mesh& mesh, const TC::Mesh_input_order<Mesh>& order, const std::vector<Point>& points,
+                        const std::vector<std::vector<std::size_t>>& polys)
+{
+  ASSERT_EQ(order.vertices.size(), points.size());
+  ASSERT_EQ(order.faces.size(), polys.size());
+  ASSERT_EQ(std::size_t(num_vertices(mesh)), points.size());
+  ASSERT_EQ(std::size_t(num_faces(mesh)), polys.size());
+  std::size_t i = 0;
+  for(auto v : vertices(mesh)) {
+    EXPECT_EQ(v, order.vertices[i]) << "vertex " << i;
+    EXPECT_EQ(get(CGAL::vertex_point, mesh, v), points[i]) << "vertex " << i;
+    ++i;
+  }
+  std::size_t f = 0;
+  for(auto fd : faces(mesh)) {
+    EXPECT_EQ(fd, order.faces[f]) << "face " << f;
+    // same vertices in the same cyclic order, starting at halfedge(f)'s source
+    std::vector<std::size_t> corners;
+    for(auto h : CGAL::halfedges_around_face(halfedge(fd, mesh), mesh))
+      corners.push_back(index_in<Mesh>(order.vertices, source(h, mesh)));
+    EXPECT_EQ(corners, polys[f]) << "face " << f;
+    ++f;
+  }
+}
+
+TYPED_TEST(IoMeshReader, KeepsInputOrderIncludingAnUnusedVertex)
+{
+  using Mesh = TypeParam;
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polys;
+  grid_soup(4, 7, points, polys); // vertex 7 is used by no face
+  // shuffle the faces so that face order differs from any traversal order
+  std::mt19937 random(3);
+  std::shuffle(polys.begin(), polys.end(), random);
+  Temp_dir dir;
+  const std::string path = dir.write("grid.off", to_off(points, polys));
+
+  Mesh mesh;
+  const TC::Mesh_input_order<Mesh> order = TC::read_triangle_mesh(path, mesh);
+  expect_input_order(mesh, order, points, polys);
+  EXPECT_EQ(halfedge(order.vertices[7], mesh), boost::graph_traits<Mesh>::null_halfedge());
+  // 4 x 4 grid: 16 border edges
+  std::size_t border = 0;
+  for(auto e : edges(mesh))
+    border += CGAL::is_border(e, mesh) ? 1 : 0;
+  EXPECT_EQ(border, 16u);
+  EXPECT_EQ(std::size_t(num_edges(mesh)), std::size_t(4 * 5 * 2 + 16));
+}
+
+TYPED_TEST(IoMeshReader, ClosedMeshIsValidAndMatchesCGALsConversion)
+{
+  using Mesh = TypeParam;
+  Temp_dir dir;
+  const std::string path = dir.write("octahedron.off", to_off(octahedron_points, octahedron_faces));
+  Mesh mesh;
+  const TC::Mesh_input_order<Mesh> order = TC::read_triangle_mesh(path, mesh);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  EXPECT_TRUE(CGAL::is_closed(mesh));
+  EXPECT_TRUE(CGAL::is_triangle_mesh(mesh));
+  expect_input_order(mesh, order, octahedron_points, octahedron_faces);
+
+  // same incidences as CGAL's own polygon_soup_to_polygon_mesh, on a bordered mesh too
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polys;
+  grid_soup(5, std::size_t(-1), points, polys);
+  Mesh ours, cgal;
+  const TC::Mesh_input_order<Mesh> o = TC::triangle_soup_to_mesh(points, polys, ours);
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polys, cgal);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(ours));
+  ASSERT_EQ(num_faces(ours), num_faces(cgal));
+  ASSERT_EQ(num_edges(ours), num_edges(cgal));
+  std::size_t f = 0;
+  auto cgal_face = faces(cgal).begin();
+  std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor> cgal_vertices(vertices(cgal).begin(),
+                                                                                   vertices(cgal).end());
+  for(auto fd : faces(ours)) {
+    std::vector<std::size_t> a, b;
+    for(auto v : CGAL::vertices_around_face(halfedge(fd, ours), ours))
+      a.push_back(index_in<Mesh>(o.vertices, v));
+    for(auto v : CGAL::vertices_around_face(halfedge(*cgal_face, cgal), cgal))
+      b.push_back(index_in<Mesh>(cgal_vertices, v));
+    std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
+    std::rotate(b.begin(), std::min_element(b.begin(), b.end()), b.end());
+    EXPECT_EQ(a, b) << "face " << f;
+    ++cgal_face;
+    ++f;
+  }
+}
+
+TYPED_TEST(IoMeshReader, ReadsObjAndPly)
+{
+  using Mesh = TypeParam;
+  Temp_dir dir;
+  std::ostringstream obj;
+  obj << "# tetrahedron\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 9 9 9\n"
+         "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+  const std::string obj_path = dir.write("tet.OBJ", obj.str());
+  Mesh m1;
+  const auto o1 = TC::read_triangle_mesh(obj_path, m1);
+  EXPECT_EQ(o1.vertices.size(), 5u);
+  EXPECT_EQ(o1.faces.size(), 4u);
+  EXPECT_TRUE(CGAL::is_closed(m1));
+
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\n"
+                          "property double z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
+  Mesh m2;
+  const auto o2 = TC::read_triangle_mesh(dir.write("tet.ply", ply), m2);
+  expect_input_order(m2, o2,
+                     {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1)},
+                     {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}});
+}
+
+TYPED_TEST(IoMeshReader, RejectsEachBadInputWithItsError)
+{
+  using Mesh = TypeParam;
+  Temp_dir dir;
+  auto read = [&](const std::string& name, const std::string& content) {
+    const std::string path = dir.write(name, content);
+    return [path] {
+      Mesh mesh;
+      TC::read_triangle_mesh(path, mesh);
+    };
+  };
+  const std::string four = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const std::string six = four + "1 1 1\n-1 0 0\n";
+
+  expect_error(read("quad.off", "OFF\n5 2 0\n" + four + "1 1 0\n3 0 1 3\n4 0 1 4 2\n"),
+               TC::Error_code::not_triangle_mesh, {"quad.off", "face 1", "4 vertices"});
+  // index 7 of 4 vertices: CGAL's OFF reader refuses the file, the diagnosis names the face and the line
+  const TC::Invalid_input out_of_range =
+    expect_error(read("range.off", "OFF\n4 2 0\n" + four + "3 0 1 2\n3 0 2 7\n"), TC::Error_code::invalid_vertex,
+                 {"range.off:8", "face 1", "vertex 7", "4 vertices"});
+  EXPECT_EQ(out_of_range.where(), 1u);
+  // OBJ: index 5 of 4 vertices (1-based), which CGAL's OBJ reader lets through
+  expect_error(read("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 5\n"),
+               TC::Error_code::invalid_vertex, {"face 1", "4 vertices"});
+  expect_error(read("nonmanifold_edge.off", "OFF\n6 3 0\n" + six + "3 0 1 2\n3 1 0 3\n3 0 1 4\n"),
+               TC::Error_code::non_manifold, {"edge", "vertices 0 and 1", "3 faces", "0, 1 and 2"});
+  const TC::Invalid_input orientation =
+    expect_error(read("orientation.off", "OFF\n4 3 0\n" + four + "3 0 1 2\n3 2 3 0\n3 0 1 3\n"),
+                 TC::Error_code::inconsistent_orientation, {"faces 0 and 2", "vertex 0 to vertex 1"});
+  EXPECT_EQ(orientation.where(), 2u);
+  const TC::Invalid_input pinched =
+    expect_error(read("pinched.off", "OFF\n5 2 0\n" + four + "1 1 1\n3 0 1 2\n3 0 3 4\n"),
+                 TC::Error_code::non_manifold, {"vertex 0", "2 separate fans"});
+  EXPECT_EQ(pinched.where(), 0u);
+  expect_error(read("degenerate.off", "OFF\n4 2 0\n" + four + "3 0 1 2\n3 3 1 3\n"), TC::Error_code::degenerate_face,
+               {"face 1", "same vertex"});
+  expect_error(read("empty.off", "OFF\n4 0 0\n" + four), TC::Error_code::empty_mesh, {"empty.off", "no face"});
+  expect_error(read("nothing.off", "OFF\n0 0 0\n"), TC::Error_code::empty_mesh, {"no face"});
+  expect_error(read("empty.obj", "v 0 0 0\nv 1 0 0\n"), TC::Error_code::empty_mesh, {"no face"});
+  expect_error(read("truncated.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1\n"), TC::Error_code::parse_error,
+               {"truncated.off"});
+  expect_error(read("mesh.xyz", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), TC::Error_code::parse_error,
+               {"mesh.xyz", "extension"});
+  expect_error(read("noextension", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), TC::Error_code::parse_error,
+               {"extension"});
+
+  const std::string missing = dir.file("missing.off");
+  expect_error([&] { Mesh m; TC::read_triangle_mesh(missing, m); }, TC::Error_code::io_error, {"missing.off"});
+  expect_error([&] { Mesh m; TC::read_triangle_mesh(dir.path().string(), m); }, TC::Error_code::io_error,
+               {"directory"});
+}
+
+TYPED_TEST(IoMeshReader, RangeIsCheckedBeforeAnythingElse)
+{
+  using Mesh = TypeParam;
+  // face 0 is a quad, face 1 uses a vertex out of range: the range error comes first
+  const std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(1, 1, 0)};
+  const std::vector<std::vector<std::size_t>> polys = {{0, 1, 3, 2}, {0, 1, 99}};
+  Mesh mesh;
+  const TC::Invalid_input e = expect_error([&] { TC::triangle_soup_to_mesh(points, polys, mesh); },
+                                           TC::Error_code::invalid_vertex, {"face 1", "vertex 99", "4 vertices"});
+  EXPECT_EQ(e.where(), 1u);
+  EXPECT_EQ(num_faces(mesh), 0u);
+}
+
+TYPED_TEST(IoMeshReader, TwoComponentsAndBorderVertices)
+{
+  using Mesh = TypeParam;
+  // an octahedron and a disjoint open fan of 3 triangles around vertex 6 (its centre)
+  std::vector<Point> points = octahedron_points;
+  std::vector<std::vector<std::size_t>> polys = octahedron_faces;
+  for(const Point& p : {Point(10, 0, 0), Point(11, 0, 0), Point(10, 1, 0), Point(9, 0, 0), Point(10, -1, 0)})
+    points.push_back(p);
+  polys.push_back({6, 7, 8});
+  polys.push_back({6, 8, 9});
+  polys.push_back({6, 9, 10});
+  Mesh mesh;
+  const TC::Mesh_input_order<Mesh> order = TC::triangle_soup_to_mesh(points, polys, mesh);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  expect_input_order(mesh, order, points, polys);
+  for(std::size_t v = 0; v < 6; ++v)
+    EXPECT_FALSE(bool(CGAL::is_border(order.vertices[v], mesh))) << v;
+  for(std::size_t v = 6; v < 11; ++v)
+    EXPECT_TRUE(bool(CGAL::is_border(order.vertices[v], mesh))) << v;
+  std::size_t border = 0;
+  for(auto h : halfedges(mesh))
+    border += CGAL::is_border(h, mesh) ? 1 : 0;
+  EXPECT_EQ(border, 5u);
+}
+
+} // namespace

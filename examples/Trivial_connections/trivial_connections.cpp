@@ -314,7 +314,7 @@ int run(const Options& o)
       if(r.kind == TC::Loop_kind::boundary)
         out << "boundary, index " << r.index;
       else
-        out << "generator, holonomy 2pi*" << r.period << "/" << o.n;
+        out << "generator, period " << r.period << " (holonomy 2pi*" << r.period << "/" << o.n << ")";
       out << (r.prescribed ? " (prescribed)" : "") << ", residual " << scientific(r.residual) << "\n";
     }
     if(report.loops.size() > max_loops)

@@ -1,0 +1,166 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+// The checks of test_support.h on meshes of CGAL's data set (Debian's libcgal-demo, data/meshes):
+// closed genus 0, 1, 3, 4, 9, 11 and 133, bordered meshes with several holes (one of genus 3 with 106
+// holes), multi-component meshes. Skipped, with a message, when the data set is missing.
+//
+// The expected topology of each file was computed beforehand by a separate python script (halfedge
+// pairing, union-find over faces, border cycles), not by the package: it guards against reading a
+// different file or a reader that repairs the mesh.
+
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <ostream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace {
+
+using namespace tc_test;
+using TC::Weighting;
+
+struct Real_mesh
+{
+  const char* file;
+  const char* what;
+  int faces;
+  int components;
+  long long chi_sum;     // Σ over components of V - E + F
+  int boundary_loops;    // Σ over components
+  int genus_sum;         // Σ over components
+  int max_genus;
+  int brute_force_radius; // -1: no enumeration
+};
+
+std::ostream& operator<<(std::ostream& os, const Real_mesh& m) { return os << m.file; }
+
+const Real_mesh real_meshes[] = {
+  // closed, genus 0
+  {"bull.off", "closed genus 0", 12396, 1, 2, 0, 0, 0, -1},
+  {"cow.off", "closed genus 0, obtuse and non-Delaunay triangles", 5804, 1, 2, 0, 0, 0, -1},
+  // closed, genus 1
+  {"elk.off", "closed genus 1", 3290, 1, 0, 0, 1, 1, 2},
+  {"knot1.off", "closed genus 1 (knotted tube)", 6400, 1, 0, 0, 1, 1, -1},
+  // closed, genus 3
+  {"elephant.off", "closed genus 3", 5558, 1, -4, 0, 3, 3, -1},
+  {"helmet.off", "closed genus 3", 1000, 1, -4, 0, 3, 3, 1},
+  // closed, genus >= 4
+  {"anchor_dense.off", "closed genus 4", 7598, 1, -6, 0, 4, 4, -1},
+  {"couplingdown.off", "closed genus 9", 3714, 1, -16, 0, 9, 9, -1},
+  {"turbine.off", "closed genus 11", 18460, 1, -20, 0, 11, 11, -1},
+  {"cheese.off", "closed genus 133", 17786, 1, -264, 0, 133, 133, -1},
+  // bordered, several holes
+  {"holes.off", "genus 0, 7 boundary loops", 8288, 1, -5, 7, 0, 0, 1},
+  {"pig.off", "genus 0, 7 boundary loops", 891, 1, -5, 7, 0, 0, 1},
+  {"mech-holes-shark.off", "genus 0, 4 boundary loops", 10192, 1, -2, 4, 0, 0, 2},
+  {"elephant-with-holes.off", "genus 3, 106 boundary loops", 4463, 1, -110, 106, 3, 3, -1},
+  // several components
+  {"bones.off", "26 closed genus-0 components", 4204, 26, 52, 0, 0, 0, -1},
+  {"knot2.off", "2 closed genus-1 components", 11520, 2, 0, 0, 2, 1, 1},
+  {"blobby_3cc.off", "3 bordered components (4 boundary loops)", 3417, 3, 2, 4, 0, 0, 2},
+  {"b9_mesh.off", "47 components: closed and bordered, genus up to 2, 76 boundary loops", 10174, 47, 10, 76, 4, 2,
+   -1},
+};
+
+using Case = std::tuple<Real_mesh, int>;
+
+class Real_meshes : public ::testing::TestWithParam<Case>
+{
+};
+
+void expect_topology(const Mesh_view<Surface_mesh>& view, const Real_mesh& m)
+{
+  ASSERT_EQ(view.nf(), m.faces);
+  ASSERT_EQ(view.ncomp, m.components);
+  long long chi = 0;
+  int b = 0, g = 0, gmax = 0;
+  for(int c = 0; c < view.ncomp; ++c) {
+    chi += view.chi[c]; b += view.boundary_count[c]; g += view.genus[c]; gmax = std::max(gmax, view.genus[c]);
+  }
+  EXPECT_EQ(chi, m.chi_sum);
+  EXPECT_EQ(b, m.boundary_loops);
+  EXPECT_EQ(g, m.genus_sum);
+  EXPECT_EQ(gmax, m.max_genus);
+}
+
+/*
+  Singularities (plan_singularities): closed genus 0: two +1 (n = 1) or eight +1/4 (n = 4), far apart;
+  closed genus 1: +1/n and -1/n; closed genus g >= 2: 2g - 2 vertices of index -1 (n = 1) or 4(2g - 2)
+  of index -1/4 (n = 4); bordered components: +1/n and -2/n (the boundary loops take the rest).
+*/
+TEST_P(Real_meshes, every_check)
+{
+  const auto& [m, n] = GetParam();
+  Surface_mesh sm;
+  TC_READ_CGAL_MESH_OR_SKIP(m.file, sm);
+  SCOPED_TRACE(std::string(m.file) + " (" + m.what + "), n = " + std::to_string(n));
+  const Mesh_view<Surface_mesh> view(sm);
+  expect_topology(view, m);
+  if(HasFatalFailure()) return;
+
+  TC::Trivial_connection_solver<Surface_mesh> solver(sm);
+  {
+    SCOPED_TRACE("solver geometry");
+    check_solver_geometry(view, solver);
+  }
+  {
+    SCOPED_TRACE("solver loops");
+    check_loops(view, solver);
+  }
+  const Singularities sing = plan_singularities(view, n);
+  const Solution<Surface_mesh> s = solve_and_check(view, solver, sing, n);
+  if(m.brute_force_radius >= 0) {
+    SCOPED_TRACE("brute force around the chosen integers");
+    check_integers_by_enumeration(view, solver, sing, n, s.report, m.brute_force_radius);
+  } else {
+    SCOPED_TRACE("single-loop changes of the chosen integers");
+    check_integers_locally_optimal(view, solver, sing, n, s.report);
+  }
+}
+
+class Real_meshes_unit_weights : public ::testing::TestWithParam<Real_mesh>
+{
+};
+
+// unit weights, n = 4, integer indices (closed genus g >= 2: 2g - 2 vertices of index -1)
+TEST_P(Real_meshes_unit_weights, every_check)
+{
+  const Real_mesh& m = GetParam();
+  const int n = 4;
+  Surface_mesh sm;
+  TC_READ_CGAL_MESH_OR_SKIP(m.file, sm);
+  SCOPED_TRACE(std::string(m.file) + " (" + m.what + "), unit weights, n = 4");
+  const Mesh_view<Surface_mesh> view(sm);
+  expect_topology(view, m);
+  if(HasFatalFailure()) return;
+  TC::Trivial_connection_solver<Surface_mesh> solver(sm, TC::parameters::weighting(Weighting::unit));
+  check_solver_geometry(view, solver);
+  const Singularities sing = plan_singularities(view, n, /*unit_indices=*/true);
+  solve_and_check(view, solver, sing, n);
+}
+
+std::string case_name(const ::testing::TestParamInfo<Case>& info)
+{
+  std::string name = std::get<0>(info.param).file;
+  name = name.substr(0, name.find('.'));
+  for(char& c : name)
+    if(!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name + "_n" + std::to_string(std::get<1>(info.param));
+}
+
+INSTANTIATE_TEST_SUITE_P(CGAL_data, Real_meshes,
+                         ::testing::Combine(::testing::ValuesIn(real_meshes), ::testing::Values(1, 4)), case_name);
+
+INSTANTIATE_TEST_SUITE_P(CGAL_data, Real_meshes_unit_weights, ::testing::ValuesIn(real_meshes),
+                         [](const ::testing::TestParamInfo<Real_mesh>& info) {
+                           return case_name(::testing::TestParamInfo<Case>(Case(info.param, 4), info.index));
+                         });
+
+} // namespace

@@ -316,7 +316,7 @@ public:
       const face_descriptor f = CGAL::parameters::choose_parameter(
         CGAL::parameters::get_parameter(np, tc_np::seed_face), face_descriptor());
       seed = f == Graph_traits::null_face() ? -1 : int(get(m_mesh.face_index, f));
-      if(seed < 0 || seed >= m_mesh.nf || m_mesh.faces[seed] != f)
+      if(seed < 0 || seed >= m_mesh.nf || m_mesh.face_descriptors[seed] != f)
         throw Invalid_input(Error_code::invalid_argument, "the seed face is not a face of the mesh");
     }
     if(!std::isfinite(seed_angle))
@@ -341,7 +341,7 @@ public:
       const double c = std::cos(angle[f]), s = std::sin(angle[f]);
       const internal::Vec3& ex = m_geometry.frame_x[f];
       const internal::Vec3& ey = m_geometry.frame_y[f];
-      put(field, m_mesh.faces[f],
+      put(field, m_mesh.face_descriptors[f],
           vector(c * ex[0] + s * ey[0], c * ex[1] + s * ey[1], c * ex[2] + s * ey[2]));
     }
   }
@@ -506,7 +506,7 @@ private:
       const vertex_descriptor vd = s.first;
       const Singularity_index& index = s.second;
       const std::size_t v = std::size_t(get(m_mesh.vertex_index, vd));
-      if(v >= std::size_t(m_mesh.nv) || m_mesh.vertices[v] != vd)
+      if(v >= std::size_t(m_mesh.nv) || m_mesh.vertex_descriptors[v] != vd)
         throw Invalid_input(Error_code::invalid_vertex, "a singularity is placed on a vertex that is not in the mesh");
       if(m_mesh.faces_at_vertex[v] == 0)
         throw Invalid_input(Error_code::invalid_vertex,

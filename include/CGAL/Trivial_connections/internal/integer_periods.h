@@ -89,6 +89,35 @@ struct Enumeration
   }
 };
 
+// Greedy coordinate descent: shift one coordinate by its best integer step while q decreases.
+// The gradient of q is 2 G (m - c). Leaves `best` optimal against every single-coordinate change.
+inline void greedy_descent(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, Closest_vector_result& best)
+{
+  const Eigen::Index k = c.size();
+  Eigen::VectorXd r(k);
+  for(Eigen::Index i = 0; i < k; ++i)
+    r[i] = double(best.m[i]) - c[i];
+  Eigen::VectorXd Gr = G * r;
+  for(int sweep = 0; sweep < 1000; ++sweep) {
+    bool improved = false;
+    for(Eigen::Index i = 0; i < k; ++i) {
+      const double step = std::round(-Gr[i] / G(i, i));
+      if(step == 0)
+        continue;
+      const double gain = 2 * step * Gr[i] + step * step * G(i, i);
+      if(gain < -1e-12 * (1 + std::abs(best.value))) {
+        best.m[i] += std::int64_t(step);
+        r[i] += step;
+        Gr += step * G.col(i);
+        improved = true;
+      }
+    }
+    if(!improved)
+      break;
+  }
+  best.value = r.dot(G * r);
+}
+
 inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eigen::VectorXd& c,
                                             const std::vector<std::vector<std::int64_t>>& candidates,
                                             std::size_t node_budget = 2000000)
@@ -106,32 +135,7 @@ inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eige
     if(q < best.value) { best.value = q; best.m = m; }
   }
 
-  // greedy coordinate descent from the best candidate: the gradient of q is 2 G (m - c)
-  {
-    Eigen::VectorXd r(k);
-    for(Eigen::Index i = 0; i < k; ++i)
-      r[i] = double(best.m[i]) - c[i];
-    Eigen::VectorXd Gr = G * r;
-    for(int sweep = 0; sweep < 100; ++sweep) {
-      bool improved = false;
-      for(Eigen::Index i = 0; i < k; ++i) {
-        const double step = std::round(-Gr[i] / G(i, i));
-        if(step == 0)
-          continue;
-        const double gain = 2 * step * Gr[i] + step * step * G(i, i);
-        if(gain < -1e-12 * (1 + best.value)) {
-          best.m[i] += std::int64_t(step);
-          best.value += gain;
-          r[i] += step;
-          Gr += step * G.col(i);
-          improved = true;
-        }
-      }
-      if(!improved)
-        break;
-    }
-    best.value = r.dot(G * r);
-  }
+  greedy_descent(G, c, best);
 
   // Schnorr-Euchner: q = sum_i R_ii^2 (m_i - center_i)^2 with G = R^T R, R upper triangular and
   // center_i = c_i - sum_{j>i} R_ij (m_j - c_j) / R_ii; levels are fixed from k-1 down to 0.
@@ -144,6 +148,8 @@ inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eige
   best.m = e.best_m;
   best.value = e.best_value;
   best.proven = !e.out_of_budget;
+  if(!best.proven)
+    greedy_descent(G, c, best); // the interrupted enumeration's point may not be locally optimal
   return best;
 }
 

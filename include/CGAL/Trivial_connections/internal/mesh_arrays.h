@@ -44,8 +44,8 @@ struct Mesh_arrays
   static int face_of(int i) { return i / 3; }
 
   int nv = 0, nf = 0;
-  std::vector<vertex_descriptor> vertices;   // by index
-  std::vector<face_descriptor> faces;        // by index
+  std::vector<vertex_descriptor> vertex_descriptors;   // by index
+  std::vector<face_descriptor> face_descriptors;        // by index
   std::vector<halfedge_descriptor> halfedges; // corner halfedge -> descriptor
   std::vector<int> corner_vertex;
   std::vector<int> opposite_corner;
@@ -85,27 +85,27 @@ struct Mesh_arrays
       face_index(CGAL::get_initialized_face_index_map(tm))
   {
     // counted by iteration: num_faces() of a Surface_mesh also counts removed faces
-    nv = int(std::distance(CGAL::vertices(tm).begin(), CGAL::vertices(tm).end()));
-    nf = int(std::distance(CGAL::faces(tm).begin(), CGAL::faces(tm).end()));
+    nv = int(std::distance(vertices(tm).begin(), vertices(tm).end()));
+    nf = int(std::distance(faces(tm).begin(), faces(tm).end()));
     if(nf == 0)
       throw Invalid_input(Error_code::empty_mesh, "the mesh has no face");
 
     // indices must be a permutation of 0..n-1 (not so in a Surface_mesh with removed elements)
     const std::string not_contiguous =
       " indices are not 0..n-1 (a Surface_mesh with removed elements? call collect_garbage() first)";
-    vertices.assign(nv, GT::null_vertex());
-    for(vertex_descriptor v : CGAL::vertices(tm)) {
+    vertex_descriptors.assign(nv, GT::null_vertex());
+    for(vertex_descriptor v : vertices(tm)) {
       const std::size_t i = std::size_t(get(vertex_index, v));
-      if(i >= std::size_t(nv) || vertices[i] != GT::null_vertex())
+      if(i >= std::size_t(nv) || vertex_descriptors[i] != GT::null_vertex())
         throw Invalid_input(Error_code::invalid_argument, "vertex" + not_contiguous);
-      vertices[i] = v;
+      vertex_descriptors[i] = v;
     }
-    faces.assign(nf, GT::null_face());
-    for(face_descriptor f : CGAL::faces(tm)) {
+    face_descriptors.assign(nf, GT::null_face());
+    for(face_descriptor f : faces(tm)) {
       const std::size_t i = std::size_t(get(face_index, f));
-      if(i >= std::size_t(nf) || faces[i] != GT::null_face())
+      if(i >= std::size_t(nf) || face_descriptors[i] != GT::null_face())
         throw Invalid_input(Error_code::invalid_argument, "face" + not_contiguous);
-      faces[i] = f;
+      face_descriptors[i] = f;
     }
 
     halfedges.resize(3 * std::size_t(nf));
@@ -113,7 +113,7 @@ struct Mesh_arrays
     opposite_corner.assign(3 * std::size_t(nf), -1);
     faces_at_vertex.assign(nv, 0);
     for(int f = 0; f < nf; ++f) {
-      const halfedge_descriptor h0 = halfedge(faces[f], tm);
+      const halfedge_descriptor h0 = halfedge(face_descriptors[f], tm);
       halfedge_descriptor h = h0;
       int k = 0;
       do {
@@ -133,7 +133,7 @@ struct Mesh_arrays
       }
     }
     for(int i = 0; i < 3 * nf; ++i) {
-      const halfedge_descriptor o = CGAL::opposite(halfedges[i], tm);
+      const halfedge_descriptor o = opposite(halfedges[i], tm);
       opposite_corner[i] = corner_of(o, tm);
     }
 
@@ -144,7 +144,7 @@ struct Mesh_arrays
     typename Traits::Compute_z_3 z = traits.compute_z_3_object();
     points.resize(nv);
     for(int v = 0; v < nv; ++v) {
-      const auto& p = get(vpm, vertices[v]);
+      const auto& p = get(vpm, vertex_descriptors[v]);
       points[v] = {{CGAL::to_double(x(p)), CGAL::to_double(y(p)), CGAL::to_double(z(p))}};
     }
     check_degenerate_faces(vpm, traits);
@@ -159,7 +159,7 @@ private:
       if(faces_at_vertex[v] == 0)
         continue;
       int reached = 0, borders = 0;
-      for(halfedge_descriptor h : halfedges_around_target(halfedge(vertices[v], tm), tm)) {
+      for(halfedge_descriptor h : halfedges_around_target(halfedge(vertex_descriptors[v], tm), tm)) {
         if(is_border(h, tm))
           ++borders;
         else
@@ -184,7 +184,7 @@ private:
         for(double t : points[v])
           bad = bad || !std::isfinite(t);
       if(!bad)
-        bad = collinear(get(vpm, vertices[a]), get(vpm, vertices[b]), get(vpm, vertices[c]));
+        bad = collinear(get(vpm, vertex_descriptors[a]), get(vpm, vertex_descriptors[b]), get(vpm, vertex_descriptors[c]));
       if(!bad) {
         // a face that is not collinear exactly can still have a zero or subnormal area in double
         const auto& p = points[a]; const auto& q = points[b]; const auto& r = points[c];

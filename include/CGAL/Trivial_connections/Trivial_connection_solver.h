@@ -245,7 +245,6 @@ public:
     if(!user_periods && !m_free_rows.empty()) {
       ensure_loop_gram();
       bool proven = true;
-      rounding_energy = b.dot(lambda);
       for(std::size_t c = 0; c < m_components.size(); ++c) {
         const std::vector<int>& free = m_free_loops[c];
         if(free.empty())

@@ -150,14 +150,8 @@ read_connection(std::istream& is, const std::string& source_name)
 {
   std::map<std::pair<std::size_t, std::size_t>, Connection_entry> result;
   std::map<std::pair<std::size_t, std::size_t>, std::size_t> line_of_edge;
-  std::string line;
-  std::size_t line_number = 0;
-  while(std::getline(is, line)) {
-    ++line_number;
-    const std::string where = internal::io::location(source_name, line_number);
-    const std::vector<std::string> f = internal::io::fields_of(line);
-    if(f.empty())
-      continue;
+  internal::io::for_each_record(is, source_name, [&](const std::string& where, const std::vector<std::string>& f,
+                                                     std::size_t line_number) {
     if(f.size() != 3 && f.size() != 4)
       throw Invalid_input(Error_code::parse_error, where + "expected 'i j x w', found " +
                                                      std::to_string(f.size()) + " fields");
@@ -177,9 +171,7 @@ read_connection(std::istream& is, const std::string& source_name)
                             " is listed twice (lines " + std::to_string(inserted.first->second) + " and " +
                             std::to_string(line_number) + ")");
     result.emplace(std::make_pair(i, j), entry);
-  }
-  if(is.bad())
-    throw Invalid_input(Error_code::io_error, source_name + ": read error after line " + std::to_string(line_number));
+  });
   return result;
 }
 

@@ -59,23 +59,15 @@ Reads a field file written by `write_field()`: one vector per non-comment, non-b
 inline std::vector<std::array<double, 3>> read_field(std::istream& is, const std::string& source_name)
 {
   std::vector<std::array<double, 3>> result;
-  std::string line;
-  std::size_t line_number = 0;
-  while(std::getline(is, line)) {
-    ++line_number;
-    const std::string where = internal::io::location(source_name, line_number);
-    const std::vector<std::string> f = internal::io::fields_of(line);
-    if(f.empty())
-      continue;
+  internal::io::for_each_record(is, source_name, [&](const std::string& where, const std::vector<std::string>& f,
+                                                     std::size_t) {
     if(f.size() != 3)
       throw Invalid_input(Error_code::parse_error, where + "expected 'x y z', found " + std::to_string(f.size()) +
                                                      (f.size() == 1 ? " field" : " fields"));
     result.push_back({internal::io::parse_double(f[0], where, "coordinate"),
                       internal::io::parse_double(f[1], where, "coordinate"),
                       internal::io::parse_double(f[2], where, "coordinate")});
-  }
-  if(is.bad())
-    throw Invalid_input(Error_code::io_error, source_name + ": read error after line " + std::to_string(line_number));
+  });
   return result;
 }
 

@@ -71,6 +71,23 @@ inline std::size_t parse_vertex_index(const std::string& text, const std::string
   return v;
 }
 
+// Calls record(where, fields, line_number) for every line that has fields (blank and '#' lines are
+// skipped); `where` is the "source:line: " prefix of messages. Throws io_error if the stream fails.
+template <class Record>
+void for_each_record(std::istream& is, const std::string& source_name, Record record)
+{
+  std::string line;
+  std::size_t line_number = 0;
+  while(std::getline(is, line)) {
+    ++line_number;
+    const std::vector<std::string> f = fields_of(line);
+    if(!f.empty())
+      record(location(source_name, line_number), f, line_number);
+  }
+  if(is.bad())
+    throw Invalid_input(Error_code::io_error, source_name + ": read error after line " + std::to_string(line_number));
+}
+
 } // namespace io
 } // namespace internal
 
@@ -105,14 +122,8 @@ read_singularities(std::istream& is, const std::string& source_name,
 {
   std::vector<std::pair<std::size_t, Singularity_index>> result;
   std::unordered_map<std::size_t, std::size_t> line_of_vertex;
-  std::string line;
-  std::size_t line_number = 0;
-  while(std::getline(is, line)) {
-    ++line_number;
-    const std::string where = internal::io::location(source_name, line_number);
-    const std::vector<std::string> f = internal::io::fields_of(line);
-    if(f.empty())
-      continue;
+  internal::io::for_each_record(is, source_name, [&](const std::string& where, const std::vector<std::string>& f,
+                                                     std::size_t line_number) {
     if(f.size() != 2)
       throw Invalid_input(Error_code::parse_error,
                           where + "expected 'vertex index' (two fields), found " + std::to_string(f.size()) +
@@ -138,9 +149,7 @@ read_singularities(std::istream& is, const std::string& source_name,
                             std::to_string(inserted.first->second) + " and " + std::to_string(line_number) + ")",
                           v);
     result.emplace_back(v, k);
-  }
-  if(is.bad())
-    throw Invalid_input(Error_code::io_error, source_name + ": read error after line " + std::to_string(line_number));
+  });
   return result;
 }
 

@@ -27,6 +27,7 @@ enum symmetry_order_t { symmetry_order };
 enum loop_periods_t { loop_periods };
 enum seed_face_t { seed_face };
 enum seed_angle_t { seed_angle };
+enum progress_t { progress };
 } // namespace tc_np
 
 /*!
@@ -65,6 +66,9 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(loop_periods)
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(seed_face)
 /// angle of the field in the seed face, counter-clockwise from `halfedge(seed_face)` (`double`, default 0)
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(seed_angle)
+/// a `Progress_callback` (or any callable `void(Phase, double)`); read by the constructor, `solve()` and
+/// `compute_field()`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(progress)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
 } // namespace parameters

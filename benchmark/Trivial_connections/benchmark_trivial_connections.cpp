@@ -1,22 +1,65 @@
-// Phases of the trivial-connection pipeline on CGAL's data meshes, each reported next to the reference
-// measured in the same run: analysis + numeric factorization of the same mesh's vertex Laplacian with
-// the same sparse backend (the method's physical limit). Timings are medians over the repetitions.
+// The trivial-connection pipeline on CGAL's data meshes and on larger meshes made here by Loop subdivision,
+// each measured next to the reference timed in the same run: analysis + numeric factorization of the same
+// mesh's vertex Laplacian (edge weights 1 / w_e, one vertex pinned per component) with the same sparse
+// backend (the method's physical limit).
 //
-//   trivial_connections_benchmark [--benchmark_repetitions=5] [--benchmark_format=json]
-// Counters: faces, genus, t_* in seconds, r_* = t_* / t_reference.
+//   trivial_connections_benchmark [--benchmark_filter=REGEX] [--benchmark_repetitions=N] [--benchmark_format=json]
+//
+// Benchmarks are named BACKEND/MESH (backend `ldlt` = Eigen::SimplicialLDLT, `cholmod` = supernodal CHOLMOD,
+// the latter only when CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD is defined).
+//
+// Environment:
+//   TC_BENCH_SIZES       which meshes to register: a comma list of small (CGAL meshes, 5k-90k faces, and the
+//                        300k subdivision), large (~1.2M faces: genus 0, 11 and 133), huge (~5M faces), or all.
+//                        Default: small (a few minutes).
+//   TC_BENCH_MESH_CACHE  directory of the subdivided meshes (binary PLY, made on first use; default: the
+//                        benchmark-meshes directory of the build tree). Never commit it.
+//
+// Counters (seconds unless noted): faces, vertices, components, genus (sum over components), boundary_loops,
+// singularities; t_reference; t_build (measured directly) and its phases t_mesh_setup, t_geometry, t_trees,
+// t_assembly, t_factorization, t_loop_metric (from the progress callback; 0 until the solver reports them);
+// t_solve, t_resolve (second singularity set on the same solver), with their phases t_solve_backsub /
+// t_solve_integers and t_resolve_backsub / t_resolve_integers; t_field; r_end_to_end = (build + solve + field)
+// / reference, r_resolve = resolve / reference; peak_bytes (VmHWM above the resident size before the solver
+// was built, over build + two solves + field), peak_bytes_per_face, ref_peak_bytes_per_face (same for the
+// reference), ref_factor_nnz (nonzeros of the reference factor L, including the diagonal),
+// ref_factor_bytes_per_face (nnz x 12 / faces).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/Surface_mesh/IO/PLY.h>
+#include <CGAL/subdivision_method_3.h>
 
+#include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
+#include <CGAL/Trivial_connections/solver_traits.h>
 
 #include <benchmark/benchmark.h>
 
 #include <Eigen/SparseCholesky>
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <numeric>
+#include <sstream>
 #include <string>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <utility>
 #include <vector>
 
@@ -25,107 +68,414 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<K::Point_3>;
 using Vertex = Mesh::Vertex_index;
 using Singularities = std::vector<std::pair<Vertex, TC::Singularity_index>>;
+using Clock = std::chrono::steady_clock;
+
+#ifndef TC_BENCH_DEFAULT_MESH_CACHE
+#define TC_BENCH_DEFAULT_MESH_CACHE "benchmark-meshes"
+#endif
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0)
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// ---------------------------------------------------------------------------------------------------------
+// Memory: VmHWM is reset to the current resident size by writing 5 to /proc/self/clear_refs (Linux >= 4.0).
+
+bool reset_peak_memory()
 {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+#if defined(__GLIBC__)
+  malloc_trim(0); // give freed heap back, so that the baseline is what is really in use
+#endif
+  std::ofstream out("/proc/self/clear_refs");
+  out << "5";
+  out.flush();
+  return bool(out);
 }
 
-// Singularities satisfying Poincare-Hopf on a closed mesh: index chi spread over |chi| vertices
-// (for a torus none), starting at `offset` so that two sets differ.
-Singularities singularities_for(const Mesh& mesh, std::int64_t chi, std::size_t offset)
+// a "Vm...:   N kB" field of /proc/self/status in bytes, -1 if unavailable
+double status_bytes(const char* field)
 {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  const std::string key = std::string(field) + ":";
+  while(std::getline(in, line))
+    if(line.compare(0, key.size(), key) == 0) {
+      std::istringstream s(line.substr(key.size()));
+      double kb = -1;
+      s >> kb;
+      return kb * 1024;
+    }
+  return -1;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Phase times from the progress callback: time stamps at fraction 0 and 1, summed per phase.
+
+constexpr int number_of_phases = int(TC::Phase::field) + 1;
+
+struct Phase_times
+{
+  std::array<double, number_of_phases> seconds{};
+  std::array<Clock::time_point, number_of_phases> started{};
+  std::array<bool, number_of_phases> open{};
+
+  TC::Progress_callback callback()
+  {
+    return [this](TC::Phase phase, double fraction) {
+      const int p = int(phase);
+      if(p < 0 || p >= number_of_phases)
+        return;
+      if(fraction <= 0) {
+        started[p] = Clock::now();
+        open[p] = true;
+      } else if(fraction >= 1 && open[p]) {
+        seconds[p] += seconds_since(started[p]);
+        open[p] = false;
+      }
+    };
+  }
+  double operator[](TC::Phase p) const { return seconds[int(p)]; }
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// Meshes
+
+enum class Size { small, large, huge };
+
+struct Mesh_spec
+{
+  std::string name;   // benchmark name
+  std::string source; // file in CGAL's data set
+  int subdivisions;   // Loop subdivision steps (x4 faces each)
+  Size size;
+};
+
+const std::vector<Mesh_spec>& mesh_specs()
+{
+  static const std::vector<Mesh_spec> specs = {
+    {"cow", "cow.off", 0, Size::small},                   // genus 0, 5.8k faces, obtuse triangles
+    {"knot1", "knot1.off", 0, Size::small},               // genus 1, 6.4k
+    {"elephant", "elephant.off", 0, Size::small},         // genus 3, 5.6k
+    {"holes", "holes.off", 0, Size::small},               // bordered, 8.3k
+    {"turbine", "turbine.off", 0, Size::small},           // genus 11, 18k
+    {"cheese", "cheese.off", 0, Size::small},             // genus 133, 18k
+    {"bunny00", "bunny00.off", 0, Size::small},           // genus 0, 75k
+    {"refined_elephant", "refined_elephant.off", 0, Size::small}, // genus 3, 89k
+    {"bunny00_loop1", "bunny00.off", 1, Size::small},     // genus 0, 302k
+    {"bunny00_loop2", "bunny00.off", 2, Size::large},     // genus 0, 1.2M
+    {"turbine_loop3", "turbine.off", 3, Size::large},     // genus 11, 1.2M
+    {"cheese_loop3", "cheese.off", 3, Size::large},       // genus 133, 1.1M
+    {"bunny00_loop3", "bunny00.off", 3, Size::huge},      // genus 0, 4.8M
+  };
+  return specs;
+}
+
+std::string mesh_cache_dir()
+{
+  const char* env = std::getenv("TC_BENCH_MESH_CACHE");
+  return env && *env ? std::string(env) : std::string(TC_BENCH_DEFAULT_MESH_CACHE);
+}
+
+bool file_exists(const std::string& path)
+{
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+// Loads a CGAL mesh, or its Loop subdivision from the cache (made and written there on first use).
+// Returns an empty string on success, the reason otherwise.
+std::string load_mesh(const Mesh_spec& spec, Mesh& mesh)
+{
+  const std::string source = std::string(TC_CGAL_DATA_DIR) + "/" + spec.source;
+  if(spec.subdivisions == 0)
+    return CGAL::IO::read_polygon_mesh(source, mesh) ? "" : "cannot read " + source + " (run scripts/fetch_cgal_data.sh)";
+
+  const std::string dir = mesh_cache_dir();
+  const std::string cached = dir + "/" + spec.name + ".ply";
+  if(file_exists(cached)) {
+    std::ifstream in(cached, std::ios::binary);
+    if(CGAL::IO::read_PLY(in, mesh) && num_faces(mesh) > 0)
+      return "";
+    mesh.clear();
+  }
+  if(!CGAL::IO::read_polygon_mesh(source, mesh))
+    return "cannot read " + source + " (run scripts/fetch_cgal_data.sh)";
+  const auto t0 = Clock::now();
+  CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(spec.subdivisions));
+  std::cerr << "[benchmark] " << spec.name << ": " << spec.subdivisions << " Loop subdivision steps of "
+            << spec.source << " -> " << num_faces(mesh) << " faces in " << seconds_since(t0) << " s" << std::endl;
+  ::mkdir(dir.c_str(), 0755);
+  const std::string tmp = cached + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if(!out || !CGAL::IO::write_PLY(out, mesh, CGAL::parameters::use_binary_mode(true))) {
+      std::cerr << "[benchmark] cannot write " << tmp << " (the subdivided mesh is not cached)" << std::endl;
+      std::remove(tmp.c_str());
+      return "";
+    }
+  }
+  if(std::rename(tmp.c_str(), cached.c_str()) != 0)
+    std::remove(tmp.c_str());
+  return "";
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Singularities satisfying Poincare-Hopf on every closed component: |chi| vertices of index sign(chi), spread
+// over the component's interior vertices. Set 1 differs from set 0: shifted positions and, in every
+// component, an extra +1/-1 pair (so that bordered meshes also get a different right-hand side).
+
+template <class Solver>
+Singularities singularities_for(const Mesh& mesh, const Solver& solver, int set)
+{
+  const std::size_t nc = solver.components().size();
+  std::vector<std::vector<Vertex>> interior(nc);
+  std::vector<int> component(num_vertices(mesh), -1);
+  for(auto f : faces(mesh))
+    for(auto v : vertices_around_face(halfedge(f, mesh), mesh))
+      component[std::size_t(v)] = int(solver.component(f));
+  for(auto v : vertices(mesh))
+    if(component[std::size_t(v)] >= 0 && !mesh.is_border(v, true))
+      interior[std::size_t(component[std::size_t(v)])].push_back(v);
+
   Singularities s;
-  const std::size_t count = std::size_t(chi < 0 ? -chi : chi);
-  const std::size_t stride = (std::max<std::size_t>)(1, num_vertices(mesh) / (count + 1));
-  for(std::size_t i = 0; i < count; ++i)
-    s.emplace_back(Vertex(Mesh::size_type((offset + i * stride) % num_vertices(mesh))),
-                   TC::Singularity_index(chi < 0 ? -1 : 1));
+  for(std::size_t c = 0; c < nc; ++c) {
+    const auto& report = solver.components()[c];
+    const std::int64_t chi = report.number_of_boundary_loops == 0 ? report.euler_characteristic : 0;
+    const std::size_t ph = std::size_t(chi < 0 ? -chi : chi);
+    const std::size_t count = interior[c].size();
+    std::size_t m = ph + (set == 1 ? 2 : 0);
+    if(m + 1 > count)
+      m = ph; // too small for the extra pair
+    if(m == 0 || m + 1 > count)
+      continue;
+    const std::size_t stride = count / (m + 1);
+    const std::size_t offset = set == 1 ? stride / 2 : 0;
+    for(std::size_t i = 0; i < m; ++i) {
+      const Vertex v = interior[c][(offset + i * stride) % count];
+      const int sign = i < ph ? (chi < 0 ? -1 : 1) : (i == ph ? 1 : -1);
+      s.emplace_back(v, TC::Singularity_index(sign));
+    }
+  }
   return s;
 }
 
-// The reference: the vertex Laplacian with the same edge weights (1 / w_e), one vertex pinned.
-double reference_factorization(const Mesh& mesh)
+// ---------------------------------------------------------------------------------------------------------
+// The reference: the vertex Laplacian with edge weights 1 / w_e, one vertex pinned per component.
+
+struct Weighted_edge
 {
-  TC::Trivial_connection_solver<Mesh> weights(mesh);
+  int a, b;
+  double c;
+};
+
+struct Reference_result
+{
+  double seconds = 0;
+  double factor_nnz = 0;
+  double peak_bytes = 0;
+  bool ok = true;
+};
+
+template <class EigenSolver>
+double factor_nonzeros(const EigenSolver& solver, Eigen::Index n)
+{
+  return double(solver.matrixL().nestedExpression().nonZeros()) + double(n); // strict L + diagonal D
+}
+
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+template <class MatrixType, int UpLo>
+double factor_nonzeros(const Eigen::CholmodSupernodalLLT<MatrixType, UpLo>& solver, Eigen::Index)
+{
+  // nnz(L) from the analysis (excluding the zeros of supernodal amalgamation)
+  return const_cast<Eigen::CholmodSupernodalLLT<MatrixType, UpLo>&>(solver).cholmod().lnz;
+}
+#endif
+
+template <class SolverTraits>
+Reference_result reference_factorization(std::size_t nv, const std::vector<Weighted_edge>& edges)
+{
+  Reference_result result;
+  const double base = reset_peak_memory() ? status_bytes("VmRSS") : -1;
+  // union-find: pin the first vertex of each component (isolated vertices included)
+  std::vector<int> parent(nv);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int v) {
+    while(parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for(const Weighted_edge& e : edges) {
+    const int ra = find(e.a), rb = find(e.b);
+    if(ra != rb) parent[(std::max)(ra, rb)] = (std::min)(ra, rb);
+  }
+  std::vector<int> row(nv, -1);
+  int n = 0;
+  for(std::size_t v = 0; v < nv; ++v)
+    if(find(int(v)) != int(v))
+      row[v] = n++;
   std::vector<Eigen::Triplet<double>> t;
-  const int n = int(num_vertices(mesh)) - 1;
-  for(auto e : edges(mesh)) {
-    if(is_border(e, mesh))
-      continue;
-    const int a = int(source(halfedge(e, mesh), mesh)) - 1, b = int(target(halfedge(e, mesh), mesh)) - 1;
-    const double c = 1 / weights.weight(e);
-    if(a >= 0) t.emplace_back(a, a, c);
-    if(b >= 0) t.emplace_back(b, b, c);
-    if(a >= 0 && b >= 0) { t.emplace_back(a, b, -c); t.emplace_back(b, a, -c); }
+  t.reserve(4 * edges.size());
+  for(const Weighted_edge& e : edges) {
+    const int a = row[e.a], b = row[e.b];
+    if(a >= 0) t.emplace_back(a, a, e.c);
+    if(b >= 0) t.emplace_back(b, b, e.c);
+    if(a >= 0 && b >= 0) { t.emplace_back(a, b, -e.c); t.emplace_back(b, a, -e.c); }
   }
   Eigen::SparseMatrix<double> L(n, n);
   L.setFromTriplets(t.begin(), t.end());
-  const auto t0 = std::chrono::steady_clock::now();
-  TC::Default_solver_traits::Solver solver;
+  L.makeCompressed();
+  std::vector<Eigen::Triplet<double>>().swap(t);
+
+  typename SolverTraits::Solver solver;
+  const auto t0 = Clock::now();
   solver.analyzePattern(L);
   solver.factorize(L);
-  benchmark::DoNotOptimize(solver.info());
-  return seconds_since(t0);
+  result.seconds = seconds_since(t0);
+  result.ok = solver.info() == Eigen::Success;
+  result.factor_nnz = factor_nonzeros(solver, n);
+  result.peak_bytes = base >= 0 ? status_bytes("VmHWM") - base : -1;
+  return result;
 }
 
-void pipeline(benchmark::State& state, const std::string& name)
+// ---------------------------------------------------------------------------------------------------------
+
+template <class SolverTraits>
+void pipeline(benchmark::State& state, const Mesh_spec& spec)
 {
+  using Solver = TC::Trivial_connection_solver<Mesh, CGAL::Default, SolverTraits>;
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(std::string(TC_CGAL_DATA_DIR) + "/" + name, mesh)) {
-    state.SkipWithError(("cannot read " + name + " (run scripts/fetch_cgal_data.sh)").c_str());
+  const std::string error = load_mesh(spec, mesh);
+  if(!error.empty()) {
+    state.SkipWithError(error.c_str());
     return;
   }
   auto x = mesh.add_property_map<Mesh::Halfedge_index, double>("h:x", 0.).first;
   auto field = mesh.add_property_map<Mesh::Face_index, K::Vector_3>("f:field").first;
-  double t_ref = 0, t_build = 0, t_solve = 0, t_resolve = 0, t_field = 0;
+
+  double t_build = 0, t_solve = 0, t_resolve = 0, t_field = 0, peak = -1;
+  Phase_times build, solve1, solve2, field_phases;
+  Reference_result ref;
   std::int64_t genus = 0;
+  std::size_t boundary_loops = 0, components = 0, singularities = 0;
   for(auto _ : state) {
-    t_ref = reference_factorization(mesh);
-    auto t0 = std::chrono::steady_clock::now();
-    TC::Trivial_connection_solver<Mesh> solver(mesh);
-    t_build = seconds_since(t0);
-    const std::int64_t chi = solver.components().front().euler_characteristic;
-    genus = solver.components().front().genus;
-    const bool closed = solver.components().front().number_of_boundary_loops == 0;
-    const Singularities first = closed ? singularities_for(mesh, chi, 0) : Singularities();
-    const Singularities second = closed ? singularities_for(mesh, chi, 7) : Singularities();
-    t0 = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(solver.solve(first, x).energy);
-    t_solve = seconds_since(t0);
-    t0 = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(solver.solve(second, x).energy);
-    t_resolve = seconds_since(t0);
-    t0 = std::chrono::steady_clock::now();
-    solver.compute_field(x, field);
-    t_field = seconds_since(t0);
+    std::vector<Weighted_edge> edges;
+    {
+      build = solve1 = solve2 = field_phases = Phase_times();
+      const double base = reset_peak_memory() ? status_bytes("VmRSS") : -1;
+      auto t0 = Clock::now();
+      Solver solver(mesh, TC::parameters::progress(build.callback()));
+      t_build = seconds_since(t0);
+
+      genus = 0;
+      boundary_loops = 0;
+      components = solver.components().size();
+      for(const auto& c : solver.components()) {
+        genus += c.genus;
+        boundary_loops += c.number_of_boundary_loops;
+      }
+      const Singularities first = singularities_for(mesh, solver, 0);
+      const Singularities second = singularities_for(mesh, solver, 1);
+      singularities = first.size();
+
+      t0 = Clock::now();
+      benchmark::DoNotOptimize(solver.solve(first, x, TC::parameters::progress(solve1.callback())).energy);
+      t_solve = seconds_since(t0);
+      t0 = Clock::now();
+      benchmark::DoNotOptimize(solver.solve(second, x, TC::parameters::progress(solve2.callback())).energy);
+      t_resolve = seconds_since(t0);
+      t0 = Clock::now();
+      solver.compute_field(x, field, TC::parameters::progress(field_phases.callback()));
+      t_field = seconds_since(t0);
+      peak = base >= 0 ? status_bytes("VmHWM") - base : -1;
+
+      edges.reserve(num_edges(mesh));
+      for(auto e : CGAL::edges(mesh))
+        if(solver.is_interior(e))
+          edges.push_back({int(source(halfedge(e, mesh), mesh)), int(target(halfedge(e, mesh), mesh)),
+                           1 / solver.weight(e)});
+    } // the solver is gone before the reference runs
+    ref = reference_factorization<SolverTraits>(num_vertices(mesh), edges);
+    if(!ref.ok)
+      state.SkipWithError("the reference factorization failed");
     state.SetIterationTime(t_build + t_solve + t_field);
   }
-  state.counters["faces"] = double(num_faces(mesh));
-  state.counters["genus"] = double(genus);
-  state.counters["t_reference"] = t_ref;
-  state.counters["t_build"] = t_build;
-  state.counters["t_solve"] = t_solve;
-  state.counters["t_resolve"] = t_resolve;
-  state.counters["t_field"] = t_field;
-  state.counters["r_end_to_end"] = (t_build + t_solve + t_field) / t_ref;
-  state.counters["r_resolve"] = t_resolve / t_ref;
+
+  const double nf = double(num_faces(mesh));
+  auto& k = state.counters;
+  k["faces"] = nf;
+  k["vertices"] = double(num_vertices(mesh));
+  k["components"] = double(components);
+  k["genus"] = double(genus);
+  k["boundary_loops"] = double(boundary_loops);
+  k["singularities"] = double(singularities);
+  k["t_reference"] = ref.seconds;
+  k["t_build"] = t_build;
+  k["t_mesh_setup"] = build[TC::Phase::mesh_setup];
+  k["t_geometry"] = build[TC::Phase::geometry];
+  k["t_trees"] = build[TC::Phase::trees];
+  k["t_assembly"] = build[TC::Phase::assembly];
+  k["t_factorization"] = build[TC::Phase::factorization];
+  k["t_loop_metric"] = build[TC::Phase::loop_metric];
+  k["t_solve"] = t_solve;
+  k["t_solve_backsub"] = solve1[TC::Phase::solve];
+  k["t_solve_integers"] = solve1[TC::Phase::loop_integers];
+  k["t_solve_loop_metric"] = solve1[TC::Phase::loop_metric]; // if the loop metric is computed lazily
+  k["t_resolve"] = t_resolve;
+  k["t_resolve_backsub"] = solve2[TC::Phase::solve];
+  k["t_resolve_integers"] = solve2[TC::Phase::loop_integers];
+  k["t_field"] = t_field;
+  k["r_end_to_end"] = (t_build + t_solve + t_field) / ref.seconds;
+  k["r_build"] = t_build / ref.seconds;
+  k["r_resolve"] = t_resolve / ref.seconds;
+  k["peak_bytes"] = peak;
+  k["peak_bytes_per_face"] = peak >= 0 ? peak / nf : -1;
+  k["ref_peak_bytes_per_face"] = ref.peak_bytes >= 0 ? ref.peak_bytes / nf : -1;
+  k["ref_factor_nnz"] = ref.factor_nnz;
+  k["ref_factor_bytes_per_face"] = ref.factor_nnz * (8 + 4) / nf;
+}
+
+// TC_BENCH_SIZES: comma list of small, large, huge, all
+std::vector<bool> selected_sizes()
+{
+  std::vector<bool> on(3, false);
+  const char* env = std::getenv("TC_BENCH_SIZES");
+  std::string list = env && *env ? env : "small";
+  std::stringstream ss(list);
+  std::string item;
+  while(std::getline(ss, item, ',')) {
+    if(item == "small") on[0] = true;
+    else if(item == "large") on[1] = true;
+    else if(item == "huge") on[2] = true;
+    else if(item == "all") on.assign(3, true);
+    else std::cerr << "[benchmark] TC_BENCH_SIZES: unknown size '" << item << "' (small, large, huge, all)\n";
+  }
+  return on;
+}
+
+template <class SolverTraits>
+void register_backend(const std::string& backend, const std::vector<bool>& sizes)
+{
+  for(const Mesh_spec& spec : mesh_specs())
+    if(sizes[std::size_t(spec.size)])
+      benchmark::RegisterBenchmark((backend + "/" + spec.name).c_str(),
+                                   [spec](benchmark::State& s) { pipeline<SolverTraits>(s, spec); })
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
 }
 
 } // namespace
 
 int main(int argc, char** argv)
 {
-  // genus 0, 1, 3, 11, 133, bordered; ~5k to ~90k faces
-  for(const char* name : {"cow.off", "knot1.off", "elephant.off", "turbine.off", "cheese.off", "holes.off",
-                          "refined_elephant.off", "bunny00.off"})
-    benchmark::RegisterBenchmark(name, [name](benchmark::State& s) { pipeline(s, name); })
-      ->UseManualTime()
-      ->Unit(benchmark::kMillisecond)
-      ->Iterations(1);
+  const std::vector<bool> sizes = selected_sizes();
+  register_backend<TC::Default_solver_traits>("ldlt", sizes);
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  register_backend<TC::Cholmod_solver_traits>("cholmod", sizes);
+#endif
+  benchmark::AddCustomContext("mesh_cache", mesh_cache_dir());
   benchmark::Initialize(&argc, argv);
+  if(benchmark::ReportUnrecognizedArguments(argc, argv))
+    return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# Runs the Google Benchmark suite (benchmark/) with JSON output and writes benchmark/RESULTS.md.
+#
+#   bash scripts/run_benchmarks.sh [--sizes small|large|huge|all|LIST] [--backends ldlt,cholmod]
+#                                  [--repetitions N] [--no-build] [--table-only] [--out FILE]
+#
+#   --sizes        small (default, a few minutes): CGAL meshes 5k-90k faces and a 300k subdivision;
+#                  large: ~1.2M faces (genus 0, 11, 133); huge: ~5M faces; all; or a comma list.
+#   --backends     ldlt (build dir build-bench) and/or cholmod (build-bench-cholmod, built with
+#                  -DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON); default: both (cholmod only if CHOLMOD is installed).
+#   --repetitions  repetitions of the small meshes (default 3; large and huge run once).
+#   --no-build     use the existing binaries.   --table-only   only rewrite the table from the JSON files.
+#
+# JSON results go to build-bench/benchmark-results/BACKEND-SIZE.json and accumulate across runs: the table is
+# made from all of them (the newest result of each mesh wins), so the large meshes can be run separately.
+# Subdivided meshes are cached in $TC_BENCH_MESH_CACHE (default build-bench/benchmark-meshes).
+# Environment: JOBS (build parallelism, default 2).
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+SIZES=small
+BACKENDS=""
+REPETITIONS=3
+BUILD=1
+TABLE_ONLY=0
+OUT="$ROOT/benchmark/RESULTS.md"
+JOBS="${JOBS:-2}"
+
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --sizes) SIZES="$2"; shift 2 ;;
+    --backends) BACKENDS="$2"; shift 2 ;;
+    --repetitions) REPETITIONS="$2"; shift 2 ;;
+    --no-build) BUILD=0; shift ;;
+    --table-only) TABLE_ONLY=1; shift ;;
+    --out) OUT="$2"; shift 2 ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+[ "$SIZES" = all ] && SIZES=small,large,huge
+
+if [ -z "$BACKENDS" ]; then
+  BACKENDS=ldlt
+  if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then
+    BACKENDS=ldlt,cholmod
+  fi
+fi
+
+RESULTS_DIR="$ROOT/build-bench/benchmark-results"
+export TC_BENCH_MESH_CACHE="${TC_BENCH_MESH_CACHE:-$ROOT/build-bench/benchmark-meshes}"
+mkdir -p "$RESULTS_DIR" "$TC_BENCH_MESH_CACHE"
+
+PYTHON=python3
+command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
+
+build_dir() {
+  case "$1" in
+    ldlt) echo "$ROOT/build-bench" ;;
+    cholmod) echo "$ROOT/build-bench-cholmod" ;;
+    *) echo "run_benchmarks.sh: unknown backend $1 (ldlt, cholmod)" >&2; exit 2 ;;
+  esac
+}
+
+if [ "$TABLE_ONLY" = 0 ]; then
+  if [ ! -d "$ROOT/.cgal-data/data/meshes" ]; then
+    echo "run_benchmarks.sh: CGAL's meshes are missing: run bash scripts/fetch_cgal_data.sh" >&2
+    exit 1
+  fi
+  COMMIT="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  if ! git -C "$ROOT" diff --quiet HEAD -- include 2>/dev/null; then COMMIT="$COMMIT+modified"; fi
+  for backend in ${BACKENDS//,/ }; do
+    dir="$(build_dir "$backend")"
+    if [ "$BUILD" = 1 ]; then
+      extra=()
+      [ "$backend" = cholmod ] && extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
+      cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF \
+            -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON "${extra[@]}" >/dev/null
+      cmake --build "$dir" -j "$JOBS" --target trivial_connections_benchmark
+    fi
+    exe="$dir/benchmark/trivial_connections_benchmark"
+    [ -x "$exe" ] || { echo "run_benchmarks.sh: $exe not built" >&2; exit 1; }
+    for size in ${SIZES//,/ }; do
+      reps=1
+      [ "$size" = small ] && reps="$REPETITIONS"
+      json="$RESULTS_DIR/$backend-$size.json"
+      echo "== $backend, $size meshes, $reps repetition(s) -> $json"
+      TC_BENCH_SIZES="$size" "$exe" \
+        --benchmark_filter="^$backend/" \
+        --benchmark_repetitions="$reps" \
+        --benchmark_context=commit="$COMMIT",backend="$backend",sizes="$size" \
+        --benchmark_out="$json.tmp" --benchmark_out_format=json
+      mv "$json.tmp" "$json"
+    done
+  done
+fi
+
+shopt -s nullglob
+files=("$RESULTS_DIR"/*.json)
+[ ${#files[@]} -gt 0 ] || { echo "run_benchmarks.sh: no results in $RESULTS_DIR" >&2; exit 1; }
+"$PYTHON" "$ROOT/scripts/benchmark_table.py" --out "$OUT" "${files[@]}"

@@ -7,11 +7,13 @@
 // singularities on a triangle mesh, and the n-direction field it defines, and writes both to files.
 //
 //   trivial_connections MESH [--singularities FILE] [--n N] [--weights hodge|unit]
-//                            [--connection OUT] [--field OUT] [--help]
+//                            [--connection OUT] [--field OUT] [--progress] [--help]
 //
 // Exit status: 0 on success, 1 on an input error (mesh, singularities, solver, output files), 2 on a usage
 // error. On any error one line `trivial_connections: error: <message>` goes to stderr and no output file is
 // written (both files are committed together, only after everything succeeded).
+// Progress (one line per phase with the elapsed time) goes to stderr when stderr is a terminal or with
+// --progress, never otherwise.
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -21,21 +23,28 @@
 #include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
+#include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <new>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <unistd.h>
+#endif
 
 namespace TC = CGAL::Trivial_connections;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -51,7 +60,7 @@ const char* const program = "trivial_connections";
 
 const char* const usage_text =
   "Usage: trivial_connections MESH [--singularities FILE] [--n N] [--weights hodge|unit]\n"
-  "                           [--connection OUT] [--field OUT] [--help]\n"
+  "                           [--connection OUT] [--field OUT] [--progress] [--help]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
@@ -67,6 +76,8 @@ const char* const usage_text =
   "                        (default: <mesh stem>.connection.txt in the current directory)\n"
   "  --field OUT           field file, one line 'x y z' per face in input face order\n"
   "                        (default: <mesh stem>.field.txt in the current directory)\n"
+  "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
+  "                        is a terminal)\n"
   "  --help, -h            print this help and exit\n"
   "\n"
   "The integers of the homology generators and boundary loops are chosen to minimise the energy.\n"
@@ -82,6 +93,7 @@ struct Usage_error : std::runtime_error
 struct Options
 {
   bool help = false;
+  bool progress = false;
   std::string mesh;
   std::string singularities;
   int n = 1;
@@ -121,6 +133,10 @@ Options parse_arguments(int argc, char** argv)
   bool seen_singularities = false, seen_n = false, seen_weights = false, seen_connection = false, seen_field = false;
   for(std::size_t i = 0; i < args.size(); ++i) {
     std::string a = args[i];
+    if(a == "--progress") {
+      o.progress = true;
+      continue;
+    }
     if(a.size() > 1 && a[0] == '-' && a != "-") {
       std::string name = a, value;
       bool has_value = false;
@@ -199,6 +215,91 @@ std::string one_line(std::string s)
   return s;
 }
 
+// Prints one line per phase to stderr: "[  1.23 s] factorization ... done (0.45 s)", the time since the
+// program started. Lines are written with one fputs each, so that they are never interleaved.
+class Progress_printer
+{
+public:
+  explicit Progress_printer(bool enabled) : m_enabled(enabled), m_start(std::chrono::steady_clock::now()) {}
+
+  bool enabled() const { return m_enabled; }
+  void begin(const char* phase)
+  {
+    if(!m_enabled)
+      return;
+    end_line();
+    m_starts[phase] = std::chrono::steady_clock::now();
+    m_open_phase = phase;
+    m_open = true;
+    print("[" + seconds(m_start) + " s] " + phase + " ...");
+  }
+  void end(const char* phase)
+  {
+    if(!m_enabled)
+      return;
+    const auto start = m_starts.find(phase);
+    if(start == m_starts.end())
+      return;
+    const std::string took = seconds(start->second);
+    m_starts.erase(start);
+    if(m_open && m_open_phase == phase) {
+      m_open = false;
+      print(" done (" + took + " s)\n");
+    } else { // another phase ran inside this one
+      end_line();
+      print("[" + seconds(m_start) + " s] " + phase + " done (" + took + " s)\n");
+    }
+  }
+  // ends an open line (before an error message or the report of an exception out of a phase)
+  void end_line()
+  {
+    if(m_enabled && m_open) {
+      m_open = false;
+      print("\n");
+    }
+  }
+  TC::Progress_callback callback()
+  {
+    if(!m_enabled)
+      return TC::Progress_callback();
+    return [this](TC::Phase p, double fraction) {
+      if(fraction <= 0)
+        begin(TC::phase_name(p));
+      else if(fraction >= 1)
+        end(TC::phase_name(p));
+    };
+  }
+
+private:
+  std::string seconds(std::chrono::steady_clock::time_point since) const
+  {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%7.2f",
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count());
+    return buffer;
+  }
+  static void print(const std::string& text)
+  {
+    std::fputs(text.c_str(), stderr);
+    std::fflush(stderr);
+  }
+
+  bool m_enabled;
+  std::chrono::steady_clock::time_point m_start;
+  std::map<std::string, std::chrono::steady_clock::time_point> m_starts; // of the phases not ended yet
+  std::string m_open_phase; // the phase whose line is not ended yet, if m_open
+  bool m_open = false;
+};
+
+bool stderr_is_terminal()
+{
+#if defined(__unix__) || defined(__APPLE__)
+  return ::isatty(2) == 1;
+#else
+  return false;
+#endif
+}
+
 int fail(const std::string& message, int status)
 {
   std::cerr << program << ": error: " << one_line(message) << std::endl;
@@ -224,13 +325,16 @@ std::string scientific(double x)
   return s.str();
 }
 
-int run(const Options& o)
+int run(const Options& o, Progress_printer& progress)
 {
   using clock = std::chrono::steady_clock;
   const auto t_start = clock::now();
+  const TC::Progress_callback solver_progress = progress.callback();
 
   Mesh mesh;
+  progress.begin("reading mesh");
   const TC::Mesh_input_order<Mesh> order = TC::read_triangle_mesh(o.mesh, mesh);
+  progress.end("reading mesh");
   const double t_read = seconds_since(t_start);
 
   std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> singularities;
@@ -240,7 +344,7 @@ int run(const Options& o)
   }
 
   auto t = clock::now();
-  Solver solver(mesh, TC::parameters::weighting(o.weighting));
+  Solver solver(mesh, TC::parameters::progress(solver_progress, TC::parameters::weighting(o.weighting)));
   const double t_setup = seconds_since(t);
 
   t = clock::now();
@@ -248,8 +352,9 @@ int run(const Options& o)
     mesh.add_property_map<halfedge_descriptor, double>("h:tc_connection", 0.).first;
   Mesh::Property_map<face_descriptor, Kernel::Vector_3> field =
     mesh.add_property_map<face_descriptor, Kernel::Vector_3>("f:tc_field", CGAL::NULL_VECTOR).first;
-  const TC::Solve_report report = solver.solve(singularities, x, TC::parameters::symmetry_order(o.n));
-  solver.compute_field(x, field);
+  const TC::Solve_report report =
+    solver.solve(singularities, x, TC::parameters::progress(solver_progress, TC::parameters::symmetry_order(o.n)));
+  solver.compute_field(x, field, TC::parameters::progress(solver_progress));
   const double t_solve = seconds_since(t);
 
   std::size_t interior_edges = 0;
@@ -258,6 +363,7 @@ int run(const Options& o)
       ++interior_edges;
 
   t = clock::now();
+  progress.begin("writing files");
   const std::string provenance = "# computed by trivial_connections from '" + o.mesh + "'" +
                                  (o.singularities.empty() ? std::string(", no singularity")
                                                           : ", singularities '" + o.singularities + "'") +
@@ -272,7 +378,9 @@ int run(const Options& o)
      {o.field, [&](std::ostream& os) {
         os << provenance;
         TC::write_field(os, mesh, field);
-      }}});
+      }}},
+    /* concurrently = */ true); // the writers only read the mesh, the maps and the solver
+  progress.end("writing files");
   const double t_write = seconds_since(t);
 
   // ---- report
@@ -346,15 +454,20 @@ int main(int argc, char** argv)
     std::cout << usage_text;
     return 0;
   }
+  Progress_printer progress(options.progress || stderr_is_terminal());
   try {
-    return run(options);
+    return run(options, progress);
   } catch(const TC::Invalid_input& e) {
+    progress.end_line();
     return fail(e.what(), 1);
   } catch(const std::bad_alloc&) {
+    progress.end_line();
     return fail("out of memory", 1);
   } catch(const std::exception& e) {
+    progress.end_line();
     return fail(e.what(), 1);
   } catch(...) {
+    progress.end_line();
     return fail("unexpected error", 1);
   }
 }

@@ -13,6 +13,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
+#include <CGAL/IO/polygon_soup_io.h>
 
 #include <CGAL/Trivial_connections/IO/atomic_file.h>
 #include <CGAL/Trivial_connections/IO/connection_file.h>
@@ -680,6 +681,264 @@ TYPED_TEST(IoMeshReader, TwoComponentsAndBorderVertices)
   for(auto h : halfedges(mesh))
     border += CGAL::is_border(h, mesh) ? 1 : 0;
   EXPECT_EQ(border, 5u);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The fast OFF / OBJ path of the mesh reader: same meshes as CGAL's reader, same errors
+
+// The mesh built from CGAL's own polygon soup reader (the path read_triangle_mesh falls back to).
+template <class Mesh>
+TC::Mesh_input_order<Mesh> read_through_cgal(const std::string& path, Mesh& mesh)
+{
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  if(!CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false)))
+    throw std::runtime_error("CGAL cannot read " + path);
+  return TC::triangle_soup_to_mesh(points, polygons, mesh);
+}
+
+// Same elements in the same order, same points (exactly), same halfedge structure.
+template <class Mesh>
+void expect_same_mesh(const Mesh& a, const TC::Mesh_input_order<Mesh>& oa, const Mesh& b,
+                      const TC::Mesh_input_order<Mesh>& ob)
+{
+  ASSERT_EQ(oa.vertices.size(), ob.vertices.size());
+  ASSERT_EQ(oa.faces.size(), ob.faces.size());
+  ASSERT_EQ(num_vertices(a), num_vertices(b));
+  ASSERT_EQ(num_edges(a), num_edges(b));
+  ASSERT_EQ(num_faces(a), num_faces(b));
+  bool isolated = false; // is_valid_polygon_mesh() refuses isolated vertices
+  for(auto v : vertices(a))
+    isolated = isolated || halfedge(v, a) == boost::graph_traits<Mesh>::null_halfedge();
+  if(!isolated)
+    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(a));
+  std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::size_t> ia, ib;
+  for(std::size_t i = 0; i < oa.vertices.size(); ++i) {
+    ia[oa.vertices[i]] = i;
+    ib[ob.vertices[i]] = i;
+    ASSERT_EQ(get(CGAL::vertex_point, a, oa.vertices[i]), get(CGAL::vertex_point, b, ob.vertices[i])) << "vertex " << i;
+  }
+  std::size_t mismatches = 0;
+  for(std::size_t f = 0; f < oa.faces.size() && mismatches < 5; ++f) {
+    std::vector<std::size_t> ca, cb;
+    for(auto h : CGAL::halfedges_around_face(halfedge(oa.faces[f], a), a))
+      ca.push_back(ia[source(h, a)]);
+    for(auto h : CGAL::halfedges_around_face(halfedge(ob.faces[f], b), b))
+      cb.push_back(ib[source(h, b)]);
+    if(ca != cb) {
+      ++mismatches;
+      ADD_FAILURE() << "face " << f;
+    }
+  }
+  // edges in the same order, with the same vertices and border status
+  auto eb = edges(b).begin();
+  for(auto e : edges(a)) {
+    ASSERT_EQ(ia[source(halfedge(e, a), a)], ib[source(halfedge(*eb, b), b)]);
+    ASSERT_EQ(ia[target(halfedge(e, a), a)], ib[target(halfedge(*eb, b), b)]);
+    ASSERT_EQ(CGAL::is_border(e, a), CGAL::is_border(*eb, b));
+    ++eb;
+  }
+}
+
+template <class Mesh>
+void expect_fast_reader_matches_cgal(const std::string& path)
+{
+  // the file is one the fast path takes
+  {
+    std::vector<Point> points;
+    std::vector<std::array<int, 3>> triangles;
+    const TC::internal::io::File_contents data(path);
+    ASSERT_TRUE(data.ok()) << path;
+    const bool off = TC::internal::io::lower_extension(path) == "off";
+    EXPECT_TRUE(off ? TC::internal::io::fast_parse_off(data.begin(), data.end(), points, triangles)
+                    : TC::internal::io::fast_parse_obj(data.begin(), data.end(), points, triangles))
+      << path << " does not take the fast path";
+  }
+  Mesh fast, cgal;
+  const TC::Mesh_input_order<Mesh> of = TC::read_triangle_mesh(path, fast);
+  const TC::Mesh_input_order<Mesh> oc = read_through_cgal(path, cgal);
+  expect_same_mesh(fast, of, cgal, oc);
+}
+
+TYPED_TEST(IoMeshReader, FastReaderGivesCGALsMeshOnTheExampleAndCGALMeshes)
+{
+  using Mesh = TypeParam;
+  std::vector<std::string> paths = {std::string(TC_EXAMPLE_DATA_DIR) + "/sphere.off"};
+  for(const char* name : {"cow.off", "elephant.off", "knot1.off", "rotor.off", "pig.off", "mesh_with_border.off"}) {
+    const std::string path = std::string(TC_CGAL_DATA_DIR) + "/" + name;
+    if(fs::exists(path))
+      paths.push_back(path);
+  }
+  if(paths.size() == 1)
+    std::cout << "[ note ] CGAL data set not found at " << TC_CGAL_DATA_DIR << ": only the example is compared\n";
+  for(const std::string& path : paths) {
+    SCOPED_TRACE(path);
+    expect_fast_reader_matches_cgal<Mesh>(path);
+  }
+}
+
+TYPED_TEST(IoMeshReader, FastReaderGivesCGALsMeshOnObjAndCommentedOff)
+{
+  using Mesh = TypeParam;
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polys;
+  grid_soup(6, 11, points, polys);
+  Temp_dir dir;
+  // OFF with comments, blank lines, CRLF line ends, counts on the keyword line, signs and exponents
+  std::ostringstream off;
+  off.precision(17);
+  off << "# a grid\r\nOFF " << points.size() << ' ' << polys.size() << " 0 # counts\r\n\r\n";
+  for(std::size_t i = 0; i < points.size(); ++i) {
+    const Point& p = points[i];
+    if(i % 5 == 0)
+      off << "  # a comment line\n";
+    off << (i % 3 == 0 ? "+" : "") << p.x() << "\t" << std::scientific << p.y() << std::defaultfloat << ' ' << p.z()
+        << (i % 4 == 0 ? " # comment\r\n" : "\n");
+  }
+  for(const auto& f : polys)
+    off << "3  " << f[0] << ' ' << f[1] << ' ' << f[2] << " \n";
+  expect_fast_reader_matches_cgal<Mesh>(dir.write("grid.off", off.str()));
+
+  std::ostringstream obj;
+  obj.precision(17);
+  obj << "# a grid\nmtllib grid.mtl\no grid\n";
+  for(const Point& p : points)
+    obj << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << "\nvt 0 0\n";
+  obj << "g all\ns off\n";
+  std::size_t k = 0;
+  for(const auto& f : polys) {
+    if(k++ % 2 == 0)
+      obj << "f " << f[0] + 1 << ' ' << f[1] + 1 << ' ' << f[2] + 1 << '\n';
+    else
+      obj << "f " << f[0] + 1 << "/1/1 " << f[1] + 1 << "//2 " << f[2] + 1 << "/3\n";
+  }
+  expect_fast_reader_matches_cgal<Mesh>(dir.write("grid.obj", obj.str()));
+}
+
+TYPED_TEST(IoMeshReader, FilesOutsideTheFastPathStillReadThroughCGAL)
+{
+  using Mesh = TypeParam;
+  Temp_dir dir;
+  const std::string four = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const std::string tet = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
+  for(const auto& [name, content] : std::vector<std::pair<std::string, std::string>>{
+        {"colours.off", "OFF\n4 4 0\n" + four + "3 0 2 1 255 0 0\n3 0 1 3 0 255 0\n3 1 2 3\n3 2 0 3\n"},
+        {"coff.off", "COFF\n4 4 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n0 0 1 1 1 1 1\n" + tet},
+        {"no_final_newline.off", "OFF\n4 4 0\n" + four + tet.substr(0, tet.size() - 1)}}) {
+    SCOPED_TRACE(name);
+    const std::string path = dir.write(name, content);
+    Mesh fast, cgal;
+    const TC::Mesh_input_order<Mesh> of = TC::read_triangle_mesh(path, fast);
+    const TC::Mesh_input_order<Mesh> oc = read_through_cgal(path, cgal);
+    expect_same_mesh(fast, of, cgal, oc);
+  }
+}
+
+TYPED_TEST(IoMeshReader, FastReaderRejectsMalformedFilesWithTheUsualErrors)
+{
+  using Mesh = TypeParam;
+  Temp_dir dir;
+  auto read = [&](const std::string& name, const std::string& content) {
+    const std::string path = dir.write(name, content);
+    return [path] {
+      Mesh mesh;
+      TC::read_triangle_mesh(path, mesh);
+    };
+  };
+  const std::string four = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const std::string tet = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
+  // the well-formed file reads
+  EXPECT_NO_THROW(read("tet.off", "OFF\n4 4 0\n" + four + tet)());
+  // truncated: in the vertices, in the faces, after the header
+  expect_error(read("cut_vertices.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n"), TC::Error_code::parse_error,
+               {"cut_vertices.off", "end of file", "4 vertices"});
+  expect_error(read("cut_faces.off", "OFF\n4 4 0\n" + four + "3 0 2 1\n3 0 1 3\n"), TC::Error_code::parse_error,
+               {"cut_faces.off", "end of file", "4 faces"});
+  expect_error(read("cut_header.off", "OFF\n"), TC::Error_code::parse_error, {"cut_header.off"});
+  expect_error(read("cut_face.off", "OFF\n4 4 0\n" + four + "3 0 2 1\n3 0 1\n3 1 2 3\n3 2 0 3\n"),
+               TC::Error_code::parse_error, {"cut_face.off:8", "face 1"});
+  // garbage numbers
+  expect_error(read("garbage.off", "OFF\n4 4 0\n0 0 0\n1 zero 0\n0 1 0\n0 0 1\n" + tet), TC::Error_code::parse_error,
+               {"garbage.off:4", "vertex 1", "'zero' is not a number"});
+  expect_error(read("garbage_index.off", "OFF\n4 4 0\n" + four + "3 0 2 1\n3 0 x 3\n3 1 2 3\n3 2 0 3\n"),
+               TC::Error_code::parse_error, {"garbage_index.off:8", "face 1"});
+  expect_error(read("garbage_counts.off", "OFF\n4 four 0\n" + four + tet), TC::Error_code::parse_error,
+               {"garbage_counts.off:2", "counts"});
+  // non-finite coordinates
+  for(const std::string& bad : {"nan", "-nan", "inf", "-inf", "infinity", "1e999"}) {
+    SCOPED_TRACE(bad);
+    expect_error(read("nonfinite.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 " + bad + " 0\n0 0 1\n" + tet),
+                 TC::Error_code::parse_error, {"nonfinite.off:5", "vertex 2", "'" + bad + "'", "not a finite number"});
+    expect_error(read("nonfinite.obj", "v 0 0 0\nv 1 0 0\nv 0 1 " + bad + "\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"),
+                 TC::Error_code::parse_error, {"nonfinite.obj:3", "vertex 2", "not a finite number"});
+  }
+  // index out of range, in OFF and OBJ
+  const TC::Invalid_input range =
+    expect_error(read("range.off", "OFF\n4 4 0\n" + four + "3 0 2 1\n3 0 1 3\n3 1 2 4\n3 2 0 3\n"),
+                 TC::Error_code::invalid_vertex, {"range.off:9", "face 2", "vertex 4", "4 vertices"});
+  EXPECT_EQ(range.where(), 2u);
+  expect_error(read("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 9\nf 3 1 4\n"),
+               TC::Error_code::invalid_vertex, {"range.obj:7", "face 2", "vertex 9"});
+  // not a triangle, in OFF and OBJ
+  expect_error(read("quad.off", "OFF\n5 4 0\n" + four + "1 1 1\n3 0 2 1\n4 0 1 4 3\n3 1 2 3\n3 2 0 3\n"),
+               TC::Error_code::not_triangle_mesh, {"quad.off", "face 1", "4 vertices"});
+  expect_error(read("quad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 3 2\nf 1 2 5 4\nf 2 3 4\nf 3 1 4\n"),
+               TC::Error_code::not_triangle_mesh, {"quad.obj", "face 1", "4 vertices"});
+  // validation errors after a fast parse keep their messages (prefixed with the path)
+  expect_error(read("degenerate_fast.off", "OFF\n4 4 0\n" + four + "3 0 2 1\n3 0 1 3\n3 1 1 3\n3 2 0 3\n"),
+               TC::Error_code::degenerate_face, {"degenerate_fast.off: face 2", "same vertex"});
+  expect_error(read("orientation_fast.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 3 4\n"),
+               TC::Error_code::inconsistent_orientation, {"orientation_fast.obj", "faces 0 and 1"});
+}
+
+TYPED_TEST(IoMeshReader, NonManifoldVerticesAreFoundByTheFanWalk)
+{
+  using Mesh = TypeParam;
+  // two closed octahedra sharing vertex 0 (two closed fans), and an open fan next to a closed one
+  std::vector<Point> points = octahedron_points;
+  std::vector<std::vector<std::size_t>> polys = octahedron_faces;
+  for(int i = 1; i < 6; ++i)
+    points.push_back(Point(octahedron_points[std::size_t(i)].x() + 2, octahedron_points[std::size_t(i)].y(),
+                           octahedron_points[std::size_t(i)].z()));
+  for(const auto& f : octahedron_faces) {
+    std::vector<std::size_t> g;
+    for(std::size_t v : f)
+      g.push_back(v == 1 ? 0 : (v == 0 ? 6 : v + 5)); // second octahedron: its vertex 1 is vertex 0
+    polys.push_back(g);
+  }
+  Mesh mesh;
+  const TC::Invalid_input e = expect_error([&] { TC::triangle_soup_to_mesh(points, polys, mesh); },
+                                           TC::Error_code::non_manifold, {"non-manifold vertex 0", "2 separate fans"});
+  EXPECT_EQ(e.where(), 0u);
+}
+
+TEST(IoAtomicFile, ConcurrentWritersGiveTheSameFilesAndStayAllOrNothing)
+{
+  Temp_dir dir;
+  const std::string a = dir.file("a.txt"), b = dir.file("b.txt");
+  TC::write_files_atomically({{a, [](std::ostream& os) { os << "a\n"; }}, {b, [](std::ostream& os) { os << "b\n"; }}},
+                             true);
+  EXPECT_EQ(slurp(a), "a\n");
+  EXPECT_EQ(slurp(b), "b\n");
+  for(int failing = 0; failing < 2; ++failing) {
+    expect_error(
+      [&] {
+        TC::write_files_atomically(
+          {{a, [&](std::ostream& os) {
+              os << "new a\n";
+              if(failing == 0) throw TC::Invalid_input(TC::Error_code::io_error, "writer a failed");
+            }},
+           {b, [&](std::ostream& os) {
+              os << "new b\n";
+              if(failing == 1) throw TC::Invalid_input(TC::Error_code::io_error, "writer b failed");
+            }}},
+          true);
+      },
+      TC::Error_code::io_error, {failing == 0 ? "writer a failed" : "writer b failed"});
+    EXPECT_EQ(slurp(a), "a\n");
+    EXPECT_EQ(slurp(b), "b\n");
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"a.txt", "b.txt"}));
+  }
 }
 
 } // namespace

@@ -14,12 +14,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <random>
 #include <string>
 #include <system_error>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -118,23 +120,60 @@ temporary file in the target's directory; the streams are flushed and checked. O
 succeeded are the temporary files renamed over the targets (`std::rename`, atomic on POSIX file systems).
 If anything fails before the renames (a writer throws, a directory does not exist, a target is a
 directory, the disk is full), every temporary file is removed, no target is touched, and the exception is
-propagated (`Invalid_input` with `Error_code::io_error` for input/output failures).
+propagated (`Invalid_input` with `Error_code::io_error` for input/output failures; with several failures,
+the one of the first file in the list).
+
+With `concurrently == true` the writers run at the same time, each on its own thread (the first one on the
+calling thread): they must then not modify anything they share. The result is the same as with
+`concurrently == false`, only faster when formatting the files takes time.
 
 A rename can still fail in the final phase (e.g. the directory was removed meanwhile): the remaining
 temporary files are then removed and `Invalid_input(io_error)` is thrown; targets renamed before stay written.
 \pre the targets are pairwise different
 */
-inline void write_files_atomically(const std::vector<std::pair<std::string, File_writer>>& files)
+inline void write_files_atomically(const std::vector<std::pair<std::string, File_writer>>& files,
+                                   bool concurrently = false)
 {
   std::vector<std::filesystem::path> temporaries;
   temporaries.reserve(files.size());
-  try {
-    for(const auto& f : files)
-      temporaries.push_back(internal::io::write_temporary(std::filesystem::path(f.first), f.second));
-  } catch(...) {
-    for(const auto& t : temporaries)
-      internal::io::remove_quietly(t);
-    throw;
+  if(concurrently && files.size() > 1) {
+    std::vector<std::filesystem::path> written(files.size());
+    std::vector<std::exception_ptr> failure(files.size());
+    auto write = [&](std::size_t i) {
+      try {
+        written[i] = internal::io::write_temporary(std::filesystem::path(files[i].first), files[i].second);
+      } catch(...) {
+        failure[i] = std::current_exception();
+      }
+    };
+    std::vector<std::thread> threads;
+    try {
+      for(std::size_t i = 1; i < files.size(); ++i)
+        threads.emplace_back(write, i);
+    } catch(...) { // no thread could be started: write the remaining files here
+      for(std::size_t i = threads.size() + 1; i < files.size(); ++i)
+        write(i);
+    }
+    write(0);
+    for(std::thread& t : threads)
+      t.join();
+    for(std::size_t i = 0; i < files.size(); ++i)
+      if(failure[i]) {
+        for(const auto& t : written)
+          if(!t.empty())
+            internal::io::remove_quietly(t);
+        std::rethrow_exception(failure[i]);
+      }
+    temporaries = std::move(written);
+  } else {
+    try {
+      for(const auto& f : files)
+        temporaries.push_back(internal::io::write_temporary(std::filesystem::path(f.first), f.second));
+    } catch(...) {
+      for(const auto& t : temporaries)
+        internal::io::remove_quietly(t);
+      throw;
+    }
   }
   for(std::size_t i = 0; i < files.size(); ++i) {
     errno = 0;

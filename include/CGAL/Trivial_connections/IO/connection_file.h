@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <istream>
 #include <map>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <system_error>
@@ -29,29 +30,54 @@ namespace Trivial_connections {
 namespace internal {
 namespace io {
 
-// Appends the shortest decimal representation of `d` that reads back exactly (std::to_chars): as precise
-// as "%.17g", shorter and much faster.
-inline void append_double(std::string& out, double d)
+// An output buffer for numbers: formats with std::to_chars straight into a large block of memory and writes
+// it to the stream in big pieces (no iostream formatting, no per-number allocation). Call flush() at the end.
+class Number_writer
 {
-  char buffer[64];
-  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), d);
-  out.append(buffer, r.ptr);
-}
+public:
+  explicit Number_writer(std::ostream& os) : m_os(os), m_buffer(new char[capacity]), m_ptr(m_buffer.get()) {}
+  Number_writer(const Number_writer&) = delete;
+  Number_writer& operator=(const Number_writer&) = delete;
 
-inline void append_index(std::string& out, std::size_t i)
-{
-  char buffer[32];
-  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), i);
-  out.append(buffer, r.ptr);
-}
-
-inline void flush_chunk(std::ostream& os, std::string& chunk, bool force)
-{
-  if(force || chunk.size() > (1u << 16)) {
-    os.write(chunk.data(), std::streamsize(chunk.size()));
-    chunk.clear();
+  // The shortest decimal representation of `d` that reads back exactly (std::to_chars): as precise as "%.17g",
+  // shorter and much faster.
+  void number(double d)
+  {
+    reserve_line();
+    m_ptr = std::to_chars(m_ptr, m_buffer.get() + capacity, d).ptr;
   }
-}
+  void index(std::size_t i)
+  {
+    reserve_line();
+    m_ptr = std::to_chars(m_ptr, m_buffer.get() + capacity, i).ptr;
+  }
+  void character(char c)
+  {
+    reserve_line();
+    *m_ptr++ = c;
+  }
+  // writes what is buffered to the stream
+  void flush()
+  {
+    const std::size_t n = std::size_t(m_ptr - m_buffer.get());
+    m_ptr = m_buffer.get();
+    if(n > 0)
+      m_os.write(m_buffer.get(), std::streamsize(n));
+  }
+
+private:
+  static constexpr std::size_t capacity = std::size_t(1) << 20;
+  static constexpr std::size_t margin = 64; // more than one number (at most 24 characters) or character
+
+  void reserve_line()
+  {
+    if(std::size_t(m_buffer.get() + capacity - m_ptr) < margin)
+      flush();
+  }
+  std::ostream& m_os;
+  std::unique_ptr<char[]> m_buffer;
+  char* m_ptr;
+};
 
 inline double parse_double(const std::string& text, const std::string& where, const char* what)
 {
@@ -103,8 +129,7 @@ void write_connection(std::ostream& os, const TriangleMesh& tm, HalfedgeAngleMap
         "# x: connection angle in radians of the halfedge i->j (x of j->i is -x): a vector moved from the face\n"
         "#    of i->j to the face of j->i is unfolded about the edge, then turned by x counter-clockwise\n"
         "# w: weight of the edge in the energy sum_e w_e x_e^2\n";
-  std::string chunk;
-  chunk.reserve((1u << 16) + 256);
+  internal::io::Number_writer out(os);
   for(auto e : edges(tm)) {
     if(CGAL::is_border(e, tm))
       continue;
@@ -115,17 +140,16 @@ void write_connection(std::ostream& os, const TriangleMesh& tm, HalfedgeAngleMap
       h = opposite(h, tm);
       std::swap(i, j);
     }
-    internal::io::append_index(chunk, i);
-    chunk += ' ';
-    internal::io::append_index(chunk, j);
-    chunk += ' ';
-    internal::io::append_double(chunk, double(get(x, h)));
-    chunk += ' ';
-    internal::io::append_double(chunk, internal::io::edge_weight(weight, e, 0));
-    chunk += '\n';
-    internal::io::flush_chunk(os, chunk, false);
+    out.index(i);
+    out.character(' ');
+    out.index(j);
+    out.character(' ');
+    out.number(double(get(x, h)));
+    out.character(' ');
+    out.number(internal::io::edge_weight(weight, e, 0));
+    out.character('\n');
   }
-  internal::io::flush_chunk(os, chunk, true);
+  out.flush();
 }
 
 /*!

@@ -35,19 +35,17 @@ void write_field(std::ostream& os, const TriangleMesh& tm, FaceVectorMap field)
 {
   os << "# direction field: one line 'x y z' per face, in input face order: a unit tangent vector of the face\n"
         "# (for an n-direction field, n > 1, one of its n directions)\n";
-  std::string chunk;
-  chunk.reserve((1u << 16) + 256);
+  internal::io::Number_writer out(os);
   for(auto f : faces(tm)) {
     const auto v = get(field, f);
-    internal::io::append_double(chunk, CGAL::to_double(v.x()));
-    chunk += ' ';
-    internal::io::append_double(chunk, CGAL::to_double(v.y()));
-    chunk += ' ';
-    internal::io::append_double(chunk, CGAL::to_double(v.z()));
-    chunk += '\n';
-    internal::io::flush_chunk(os, chunk, false);
+    out.number(CGAL::to_double(v.x()));
+    out.character(' ');
+    out.number(CGAL::to_double(v.y()));
+    out.character(' ');
+    out.number(CGAL::to_double(v.z()));
+    out.character('\n');
   }
-  internal::io::flush_chunk(os, chunk, true);
+  out.flush();
 }
 
 /*!

@@ -11,15 +11,27 @@
 #include <CGAL/Trivial_connections/exceptions.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Surface_mesh/Surface_mesh.h>
+#include <CGAL/assertions.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/properties.h>
 
 #include <boost/container/small_vector.hpp>
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
+
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -27,9 +39,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -91,23 +105,8 @@ inline int find_root(std::vector<int>& parent, int i)
   return i;
 }
 
-/*
-  Validates a polygon soup as an oriented 2-manifold triangle mesh (possibly with boundary and isolated
-  vertices) and returns its connectivity. Checks, in this order, each over all faces in input order:
-    1. at least one face (empty_mesh);
-    2. every vertex index is in range (invalid_vertex), before any other use of the indices;
-    3. every face is a triangle (not_triangle_mesh) with three different vertices (degenerate_face);
-    4. no edge is shared by more than two faces (non_manifold), no two faces traverse the same directed
-       edge (inconsistent_orientation);
-    5. the faces around each vertex form a single fan (non_manifold).
-  Linear time: directed edges are found in per-vertex lists of outgoing halfedges sorted by target.
-*/
-template <class PolygonRange>
-Triangle_soup_connectivity validate_triangle_soup(std::size_t number_of_points, const PolygonRange& polygons)
+inline void check_soup_size(std::size_t number_of_points, std::size_t nf)
 {
-  Triangle_soup_connectivity soup;
-  soup.number_of_vertices = number_of_points;
-  const std::size_t nf = polygons.size();
   if(nf == 0)
     throw Invalid_input(Error_code::empty_mesh, "the mesh has no face" + std::string(number_of_points > 0 ?
                           " (" + std::to_string(number_of_points) + " vertices, 0 faces)" : ""));
@@ -115,47 +114,38 @@ Triangle_soup_connectivity validate_triangle_soup(std::size_t number_of_points, 
   if(number_of_points >= limit || nf >= limit / 3)
     throw Invalid_input(Error_code::invalid_argument, "the mesh is too large (" + std::to_string(number_of_points) +
                                                         " vertices, " + std::to_string(nf) + " faces)");
+}
 
-  // 2. indices in range
-  std::size_t f = 0;
-  for(const auto& polygon : polygons) {
-    for(const auto& index : polygon) {
-      const std::size_t v = std::size_t(index);
-      if(v >= number_of_points)
-        throw Invalid_input(Error_code::invalid_vertex,
-                            "face " + std::to_string(f) + " uses vertex " +
-                              std::to_string(static_cast<long long>(v)) + " but the mesh has only " +
-                              std::to_string(number_of_points) + " vertices (0-based indices 0 to " +
-                              (number_of_points == 0 ? std::string("none") : std::to_string(number_of_points - 1)) +
-                              ")",
-                            f);
-    }
-    ++f;
-  }
+[[noreturn]] inline void throw_vertex_out_of_range(std::size_t f, std::size_t v, std::size_t number_of_points)
+{
+  throw Invalid_input(Error_code::invalid_vertex,
+                      "face " + std::to_string(f) + " uses vertex " + std::to_string(static_cast<long long>(v)) +
+                        " but the mesh has only " + std::to_string(number_of_points) + " vertices (0-based indices 0 to " +
+                        (number_of_points == 0 ? std::string("none") : std::to_string(number_of_points - 1)) + ")",
+                      f);
+}
 
-  // 3. triangles with three different vertices
-  soup.triangles.resize(nf);
-  f = 0;
-  for(const auto& polygon : polygons) {
-    if(polygon.size() != 3)
-      throw Invalid_input(Error_code::not_triangle_mesh,
-                          "face " + std::to_string(f) + " has " + std::to_string(polygon.size()) +
-                            " vertices: only triangle meshes are supported",
-                          f);
-    std::array<int, 3>& t = soup.triangles[f];
-    std::size_t k = 0;
-    for(const auto& index : polygon)
-      t[k++] = int(std::size_t(index));
-    if(t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
-      throw Invalid_input(Error_code::degenerate_face,
-                          "face " + std::to_string(f) + " (" + std::to_string(t[0]) + ", " + std::to_string(t[1]) +
-                            ", " + std::to_string(t[2]) + ") uses the same vertex twice",
-                          f);
-    ++f;
-  }
+inline void check_not_degenerate(std::size_t f, const std::array<int, 3>& t)
+{
+  if(t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+    throw Invalid_input(Error_code::degenerate_face,
+                        "face " + std::to_string(f) + " (" + std::to_string(t[0]) + ", " + std::to_string(t[1]) +
+                          ", " + std::to_string(t[2]) + ") uses the same vertex twice",
+                        f);
+}
 
-  // Outgoing corner halfedges of each vertex, sorted by (target, corner).
-  const int nc = int(3 * nf);
+/*
+  Steps 4 and 5 of the validation below, on `soup.triangles` (indices in range, three different vertices):
+  fills `soup.opposite` or throws.
+  Directed edges are found in per-vertex lists of outgoing corners (in corner order; lists longer than
+  `sorted_from` are sorted by (target, corner) and searched by bisection), each edge once from its first
+  corner. The fan check walks around every vertex; only when a vertex fails it, the union-find below finds
+  the fans to name in the message.
+*/
+inline void connect_triangle_soup(Triangle_soup_connectivity& soup)
+{
+  const std::size_t number_of_points = soup.number_of_vertices;
+  const int nc = int(3 * soup.triangles.size());
   std::vector<int> first(number_of_points + 1, 0);
   for(int c = 0; c < nc; ++c)
     ++first[std::size_t(soup.source(c)) + 1];
@@ -166,26 +156,47 @@ Triangle_soup_connectivity validate_triangle_soup(std::size_t number_of_points, 
     for(int c = 0; c < nc; ++c)
       out[std::size_t(fill[std::size_t(soup.source(c))]++)] = std::make_pair(soup.target(c), c);
   }
+  constexpr int sorted_from = 16;
   for(std::size_t v = 0; v < number_of_points; ++v)
-    if(first[v + 1] - first[v] > 1)
+    if(first[v + 1] - first[v] > sorted_from)
       std::sort(out.begin() + first[v], out.begin() + first[v + 1]);
-  auto halfedges_from_to = [&](int a, int b) {
+  // the corners from a to b, in increasing order: their number, the first two in `corners`
+  auto corners_from_to = [&](int a, int b, int* corners) {
     const auto begin = out.begin() + first[std::size_t(a)], end = out.begin() + first[std::size_t(a) + 1];
-    return std::equal_range(begin, end, std::make_pair(b, -1),
-                            [](const std::pair<int, int>& x, const std::pair<int, int>& y) { return x.first < y.first; });
+    int n = 0;
+    if(end - begin > sorted_from) {
+      const auto range = std::equal_range(begin, end, std::make_pair(b, -1),
+                                          [](const std::pair<int, int>& x, const std::pair<int, int>& y) {
+                                            return x.first < y.first;
+                                          });
+      for(auto it = range.first; it != range.second; ++it, ++n)
+        if(n < 2) corners[n] = it->second;
+    } else {
+      for(auto it = begin; it != end; ++it)
+        if(it->first == b) {
+          if(n < 2) corners[n] = it->second;
+          ++n;
+        }
+    }
+    return n;
   };
 
   // 4. edges: at most two faces, traversed in opposite directions
   soup.opposite.assign(std::size_t(nc), -1);
+  std::vector<bool> done(static_cast<std::size_t>(nc), false); // the opposite of an earlier corner
   for(int c = 0; c < nc; ++c) {
+    if(done[std::size_t(c)])
+      continue; // its edge was checked from the opposite corner: one corner each way
     const int a = soup.source(c), b = soup.target(c);
-    const auto ab = halfedges_from_to(a, b);
-    const auto ba = halfedges_from_to(b, a);
-    const std::ptrdiff_t n_ab = ab.second - ab.first, n_ba = ba.second - ba.first;
+    int ab[2] = {-1, -1}, ba[2] = {-1, -1};
+    const int n_ab = corners_from_to(a, b, ab);
+    const int n_ba = corners_from_to(b, a, ba);
     if(n_ab + n_ba > 2) {
       std::vector<int> faces;
-      for(auto it = ab.first; it != ab.second; ++it) faces.push_back(it->second / 3);
-      for(auto it = ba.first; it != ba.second; ++it) faces.push_back(it->second / 3);
+      for(const auto& [from, to] : {std::make_pair(a, b), std::make_pair(b, a)})
+        for(int i = first[std::size_t(from)]; i < first[std::size_t(from) + 1]; ++i)
+          if(out[std::size_t(i)].first == to)
+            faces.push_back(out[std::size_t(i)].second / 3);
       std::sort(faces.begin(), faces.end());
       throw Invalid_input(Error_code::non_manifold,
                           "non-manifold edge: the edge between vertices " + std::to_string(a) + " and " +
@@ -194,7 +205,7 @@ Triangle_soup_connectivity validate_triangle_soup(std::size_t number_of_points, 
                           std::size_t(faces.front()));
     }
     if(n_ab == 2) {
-      const int f0 = ab.first->second / 3, f1 = (ab.first + 1)->second / 3;
+      const int f0 = ab[0] / 3, f1 = ab[1] / 3;
       throw Invalid_input(Error_code::inconsistent_orientation,
                           "inconsistent orientation: faces " + std::to_string((std::min)(f0, f1)) + " and " +
                             std::to_string((std::max)(f0, f1)) + " both traverse the edge from vertex " +
@@ -202,11 +213,43 @@ Triangle_soup_connectivity validate_triangle_soup(std::size_t number_of_points, 
                             " (neighbouring faces must traverse their common edge in opposite directions)",
                           std::size_t((std::max)(f0, f1)));
     }
-    if(n_ba == 1)
-      soup.opposite[std::size_t(c)] = ba.first->second;
+    if(n_ba == 1) {
+      soup.opposite[std::size_t(c)] = ba[0];
+      soup.opposite[std::size_t(ba[0])] = c;
+      done[std::size_t(ba[0])] = true;
+    }
   }
 
-  // 5. one fan per vertex: join the corners of two faces that share an edge at each of its vertices
+  // 5. one fan per vertex: walking around each vertex from one of its corners, through the faces that share
+  // an edge at it, must meet all its corners
+  std::size_t first_bad_vertex = number_of_points;
+  for(std::size_t v = 0; v < number_of_points && first_bad_vertex == number_of_points; ++v) {
+    const int degree = first[v + 1] - first[v];
+    if(degree == 0)
+      continue;
+    const int c0 = out[std::size_t(first[v])].second;
+    int seen = 1;
+    // forward: the corner of the face across the edge that ends at v (the previous corner of c)
+    int c = soup.opposite[std::size_t(Triangle_soup_connectivity::next(Triangle_soup_connectivity::next(c0)))];
+    while(c >= 0 && c != c0 && seen <= degree) {
+      ++seen;
+      c = soup.opposite[std::size_t(Triangle_soup_connectivity::next(Triangle_soup_connectivity::next(c)))];
+    }
+    if(c < 0) { // open fan: walk backward too
+      c = soup.opposite[std::size_t(c0)];
+      while(c >= 0 && seen <= degree) {
+        c = Triangle_soup_connectivity::next(c);
+        ++seen;
+        c = soup.opposite[std::size_t(c)];
+      }
+    }
+    if(seen != degree)
+      first_bad_vertex = v;
+  }
+  if(first_bad_vertex == number_of_points)
+    return;
+
+  // a vertex has several fans: find them all to report the first such vertex exactly
   std::vector<int> parent(static_cast<std::size_t>(nc));
   std::iota(parent.begin(), parent.end(), 0);
   for(int c = 0; c < nc; ++c) {
@@ -240,7 +283,120 @@ Triangle_soup_connectivity validate_triangle_soup(std::size_t number_of_points, 
                           std::to_string(fan_face[bad_vertex]) + " and " + std::to_string(bad_face) +
                           " share it but are not connected through edges around it)",
                         bad_vertex);
+  throw Invalid_input(Error_code::non_manifold, "non-manifold vertex " + std::to_string(first_bad_vertex) +
+                                                  ": the faces around it form separate fans", first_bad_vertex);
+}
+
+/*
+  Validates a polygon soup as an oriented 2-manifold triangle mesh (possibly with boundary and isolated
+  vertices) and returns its connectivity. Checks, in this order, each over all faces in input order:
+    1. at least one face (empty_mesh);
+    2. every vertex index is in range (invalid_vertex), before any other use of the indices;
+    3. every face is a triangle (not_triangle_mesh) with three different vertices (degenerate_face);
+    4. no edge is shared by more than two faces (non_manifold), no two faces traverse the same directed
+       edge (inconsistent_orientation);
+    5. the faces around each vertex form a single fan (non_manifold).
+  Linear time (plus sorts of the outgoing edges of vertices of high degree).
+*/
+template <class PolygonRange>
+Triangle_soup_connectivity validate_triangle_soup(std::size_t number_of_points, const PolygonRange& polygons)
+{
+  Triangle_soup_connectivity soup;
+  soup.number_of_vertices = number_of_points;
+  const std::size_t nf = polygons.size();
+  check_soup_size(number_of_points, nf);
+
+  // 2. indices in range
+  std::size_t f = 0;
+  for(const auto& polygon : polygons) {
+    for(const auto& index : polygon) {
+      const std::size_t v = std::size_t(index);
+      if(v >= number_of_points)
+        throw_vertex_out_of_range(f, v, number_of_points);
+    }
+    ++f;
+  }
+
+  // 3. triangles with three different vertices
+  soup.triangles.resize(nf);
+  f = 0;
+  for(const auto& polygon : polygons) {
+    if(polygon.size() != 3)
+      throw Invalid_input(Error_code::not_triangle_mesh,
+                          "face " + std::to_string(f) + " has " + std::to_string(polygon.size()) +
+                            " vertices: only triangle meshes are supported",
+                          f);
+    std::array<int, 3>& t = soup.triangles[f];
+    std::size_t k = 0;
+    for(const auto& index : polygon)
+      t[k++] = int(std::size_t(index));
+    check_not_degenerate(f, t);
+    ++f;
+  }
+
+  connect_triangle_soup(soup);
   return soup;
+}
+
+// The same for triangles given as a vector, which is moved into the result (no copy).
+inline Triangle_soup_connectivity validate_triangles(std::size_t number_of_points,
+                                                     std::vector<std::array<int, 3>>&& triangles)
+{
+  Triangle_soup_connectivity soup;
+  soup.number_of_vertices = number_of_points;
+  const std::size_t nf = triangles.size();
+  check_soup_size(number_of_points, nf);
+  for(std::size_t f = 0; f < nf; ++f)
+    for(int index : triangles[f])
+      if(index < 0 || std::size_t(index) >= number_of_points)
+        throw_vertex_out_of_range(f, std::size_t(index), number_of_points);
+  for(std::size_t f = 0; f < nf; ++f)
+    check_not_degenerate(f, triangles[f]);
+  soup.triangles = std::move(triangles);
+  connect_triangle_soup(soup);
+  return soup;
+}
+
+// Adds nv vertices, ne edges and nf faces (in this order of indices), as add_vertex(), add_edge() and add_face()
+// would one by one.
+template <class TriangleMesh>
+void add_elements(TriangleMesh& tm, std::size_t nv, std::size_t ne, std::size_t nf,
+                  std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& vertex,
+                  std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor>& edge_halfedge,
+                  std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& face)
+{
+  vertex.resize(nv);
+  edge_halfedge.resize(ne);
+  face.resize(nf);
+  for(std::size_t i = 0; i < nv; ++i)
+    vertex[i] = add_vertex(tm);
+  for(std::size_t f = 0; f < nf; ++f)
+    face[f] = add_face(tm);
+  for(std::size_t e = 0; e < ne; ++e)
+    edge_halfedge[e] = halfedge(add_edge(tm), tm);
+}
+
+// Surface_mesh: all at once (an empty Surface_mesh numbers its elements 0, 1, ... in the order they are added,
+// and edge e holds the halfedges 2e and 2e + 1)
+template <class P>
+void add_elements(CGAL::Surface_mesh<P>& tm, std::size_t nv, std::size_t ne, std::size_t nf,
+                  std::vector<typename CGAL::Surface_mesh<P>::Vertex_index>& vertex,
+                  std::vector<typename CGAL::Surface_mesh<P>::Halfedge_index>& edge_halfedge,
+                  std::vector<typename CGAL::Surface_mesh<P>::Face_index>& face)
+{
+  using SM = CGAL::Surface_mesh<P>;
+  using size_type = typename SM::size_type;
+  CGAL_precondition(tm.number_of_vertices() == 0 && tm.number_of_halfedges() == 0 && tm.number_of_faces() == 0);
+  tm.resize(size_type(nv), size_type(ne), size_type(nf));
+  vertex.resize(nv);
+  edge_halfedge.resize(ne);
+  face.resize(nf);
+  for(std::size_t i = 0; i < nv; ++i)
+    vertex[i] = typename SM::Vertex_index(size_type(i));
+  for(std::size_t f = 0; f < nf; ++f)
+    face[f] = typename SM::Face_index(size_type(f));
+  for(std::size_t e = 0; e < ne; ++e)
+    edge_halfedge[e] = typename SM::Halfedge_index(size_type(2 * e));
 }
 
 /*
@@ -264,22 +420,19 @@ Mesh_input_order<TriangleMesh> build_mesh(const PointRange& points, const Triang
   reserve(tm, vertices_size_type(nv), edges_size_type(interior / 2 + border), faces_size_type(nf));
 
   Mesh_input_order<TriangleMesh> order;
-  order.vertices.resize(nv);
-  order.faces.resize(nf);
+  std::vector<halfedge_descriptor> edge_halfedge;
+  add_elements(tm, nv, interior / 2 + border, nf, order.vertices, edge_halfedge, order.faces);
   auto vpm = get(CGAL::vertex_point, tm);
   std::size_t i = 0;
-  for(const auto& p : points) {
-    order.vertices[i] = add_vertex(tm);
-    put(vpm, order.vertices[i], p);
-    ++i;
-  }
-  for(std::size_t f = 0; f < nf; ++f)
-    order.faces[f] = add_face(tm);
+  for(const auto& p : points)
+    put(vpm, order.vertices[i++], p);
 
+  // edge k is the k-th edge met in corner order
   std::vector<halfedge_descriptor> h(nc);
+  std::size_t next_edge = 0;
   for(std::size_t c = 0; c < nc; ++c) {
     const int t = soup.opposite[c];
-    h[c] = (t >= 0 && std::size_t(t) < c) ? opposite(h[std::size_t(t)], tm) : halfedge(add_edge(tm), tm);
+    h[c] = (t >= 0 && std::size_t(t) < c) ? opposite(h[std::size_t(t)], tm) : edge_halfedge[next_edge++];
   }
   std::vector<halfedge_descriptor> incoming(nv, GT::null_halfedge());
   std::vector<halfedge_descriptor> border_from(nv, GT::null_halfedge()); // the border halfedge leaving a vertex
@@ -341,6 +494,22 @@ inline bool parse_number(const std::string& s)
   return !s.empty() && end == s.c_str() + s.size();
 }
 
+// Throws parse_error if one of the first three tokens of a vertex line is not a finite number.
+inline void check_coordinates(const std::vector<std::string>& t, std::size_t first, const std::string& where,
+                              std::size_t v)
+{
+  if(t.size() < first + 3)
+    throw Invalid_input(Error_code::parse_error, where + ": expected three coordinates", v);
+  for(std::size_t k = first; k < first + 3; ++k) {
+    if(!parse_number(t[k]))
+      throw Invalid_input(Error_code::parse_error, where + ": expected three coordinates, '" + t[k] +
+                                                     "' is not a number", v);
+    if(!std::isfinite(std::strtod(t[k].c_str(), nullptr)))
+      throw Invalid_input(Error_code::parse_error, where + ": the coordinate '" + t[k] +
+                                                     "' is not a finite number", v);
+  }
+}
+
 inline std::vector<std::string> tokens_of(const std::string& line)
 {
   std::vector<std::string> out;
@@ -399,10 +568,7 @@ inline void diagnose_off(const std::string& path)
       throw Invalid_input(Error_code::parse_error,
                           path + ": unexpected end of file: the header announces " + std::to_string(nv) +
                             " vertices, the file has " + std::to_string(v));
-    if(t.size() < 3 || !parse_number(t[0]) || !parse_number(t[1]) || !parse_number(t[2]))
-      throw Invalid_input(Error_code::parse_error, at + std::to_string(line_number) + ": vertex " + std::to_string(v) +
-                                                     ": expected three coordinates",
-                          std::size_t(v));
+    check_coordinates(t, 0, at + std::to_string(line_number) + ": vertex " + std::to_string(v), std::size_t(v));
   }
   for(long long f = 0; f < nf; ++f) {
     if(!next_tokens())
@@ -433,7 +599,7 @@ inline void diagnose_off(const std::string& path)
     throw Invalid_input(Error_code::empty_mesh, path + ": the mesh has no face (" + std::to_string(nv) + " vertices)");
 }
 
-// Same for OBJ: no face at all, or a face index out of range.
+// Same for OBJ: a vertex without three finite coordinates, a face index out of range, no face at all.
 inline void diagnose_obj(const std::string& path)
 {
   std::ifstream is(path);
@@ -447,6 +613,7 @@ inline void diagnose_obj(const std::string& path)
     if(t.empty())
       continue;
     if(t[0] == "v") {
+      check_coordinates(t, 1, path + ":" + std::to_string(line_number) + ": vertex " + std::to_string(nv), nv);
       ++nv;
     } else if(t[0] == "f") {
       for(std::size_t j = 1; j < t.size(); ++j) {
@@ -466,6 +633,290 @@ inline void diagnose_obj(const std::string& path)
   }
   if(nf == 0)
     throw Invalid_input(Error_code::empty_mesh, path + ": the mesh has no face (" + std::to_string(nv) + " vertices)");
+}
+
+/*
+  Fast path for the common ASCII OFF and OBJ files: the whole file is read into memory in one go and parsed
+  with std::from_chars. It accepts only a strict subset of what CGAL's readers accept, and for that subset
+  it produces exactly the polygon soup CGAL's reader produces (same points: the same correctly rounded
+  doubles; same indices). Whenever it meets anything outside that subset (another OFF variant, colours,
+  trailing values, a malformed or non-finite number, a truncated file, an index out of range, a polygon
+  that is not a triangle, ...) it returns false and the caller falls back to CGAL's reader, so the set of
+  accepted files and every error message stay exactly those of the CGAL path.
+*/
+
+// The whole content of a file, read in one go: mapped into memory where POSIX mmap is available (no copy),
+// else read into a buffer. `ok()` is false if the file could not be read (the caller then falls back to
+// CGAL's reader, which reports the problem).
+class File_contents
+{
+public:
+  explicit File_contents(const std::string& path)
+  {
+#if defined(__unix__) || defined(__APPLE__)
+    const int fd = ::open(path.c_str(), O_RDONLY);
+    if(fd >= 0) {
+      struct stat st;
+      if(::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+        int flags = MAP_PRIVATE;
+#ifdef MAP_POPULATE
+        flags |= MAP_POPULATE; // fault all pages in at once
+#endif
+        void* p = ::mmap(nullptr, std::size_t(st.st_size), PROT_READ, flags, fd, 0);
+        if(p != MAP_FAILED) {
+          m_map = p;
+          m_data = static_cast<const char*>(p);
+          m_size = std::size_t(st.st_size);
+          m_ok = true;
+        }
+      }
+      ::close(fd);
+      if(m_ok)
+        return;
+    }
+#endif
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if(file == nullptr)
+      return;
+    bool ok = std::fseek(file, 0, SEEK_END) == 0;
+    const long size = ok ? std::ftell(file) : -1L;
+    ok = ok && size >= 0 && std::fseek(file, 0, SEEK_SET) == 0;
+    if(ok) {
+      m_buffer.reset(new char[std::size_t(size) + 1]);
+      ok = size == 0 || std::fread(m_buffer.get(), 1, std::size_t(size), file) == std::size_t(size);
+      m_data = m_buffer.get();
+      m_size = std::size_t(size);
+    }
+    std::fclose(file);
+    m_ok = ok;
+  }
+  ~File_contents()
+  {
+#if defined(__unix__) || defined(__APPLE__)
+    if(m_map != nullptr)
+      ::munmap(m_map, m_size);
+#endif
+  }
+  File_contents(const File_contents&) = delete;
+  File_contents& operator=(const File_contents&) = delete;
+
+  bool ok() const { return m_ok; }
+  const char* begin() const { return m_data; }
+  const char* end() const { return m_data + m_size; }
+
+private:
+  bool m_ok = false;
+  void* m_map = nullptr;
+  std::unique_ptr<char[]> m_buffer;
+  const char* m_data = nullptr;
+  std::size_t m_size = 0;
+};
+
+// the characters std::isspace accepts in the "C" locale (what the iostreams of CGAL's readers skip)
+inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
+
+inline const char* skip_blanks(const char* p, const char* end)
+{
+  while(p != end && is_blank(*p))
+    ++p;
+  return p;
+}
+
+inline const char* token_end(const char* p, const char* end)
+{
+  while(p != end && !is_blank(*p))
+    ++p;
+  return p;
+}
+
+inline const char* end_of_line(const char* p, const char* end)
+{
+  const void* eol = std::memchr(p, '\n', std::size_t(end - p));
+  return eol != nullptr ? static_cast<const char*>(eol) : end;
+}
+
+// The finite double written in [first, last) (an optional '+' first, as `operator>>` allows).
+inline bool parse_finite_double(const char* first, const char* last, double& d)
+{
+  if(first != last && *first == '+') {
+    ++first;
+    if(first != last && (*first == '+' || *first == '-'))
+      return false;
+  }
+  const std::from_chars_result r = std::from_chars(first, last, d, std::chars_format::general);
+  return r.ec == std::errc() && r.ptr == last && std::isfinite(d);
+}
+
+// The unsigned integer written with decimal digits only in [first, last), at most `max`.
+inline bool parse_plain_index(const char* first, const char* last, std::uint64_t max, std::uint64_t& i)
+{
+  if(first == last || *first < '0' || *first > '9')
+    return false;
+  const std::from_chars_result r = std::from_chars(first, last, i, 10);
+  return r.ec == std::errc() && r.ptr == last && i <= max;
+}
+
+// Reads exactly three finite numbers in [p, last), separated and surrounded by blanks, nothing else.
+inline bool parse_three_doubles(const char* p, const char* last, double (&xyz)[3])
+{
+  for(int k = 0; k < 3; ++k) {
+    p = skip_blanks(p, last);
+    const char* e = token_end(p, last);
+    if(!parse_finite_double(p, e, xyz[k]))
+      return false;
+    p = e;
+  }
+  return skip_blanks(p, last) == last;
+}
+
+// The comment-and-blank skipping of CGAL's OFF scanner (skip_comment_OFF): blanks, and lines whose first
+// non-blank character is '#'.
+inline const char* skip_off_comments(const char* p, const char* end)
+{
+  for(;;) {
+    p = skip_blanks(p, end);
+    if(p == end || *p != '#')
+      return p;
+    p = end_of_line(p, end);
+  }
+}
+
+/*
+  Plain ASCII OFF: the keyword `OFF`, the counts `nv nf ne`, nv lines of exactly three finite coordinates,
+  nf lines `3 i j k` with 0-based indices < nv; `#` comments and blank lines where CGAL's scanner skips them.
+*/
+template <class Point>
+bool fast_parse_off(const char* p, const char* end, std::vector<Point>& points,
+                    std::vector<std::array<int, 3>>& triangles)
+{
+  p = skip_off_comments(p, end);
+  if(end - p < 4 || p[0] != 'O' || p[1] != 'F' || p[2] != 'F' || !is_blank(p[3]))
+    return false;
+  p = skip_off_comments(p + 4, end);
+  constexpr std::uint64_t int_max = std::uint64_t((std::numeric_limits<int>::max)());
+  std::uint64_t counts[3];
+  for(int k = 0; k < 3; ++k) {
+    if(k > 0)
+      p = skip_blanks(p, end); // CGAL reads the face and edge counts with operator>>: no comment there
+    const char* e = token_end(p, end);
+    if(!parse_plain_index(p, e, int_max, counts[k]))
+      return false;
+    p = e;
+  }
+  const std::size_t nv = std::size_t(counts[0]), nf = std::size_t(counts[1]);
+  if(nv == 0 || nf == 0)
+    return false;
+  // a vertex line has at least 6 characters, a face line at least 7: do not trust absurd counts
+  const std::size_t size = std::size_t(end - p);
+  if(nv > size / 6 || nf > size / 7)
+    return false;
+  points.clear();
+  triangles.clear();
+  points.reserve(nv);
+  triangles.reserve(nf);
+  for(std::size_t v = 0; v < nv; ++v) {
+    p = skip_off_comments(p, end);
+    const char* eol = end_of_line(p, end);
+    if(eol == end) // CGAL's reader fails when a vertex line ends the file
+      return false;
+    const void* hash = std::memchr(p, '#', std::size_t(eol - p));
+    double xyz[3];
+    if(!parse_three_doubles(p, hash != nullptr ? static_cast<const char*>(hash) : eol, xyz))
+      return false;
+    points.emplace_back();
+    CGAL::IO::internal::fill_point(xyz[0], xyz[1], xyz[2], 1., points.back());
+    p = eol;
+  }
+  for(std::size_t f = 0; f < nf; ++f) {
+    p = skip_off_comments(p, end);
+    if(p == end)
+      return false;
+    const char* eol = end_of_line(p, end);
+    const void* hash = std::memchr(p, '#', std::size_t(eol - p));
+    const char* last = hash != nullptr ? static_cast<const char*>(hash) : eol;
+    const char* e = token_end(p, last);
+    std::uint64_t n = 0;
+    if(!parse_plain_index(p, e, 3, n) || n != 3)
+      return false;
+    std::array<int, 3> t;
+    for(int k = 0; k < 3; ++k) {
+      p = skip_blanks(e, last);
+      e = token_end(p, last);
+      std::uint64_t i = 0;
+      if(!parse_plain_index(p, e, std::uint64_t(nv - 1), i))
+        return false;
+      t[std::size_t(k)] = int(i);
+    }
+    if(skip_blanks(e, last) != last)
+      return false;
+    triangles.push_back(t);
+    p = eol;
+  }
+  return true;
+}
+
+/*
+  Plain OBJ: lines `v x y z` (exactly three finite numbers), `f a b c` (three positive 1-based indices, each
+  optionally followed by `/...`, separated by a space), comments, blank lines, and the lines CGAL's reader
+  ignores (vt, vn, vp, o, g, s, usemtl, mtllib). Indices may refer to vertices defined later, as in CGAL's reader.
+*/
+template <class Point>
+bool fast_parse_obj(const char* p, const char* end, std::vector<Point>& points,
+                    std::vector<std::array<int, 3>>& triangles)
+{
+  points.clear();
+  triangles.clear();
+  const std::size_t size = std::size_t(end - p);
+  points.reserve(size / 48 + 1);
+  triangles.reserve(size / 24 + 1);
+  constexpr std::uint64_t int_max = std::uint64_t((std::numeric_limits<int>::max)());
+  std::uint64_t max_index = 0;
+  while(p != end) {
+    const char* eol = end_of_line(p, end);
+    const char* first = p;
+    p = eol == end ? end : eol + 1;
+    first = skip_blanks(first, eol);
+    if(first == eol || *first == '#')
+      continue;
+    const char* e = token_end(first, eol);
+    const std::size_t length = std::size_t(e - first);
+    if(length == 1 && *first == 'v') {
+      double xyz[3];
+      if(!parse_three_doubles(e, eol, xyz))
+        return false;
+      points.emplace_back();
+      CGAL::IO::internal::fill_point(xyz[0], xyz[1], xyz[2], 1., points.back());
+    } else if(length == 1 && *first == 'f') {
+      std::array<int, 3> t;
+      const char* q = e;
+      for(int k = 0; k < 3; ++k) {
+        q = skip_blanks(q, eol);
+        const char* digits_end = q;
+        while(digits_end != eol && *digits_end >= '0' && *digits_end <= '9')
+          ++digits_end;
+        const char* te = token_end(q, eol);
+        std::uint64_t i = 0;
+        // CGAL reads the integer, then skips past the next space (at most 256 characters)
+        if(!parse_plain_index(q, digits_end, int_max, i) || i == 0 || te - q > 200 ||
+           (digits_end != te && *digits_end != '/') || (k < 2 && (te == eol || *te != ' ')))
+          return false;
+        t[std::size_t(k)] = int(i - 1);
+        max_index = (std::max)(max_index, i - 1);
+        q = te;
+      }
+      if(skip_blanks(q, eol) != eol)
+        return false;
+      triangles.push_back(t);
+    } else {
+      const std::string keyword(first, e);
+      if(keyword != "vt" && keyword != "vn" && keyword != "vp" && keyword != "o" && keyword != "g" &&
+         keyword != "s" && keyword != "usemtl" && keyword != "mtllib")
+        return false;
+    }
+  }
+  // CGAL's reader refuses an empty soup and an index beyond the vertex count (it lets index nv through,
+  // which the validation then reports)
+  return !points.empty() && !triangles.empty() && max_index <= std::uint64_t(points.size());
 }
 
 } // namespace io
@@ -538,6 +989,27 @@ Mesh_input_order<TriangleMesh> read_triangle_mesh(const std::string& path, Trian
                         "cannot read mesh file '" + path + "': " +
                           (ext.empty() ? std::string("no file extension") : "unknown file extension '." + ext + "'") +
                           " (supported: .off, .obj, .ply, .stl)");
+
+  if(ext == "off" || ext == "obj") {
+    std::vector<Point> points;
+    std::vector<std::array<int, 3>> triangles;
+    bool parsed = false;
+    {
+      const internal::io::File_contents data(path);
+      if(data.ok())
+        parsed = ext == "off" ? internal::io::fast_parse_off(data.begin(), data.end(), points, triangles)
+                              : internal::io::fast_parse_obj(data.begin(), data.end(), points, triangles);
+    }
+    if(parsed) {
+      try {
+        const internal::io::Triangle_soup_connectivity soup =
+          internal::io::validate_triangles(points.size(), std::move(triangles));
+        return internal::io::build_mesh(points, soup, tm);
+      } catch(const Invalid_input& e) {
+        throw Invalid_input(e.code(), path + ": " + e.what(), e.where());
+      }
+    }
+  }
 
   std::vector<Point> points;
   std::vector<boost::container::small_vector<std::size_t, 3>> polygons;

@@ -164,6 +164,10 @@ def machine():
     return {"nproc": os.cpu_count(), "cpu": cpu, "ram": ram, "kernel": platform.release(), "blas": blas}
 
 
+def backend_order(b):
+    return (list(BACKENDS).index(b) if b in BACKENDS else len(BACKENDS), b)
+
+
 def mesh_order(item):
     mesh, entry = item
     return (entry["counters"].get("faces", 0), mesh)
@@ -194,7 +198,7 @@ def backend_table(backend, meshes, lines):
 
 
 def slope_table(results, lines):
-    backends = [b for b in results if results[b]]
+    backends = [b for b in sorted(results, key=backend_order) if results[b]]
     head = ["phase"]
     for b in backends:
         head += [f"{b}: all meshes", f"{b}: {SERIES_PREFIX} series"]
@@ -261,14 +265,15 @@ def main():
     lines.append("- Meshes: CGAL's data set; `NAME_loopK` is `NAME.off` after K steps of Loop subdivision "
                  "(`CGAL::Subdivision_method_3`, made by the benchmark and cached outside the repository).")
     lines.append("")
-    for backend in sorted(results, key=lambda b: list(BACKENDS).index(b) if b in BACKENDS else 99):
+    for backend in sorted(results, key=backend_order):
         if results[backend]:
             backend_table(backend, results[backend], lines)
     lines.append("### Scaling: log–log slopes")
     lines.append("")
     lines.append("Least-squares slope of log(time) (or log(peak memory)) against log(faces), over all meshes of "
                  "the backend and over the genus-0 series `bunny00`, `bunny00_loop1`, ... alone "
-                 "(1 = linear; genus and shape differ between the meshes of the first column).")
+                 "(1 = linear; genus and shape differ between the meshes of the first column, and the loop metric "
+                 "depends on the genus rather than on the size).")
     lines.append("")
     slope_table(results, lines)
     with open(args.out, "w") as f:

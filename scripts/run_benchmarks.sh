@@ -87,7 +87,7 @@ if [ "$TABLE_ONLY" = 0 ]; then
       echo "== $backend, $size meshes, $reps repetition(s) -> $json"
       TC_BENCH_SIZES="$size" "$exe" \
         --benchmark_filter="^$backend/" \
-        --benchmark_repetitions="$reps" \
+        --benchmark_repetitions="$reps" --benchmark_display_aggregates_only=true \
         --benchmark_context=commit="$COMMIT",backend="$backend",sizes="$size" \
         --benchmark_out="$json.tmp" --benchmark_out_format=json
       mv "$json.tmp" "$json"

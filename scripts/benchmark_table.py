@@ -261,7 +261,9 @@ def main():
                  "solves and the field (the peak is reset through `/proc/self/clear_refs` before each mesh); ref peak "
                  "B/face = the same for the reference (matrix + factorization); ref factor B/face = nnz(L) × 12 / faces "
                  "(8-byte value + 4-byte index per nonzero of the reference factor; for CHOLMOD its `lnz`).")
-    lines.append("- A phase shown as – was not reported (phase times come from the solver's progress callback).")
+    lines.append("- A phase shown as – was not reported (phase times come from the solver's progress callback). "
+                 "Build type Release (-O3); Google Benchmark's \"Library was built as DEBUG\" warning is about "
+                 "Debian's libbenchmark itself, not the code measured.")
     lines.append("- Meshes: CGAL's data set; `NAME_loopK` is `NAME.off` after K steps of Loop subdivision "
                  "(`CGAL::Subdivision_method_3`, made by the benchmark and cached outside the repository).")
     lines.append("")

@@ -107,6 +107,15 @@ def with_integers(c, key):
     return fmt_time(total) + (f" ({fmt_time(integers)})" if integers and integers >= 1e-4 else "")
 
 
+CHOLMOD_ORDERINGS = {0: "natural", 1: "given", 2: "AMD", 3: "METIS", 4: "NESDIS", 5: "COLAMD", 6: "postordered"}
+
+
+def ordering(c):
+    """the ordering CHOLMOD's analysis chose for the reference, if reported"""
+    o = c.get("ref_cholmod_ordering")
+    return "" if o is None else f" ({CHOLMOD_ORDERINGS.get(int(o), int(o))})"
+
+
 def fmt_num(x, digits=3):
     if x is None or x < 0:
         return "–"
@@ -187,7 +196,7 @@ def backend_table(backend, meshes, lines):
             lines.append(f"| {mesh} | " + " | ".join(["–"] * (len(head) - 2)) + f" | error: {e['error']} |")
             continue
         row = [mesh, fmt_faces(c.get("faces", 0)), f"{c.get('genus', 0):.0f}", f"{c.get('boundary_loops', 0):.0f}",
-               f"{c.get('singularities', 0):.0f}", fmt_time(c.get("t_reference"))]
+               f"{c.get('singularities', 0):.0f}", fmt_time(c.get("t_reference")) + ordering(c)]
         row += [fmt_time(c.get(k)) for k, _ in BUILD_PHASES]
         row += [fmt_time(c.get("t_build")), with_integers(c, "t_solve"), with_integers(c, "t_resolve"),
                 fmt_time(c.get("t_field")), fmt_num(c.get("r_end_to_end")), fmt_num(c.get("r_resolve")),
@@ -234,7 +243,8 @@ def main():
         sys.exit("benchmark_table: no benchmark results in " + " ".join(args.json))
     m = machine()
     dates = sorted({ctx.get("date", "")[:10] for _, ctx in contexts if ctx.get("date")})
-    commits = sorted({ctx.get("commit") for _, ctx in contexts if ctx.get("commit")})
+    commits = sorted({ctx.get("commit") + (f" (binary built {ctx['built']})" if ctx.get("built") else "")
+                      for _, ctx in contexts if ctx.get("commit")})
     lines = []
     lines.append("# Benchmark results")
     lines.append("")
@@ -252,7 +262,7 @@ def main():
                  "**reference** is timed: analysis + numeric factorization of the same mesh's vertex Laplacian "
                  "(edge weights 1/w_e of the solver, one vertex pinned per component) with the same sparse backend, "
                  "called as a user would (`SimplicialLDLT` with its AMD ordering; CHOLMOD with its default "
-                 "ordering choice). Solve and re-solve show in parentheses the part spent choosing the loop "
+                 "ordering choice, shown in parentheses when reported). Solve and re-solve show in parentheses the part spent choosing the loop "
                  "integers (when ≥ 0.1 ms). "
                  "Timings are medians over the repetitions (`reps`).")
     lines.append("- **Ratios**: end-to-end / ref = (build + solve + field) / reference; re-solve / ref = re-solve / "

@@ -67,6 +67,8 @@ if [ "$TABLE_ONLY" = 0 ]; then
     echo "run_benchmarks.sh: CGAL's meshes are missing: run bash scripts/fetch_cgal_data.sh" >&2
     exit 1
   fi
+  # the commit checked out when the suite runs (+modified: include/ differs from it); `built` below is the time
+  # the binary was linked, which matters with --no-build
   COMMIT="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   if ! git -C "$ROOT" diff --quiet HEAD -- include 2>/dev/null; then COMMIT="$COMMIT+modified"; fi
   for backend in ${BACKENDS//,/ }; do
@@ -80,6 +82,7 @@ if [ "$TABLE_ONLY" = 0 ]; then
     fi
     exe="$dir/benchmark/trivial_connections_benchmark"
     [ -x "$exe" ] || { echo "run_benchmarks.sh: $exe not built" >&2; exit 1; }
+    built="$(date -u -r "$exe" +%Y-%m-%dT%H:%MZ)"
     for size in ${SIZES//,/ }; do
       reps=1
       [ "$size" = small ] && reps="$REPETITIONS"
@@ -88,7 +91,7 @@ if [ "$TABLE_ONLY" = 0 ]; then
       TC_BENCH_SIZES="$size" "$exe" \
         --benchmark_filter="^$backend/" \
         --benchmark_repetitions="$reps" --benchmark_display_aggregates_only=true \
-        --benchmark_context=commit="$COMMIT",backend="$backend",sizes="$size" \
+        --benchmark_context=commit="$COMMIT",built="$built",backend="$backend",sizes="$size" \
         --benchmark_out="$json.tmp" --benchmark_out_format=json
       mv "$json.tmp" "$json"
     done

@@ -23,7 +23,8 @@
 // / reference, r_resolve = resolve / reference; peak_bytes (VmHWM above the resident size before the solver
 // was built, over build + two solves + field), peak_bytes_per_face, ref_peak_bytes_per_face (same for the
 // reference), ref_factor_nnz (nonzeros of the reference factor L, including the diagonal),
-// ref_factor_bytes_per_face (nnz x 12 / faces).
+// ref_factor_bytes_per_face (nnz x 12 / faces); for CHOLMOD ref_cholmod_ordering, the ordering its analysis
+// chose (0 natural, 1 given, 2 AMD, 3 METIS, 4 NESDIS, 5 COLAMD, 6 postordered).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -274,9 +275,13 @@ struct Reference_result
 {
   double seconds = 0;
   double factor_nnz = 0;
+  int ordering = -1; // CHOLMOD: the ordering its analysis chose (CHOLMOD_AMD, CHOLMOD_METIS, ...)
   double peak_bytes = 0;
   bool ok = true;
 };
+
+template <class EigenSolver>
+int chosen_ordering(const EigenSolver&) { return -1; }
 
 template <class EigenSolver>
 double factor_nonzeros(const EigenSolver& solver, Eigen::Index n)
@@ -290,6 +295,13 @@ double factor_nonzeros(const Eigen::CholmodSupernodalLLT<MatrixType, UpLo>& solv
 {
   // nnz(L) from the analysis (excluding the zeros of supernodal amalgamation)
   return const_cast<Eigen::CholmodSupernodalLLT<MatrixType, UpLo>&>(solver).cholmod().lnz;
+}
+
+template <class MatrixType, int UpLo>
+int chosen_ordering(const Eigen::CholmodSupernodalLLT<MatrixType, UpLo>& solver)
+{
+  cholmod_common& c = const_cast<Eigen::CholmodSupernodalLLT<MatrixType, UpLo>&>(solver).cholmod();
+  return c.selected >= 0 && c.selected < CHOLMOD_MAXMETHODS ? c.method[c.selected].ordering : -1;
 }
 #endif
 
@@ -334,6 +346,7 @@ Reference_result reference_factorization(std::size_t nv, const std::vector<Weigh
   result.seconds = seconds_since(t0);
   result.ok = solver.info() == Eigen::Success;
   result.factor_nnz = factor_nonzeros(solver, n);
+  result.ordering = chosen_ordering(solver);
   result.peak_bytes = base >= 0 ? status_bytes("VmHWM") - base : -1;
   return result;
 }
@@ -430,6 +443,8 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
   k["peak_bytes_per_face"] = peak >= 0 ? peak / nf : -1;
   k["ref_peak_bytes_per_face"] = ref.peak_bytes >= 0 ? ref.peak_bytes / nf : -1;
   k["ref_factor_nnz"] = ref.factor_nnz;
+  if(ref.ordering >= 0)
+    k["ref_cholmod_ordering"] = double(ref.ordering);
   k["ref_factor_bytes_per_face"] = ref.factor_nnz * (8 + 4) / nf;
 }
 

@@ -8,6 +8,7 @@
 
 #include <CGAL/disable_warnings.h>
 
+#include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Singularity_index.h>
 #include <CGAL/Trivial_connections/Solve_report.h>
 #include <CGAL/Trivial_connections/exceptions.h>
@@ -26,7 +27,10 @@
 #endif
 
 #include <Eigen/Dense>
+#include <Eigen/OrderingMethods>
 #include <Eigen/Sparse>
+
+#include <algorithm>
 
 #include <cmath>
 #include <cstdint>
@@ -123,6 +127,7 @@ public:
     \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
     \cgalParamNBegin{geom_traits} \cgalParamDefault{a default-constructed `Geom_traits`} \cgalParamNEnd
     \cgalParamNBegin{weighting} \cgalParamType{`Weighting`} \cgalParamDefault{`Weighting::hodge_star`} \cgalParamNEnd
+    \cgalParamNBegin{progress} \cgalParamType{`Progress_callback`} \cgalParamDefault{none} \cgalParamNEnd
   \cgalNamedParamsEnd
   \throws Invalid_input `empty_mesh`, `not_triangle_mesh`, `non_manifold`, `degenerate_face`, `solver_failure`
   */
@@ -134,16 +139,25 @@ public:
                                                   Geom_traits())),
       m_weighting(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::weighting),
                                                      Weighting::hodge_star)),
-      m_mesh(tm,
-             CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-                                                get_const_property_map(CGAL::vertex_point, tm)),
-             m_traits),
-      m_geometry(m_mesh, m_weighting),
-      m_topology(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner)
+      m_progress(progress_of(np)),
+      m_mesh(in_phase(Phase::mesh_setup, [&] {
+        return Mesh(tm,
+                    CGAL::parameters::choose_parameter(
+                      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                      get_const_property_map(CGAL::vertex_point, tm)),
+                    m_traits);
+      })),
+      m_geometry(in_phase(Phase::geometry, [&] { return internal::Mesh_geometry(m_mesh, m_weighting); })),
+      m_topology((notify(Phase::trees, 0),
+                  internal::Mesh_topology(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner)))
   {
     build_loops();
+    notify(Phase::trees, 1);
+    notify(Phase::assembly, 0);
     build_constraints();
-    factor();
+    factor(); // ends the assembly phase
+    in_phase(Phase::loop_metric, [&] { compute_loop_metric(); return 0; });
+    m_progress = nullptr; // the callback may not outlive the constructor call
   }
 
   Trivial_connection_solver(const Trivial_connection_solver&) = delete;
@@ -237,33 +251,37 @@ public:
       prescribed.assign(m_loops.size(), 1);
     }
 
+    const Progress_callback progress = progress_of(np);
+    auto notify = [&](Phase p, double fraction) { if(progress) progress(p, fraction); };
     const double unit = 2 * CGAL_PI / n;
+    notify(Phase::solve, 0);
     Eigen::VectorXd b = right_hand_side(k, periods, n);
     Eigen::VectorXd lambda = solve_system(b);
     double rounding_energy = b.dot(lambda);
 
     if(!user_periods && !m_free_rows.empty()) {
-      ensure_loop_gram();
+      notify(Phase::loop_integers, 0);
       bool proven = true;
       for(std::size_t c = 0; c < m_components.size(); ++c) {
         const std::vector<int>& free = m_free_loops[c];
         if(free.empty())
           continue;
         const Eigen::Index kc = Eigen::Index(free.size());
-        // energy(m) = b.lambda + 2 unit m.lambda_F + unit^2 m^T Ginv m with Ginv = (M^-1)_FF
-        const Eigen::MatrixXd& Ginv = m_loop_gram[c];
+        // energy(m) = b.lambda + 2 unit m.lambda_F + unit^2 m^T Ginv m with Ginv = (M^-1)_FF = S^-1
+        const Loop_metric& metric = m_loop_metric[c];
         Eigen::VectorXd lf(kc);
         for(Eigen::Index a = 0; a < kc; ++a)
           lf[a] = lambda[m_row_of_loop[free[a]]];
-        const Eigen::VectorXd center = -Ginv.ldlt().solve(lf) / unit;
-        const Eigen::MatrixXd G = unit * unit * Ginv;
+        const Eigen::VectorXd center = -(metric.schur * lf) / unit;
+        const Eigen::MatrixXd G = unit * unit * metric.inverse;
         std::vector<std::int64_t> rounded(kc), own(kc);
         for(Eigen::Index a = 0; a < kc; ++a) {
           rounded[a] = std::int64_t(std::llround(center[a]));
           // each loop on its own: the integer making its own connection sum smallest
           own[a] = std::int64_t(std::llround(m_loop_holonomy[free[a]] / unit));
         }
-        const internal::Closest_vector_result best = internal::closest_vector(G, center, {rounded, own});
+        const internal::Closest_vector_result best =
+          internal::closest_vector(G, unit * metric.inverse_factor, center, {rounded, own});
         proven = proven && best.proven;
         auto energy_change = [&](const std::vector<std::int64_t>& m) {
           Eigen::VectorXd mv(kc);
@@ -275,6 +293,7 @@ public:
           periods[free[a]] = best.m[a];
       }
       report.integers_proven_optimal = proven;
+      notify(Phase::loop_integers, 1);
       b = right_hand_side(k, periods, n);
       lambda = solve_system(b);
     }
@@ -285,6 +304,7 @@ public:
 
     fill_report(xe, k, periods, prescribed, n, report);
     report.rounding_energy = user_periods ? report.energy : rounding_energy;
+    notify(Phase::solve, 1);
     return report;
   }
 
@@ -320,6 +340,9 @@ public:
     }
     if(!std::isfinite(seed_angle))
       throw Invalid_input(Error_code::invalid_argument, "the seed angle is not finite");
+    const Progress_callback progress = progress_of(np);
+    if(progress)
+      progress(Phase::field, 0);
 
     std::vector<double> angle(m_mesh.nf, 0.);
     for(int f : m_topology.face_order) {
@@ -343,9 +366,33 @@ public:
       put(field, m_mesh.face_descriptors[f],
           vector(c * ex[0] + s * ey[0], c * ex[1] + s * ey[1], c * ex[2] + s * ey[2]));
     }
+    if(progress)
+      progress(Phase::field, 1);
   }
 
 private:
+  template <class NamedParameters>
+  static Progress_callback progress_of(const NamedParameters& np)
+  {
+    return Progress_callback(
+      CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::progress), Progress_callback()));
+  }
+
+  void notify(Phase p, double fraction) const
+  {
+    if(m_progress)
+      m_progress(p, fraction);
+  }
+
+  template <class Make>
+  auto in_phase(Phase p, Make&& make) -> decltype(make())
+  {
+    notify(p, 0);
+    auto result = make();
+    notify(p, 1);
+    return result;
+  }
+
   void build_loops()
   {
     const std::vector<internal::Mesh_topology::Component>& comps = m_topology.components;
@@ -437,62 +484,119 @@ private:
       m_inverse_weight[e] = 1 / m_geometry.weight[e];
   }
 
+  // M = A W^-1 A^T in a fill-reducing order (AMD) with the free loop rows last, so that the metric of
+  // the loop integers is a dense block of the factor (see internal::Trailing_schur_complement).
   void factor()
   {
-    if(m_A.rows() == 0)
+    const Eigen::Index rows = m_A.rows();
+    if(rows == 0) {
+      notify(Phase::assembly, 1);
       return;
-    const Sparse AW = m_A * m_inverse_weight.asDiagonal();
-    Sparse M = AW * m_A.transpose();
-    M.makeCompressed();
-    m_system.reset(new typename Solver_traits::Matrix(M));
+    }
+    Sparse M = (m_A * m_inverse_weight.asDiagonal()) * m_A.transpose();
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> fill_reducing; // new position -> row
+    Eigen::AMDOrdering<int>()(M, fill_reducing);
+    std::vector<char> is_loop_row(std::size_t(rows), 0);
+    for(int r : m_free_rows)
+      is_loop_row[r] = 1;
+    m_permutation.resize(rows); // row -> position
+    int position = 0;
+    for(Eigen::Index i = 0; i < rows; ++i) {
+      const int r = fill_reducing.size() > 0 ? fill_reducing.indices()[i] : int(i);
+      if(!is_loop_row[r])
+        m_permutation.indices()[r] = position++;
+    }
+    for(int r : m_free_rows)
+      m_permutation.indices()[r] = position++;
+    Sparse ordered(rows, rows);
+    ordered = M.selfadjointView<Eigen::Lower>().twistedBy(m_permutation);
+    ordered.makeCompressed();
+    M = Sparse();
+    m_system.reset(new typename Solver_traits::Matrix(ordered));
+    notify(Phase::assembly, 1);
+
+    notify(Phase::factorization, 0);
     double d = 1;
     if(!m_solver.factor(*m_system, d))
       throw Invalid_input(Error_code::solver_failure,
                           "the sparse factorization of the constraint system failed");
+    notify(Phase::factorization, 1);
   }
 
-  // M^-1 b with one step of iterative refinement; the residual is checked.
+  // M^-1 b, refined once when the residual is not already at rounding level; the residual is checked.
   Eigen::VectorXd solve_system(const Eigen::VectorXd& b)
   {
     if(b.size() == 0)
       return b;
     typename Solver_traits::Vector rhs(b.size()), sol(b.size());
-    rhs = b;
+    const Eigen::VectorXd ordered_b = m_permutation * b;
+    rhs = ordered_b;
     if(!m_solver.linear_solver(rhs, sol))
       throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
     Eigen::VectorXd lambda = sol;
     const Sparse& M = m_system->eigen_object();
-    rhs = b - M * lambda;
-    if(!m_solver.linear_solver(rhs, sol))
-      throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
-    lambda += sol;
-    const double res = (b - M * lambda).lpNorm<Eigen::Infinity>();
-    if(!std::isfinite(res) || !lambda.allFinite() || res > 1e-8 * (1 + b.lpNorm<Eigen::Infinity>()))
+    const double scale = 1 + ordered_b.lpNorm<Eigen::Infinity>();
+    Eigen::VectorXd residual = ordered_b - M * lambda;
+    double res = residual.lpNorm<Eigen::Infinity>();
+    if(!(res <= 1e-13 * scale)) {
+      rhs = residual;
+      if(!m_solver.linear_solver(rhs, sol))
+        throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
+      lambda += Eigen::VectorXd(sol);
+      res = (ordered_b - M * lambda).lpNorm<Eigen::Infinity>();
+    }
+    if(!std::isfinite(res) || !lambda.allFinite() || res > 1e-8 * scale)
       throw Invalid_input(Error_code::solver_failure,
                           "the linear solve is inaccurate (residual " + std::to_string(res) + ")");
-    return lambda;
+    return m_permutation.transpose() * lambda;
   }
 
-  // (M^-1) restricted to the free loop rows of each component: the metric of the integer problem.
-  void ensure_loop_gram()
+  // Per component, the Schur complement S of its free loop rows and S^-1 = (M^-1) on those rows: the
+  // metric of the integer problem. Read from the factor when the backend allows it, otherwise one
+  // back-substitution per free loop.
+  void compute_loop_metric()
   {
-    if(m_loop_gram_ready)
+    m_loop_metric.assign(m_components.size(), Loop_metric());
+    const Eigen::Index k = Eigen::Index(m_free_rows.size());
+    if(k == 0)
       return;
-    m_loop_gram.assign(m_components.size(), Eigen::MatrixXd());
+    const Eigen::Index first = m_A.rows() - k;
+    Eigen::MatrixXd S;
+    const bool from_factor = internal::Trailing_schur_complement<Solver_traits>::read(m_solver, k, S);
     for(std::size_t c = 0; c < m_components.size(); ++c) {
       const std::vector<int>& free = m_free_loops[c];
       const Eigen::Index kc = Eigen::Index(free.size());
-      Eigen::MatrixXd G(kc, kc);
-      for(Eigen::Index a = 0; a < kc; ++a) {
-        Eigen::VectorXd unit_rhs = Eigen::VectorXd::Zero(m_A.rows());
-        unit_rhs[m_row_of_loop[free[a]]] = 1;
-        const Eigen::VectorXd column = solve_system(unit_rhs);
-        for(Eigen::Index r = 0; r < kc; ++r)
-          G(r, a) = column[m_row_of_loop[free[r]]];
+      if(kc == 0)
+        continue;
+      std::vector<Eigen::Index> block(free.size());
+      for(Eigen::Index a = 0; a < kc; ++a)
+        block[a] = m_permutation.indices()[m_row_of_loop[free[a]]] - first;
+      Loop_metric& metric = m_loop_metric[c];
+      if(from_factor) {
+        metric.schur.resize(kc, kc);
+        for(Eigen::Index a = 0; a < kc; ++a)
+          for(Eigen::Index r = 0; r < kc; ++r)
+            metric.schur(r, a) = S(block[r], block[a]);
+        metric.schur = (metric.schur + metric.schur.transpose()) / 2;
+        metric.inverse = metric.schur.llt().solve(Eigen::MatrixXd::Identity(kc, kc));
+      } else {
+        metric.inverse.resize(kc, kc);
+        for(Eigen::Index a = 0; a < kc; ++a) {
+          Eigen::VectorXd unit_rhs = Eigen::VectorXd::Zero(m_A.rows());
+          unit_rhs[m_row_of_loop[free[a]]] = 1;
+          const Eigen::VectorXd column = solve_system(unit_rhs);
+          for(Eigen::Index r = 0; r < kc; ++r)
+            metric.inverse(r, a) = column[m_row_of_loop[free[r]]];
+        }
+        metric.inverse = (metric.inverse + metric.inverse.transpose()) / 2;
+        metric.schur = metric.inverse.llt().solve(Eigen::MatrixXd::Identity(kc, kc));
       }
-      m_loop_gram[c] = (G + G.transpose()) / 2;
+      metric.inverse = (metric.inverse + metric.inverse.transpose()) / 2;
+      Eigen::LLT<Eigen::MatrixXd> llt(metric.inverse);
+      if(llt.info() != Eigen::Success || !metric.inverse.allFinite())
+        throw Invalid_input(Error_code::solver_failure, "the metric of the loop integers is not positive definite");
+      metric.inverse_factor = llt.matrixU();
     }
-    m_loop_gram_ready = true;
   }
 
   template <class SingularityRange>
@@ -661,6 +765,7 @@ private:
   const TriangleMesh& m_tm;
   Geom_traits m_traits;
   Weighting m_weighting;
+  Progress_callback m_progress; // only during the constructor
   Mesh m_mesh;
   internal::Mesh_geometry m_geometry;
   internal::Mesh_topology m_topology;
@@ -674,8 +779,13 @@ private:
   Eigen::VectorXd m_inverse_weight;
   std::unique_ptr<typename Solver_traits::Matrix> m_system;  // the solver keeps a pointer to it
   Solver_traits m_solver;
-  bool m_loop_gram_ready = false;
-  std::vector<Eigen::MatrixXd> m_loop_gram;
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> m_permutation; // row -> position in m_system
+  struct Loop_metric
+  {
+    Eigen::MatrixXd schur, inverse; // S and S^-1 = (M^-1) on the free loop rows of one component
+    Eigen::MatrixXd inverse_factor; // R upper triangular with R^T R = S^-1
+  };
+  std::vector<Loop_metric> m_loop_metric;
 };
 
 } // namespace Trivial_connections

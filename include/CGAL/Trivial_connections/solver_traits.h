@@ -8,34 +8,139 @@
 
 #include <CGAL/Eigen_solver_traits.h>
 
+#include <Eigen/Dense>
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
 #include <Eigen/CholmodSupport>
 #endif
+
+#include <vector>
 
 namespace CGAL {
 namespace Trivial_connections {
 
 /*!
 \ingroup PkgTrivialConnectionsRef
-The default sparse solver of `Trivial_connection_solver`: Eigen's header-only `SimplicialLDLT`.
+The default sparse solver of `Trivial_connection_solver`: Eigen's header-only `SimplicialLDLT`, with the
+natural ordering because the solver hands it a matrix that is already in a fill-reducing order (AMD) with
+the rows of the loop integers last; the metric of the loop integers is then read from the factor.
 */
-using Default_solver_traits = CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>;
+using Default_solver_traits =
+  CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
+                                                  Eigen::NaturalOrdering<int>>>;
 
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
 /*!
 \ingroup PkgTrivialConnectionsRef
-SuiteSparse's supernodal CHOLMOD through Eigen's `CholmodSupport`. Available when
-`CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD` is defined and CHOLMOD is linked (CMake option
-`TRIVIAL_CONNECTIONS_WITH_CHOLMOD`).
+SuiteSparse's supernodal CHOLMOD (through Eigen's `CholmodSupport`), set to keep the order of the matrix it
+is given (the solver orders it). Available when `CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD` is defined and
+CHOLMOD is linked (CMake option `TRIVIAL_CONNECTIONS_WITH_CHOLMOD`).
 */
-using Cholmod_solver_traits = CGAL::Eigen_solver_traits<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>;
+class Cholmod_supernodal_factorization
+  : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>
+{
+public:
+  Cholmod_supernodal_factorization()
+  {
+    cholmod().nmethods = 1;
+    cholmod().method[0].ordering = CHOLMOD_NATURAL;
+    cholmod().postorder = 0;
+  }
+  /// the factor, or null before a successful factorization
+  const cholmod_factor* factor() const { return m_cholmodFactor; }
+};
+
+/// \ingroup PkgTrivialConnectionsRef
+/// CGAL solver traits of `Cholmod_supernodal_factorization`
+using Cholmod_solver_traits = CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>;
 /// the solver the command-line program uses: CHOLMOD when it is available
 using Recommended_solver_traits = Cholmod_solver_traits;
 #else
 /// the solver the command-line program uses: CHOLMOD when it is available
 using Recommended_solver_traits = Default_solver_traits;
 #endif
+
+namespace internal {
+
+/*
+  Reading the Schur complement S = M_LL - M_LN M_NN^-1 M_NL of the trailing rows L of a factored
+  M = [M_NN M_NL; M_LN M_LL] from the factor: with M = L D L^T and the rows L last, S = L_LL D_L L_LL^T.
+  The inverse of S is (M^-1)_LL, the metric of the loop integers, at the cost of a dense k x k block
+  instead of k back-substitutions. `read` returns false when the backend does not expose its factor or
+  did not keep the given order; the caller then falls back to back-substitutions.
+*/
+template <class SolverTraits>
+struct Trailing_schur_complement
+{
+  static bool read(SolverTraits&, Eigen::Index, Eigen::MatrixXd&) { return false; }
+};
+
+template <class Index>
+struct Trailing_schur_complement<CGAL::Eigen_solver_traits<
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<Index>>>>
+{
+  template <class Traits>
+  static bool read(Traits& traits, Eigen::Index k, Eigen::MatrixXd& S)
+  {
+    const auto& solver = traits.solver();
+    if(solver.permutationP().size() != 0)
+      return false;
+    const auto& L = solver.matrixL().nestedExpression(); // strictly lower part, column major
+    const Eigen::Index n = L.rows(), first = n - k;
+    Eigen::MatrixXd Lt = Eigen::MatrixXd::Identity(k, k);
+    for(Eigen::Index j = first; j < n; ++j)
+      for(typename std::decay<decltype(L)>::type::InnerIterator it(L, j); it; ++it)
+        if(it.row() > j)
+          Lt(it.row() - first, j - first) = it.value();
+    const Eigen::VectorXd d = solver.vectorD().tail(k);
+    S = Lt * d.asDiagonal() * Lt.transpose();
+    return true;
+  }
+};
+
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+template <>
+struct Trailing_schur_complement<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
+{
+  template <class Traits>
+  static bool read(Traits& traits, Eigen::Index k, Eigen::MatrixXd& S)
+  {
+    const cholmod_factor* F = traits.solver().factor();
+    if(F == nullptr || !F->is_super || !F->is_ll || F->itype != CHOLMOD_INT)
+      return false;
+    const Eigen::Index n = Eigen::Index(F->n), first = n - k;
+    const int* perm = static_cast<const int*>(F->Perm);
+    if(perm != nullptr)
+      for(Eigen::Index i = 0; i < n; ++i)
+        if(perm[i] != i)
+          return false;
+    const int* super = static_cast<const int*>(F->super);
+    const int* pi = static_cast<const int*>(F->pi);
+    const int* px = static_cast<const int*>(F->px);
+    const int* rows = static_cast<const int*>(F->s);
+    const double* x = static_cast<const double*>(F->x);
+    Eigen::MatrixXd Lt = Eigen::MatrixXd::Zero(k, k);
+    for(std::size_t s = 0; s < F->nsuper; ++s) {
+      const int c0 = super[s], c1 = super[s + 1];
+      if(c1 <= first)
+        continue;
+      const int nrows = pi[s + 1] - pi[s];
+      // supernode s: a dense column-major nrows x (c1 - c0) block, rows listed from rows[pi[s]]
+      for(int c = (std::max)(c0, int(first)); c < c1; ++c)
+        for(int r = c - c0; r < nrows; ++r) {
+          const int row = rows[pi[s] + r];
+          if(row >= first)
+            Lt(row - first, c - first) = x[px[s] + std::size_t(c - c0) * std::size_t(nrows) + std::size_t(r)];
+        }
+    }
+    S = Lt * Lt.transpose();
+    return true;
+  }
+};
+#endif
+
+} // namespace internal
 
 } // namespace Trivial_connections
 } // namespace CGAL

@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -46,7 +47,7 @@ inline double quadratic_distance(const Eigen::MatrixXd& G, const Eigen::VectorXd
 
 struct Enumeration
 {
-  Eigen::MatrixXd R;
+  const Eigen::MatrixXd& R;
   const Eigen::VectorXd& c;
   std::vector<std::int64_t> best_m;
   double best_value;
@@ -118,9 +119,11 @@ inline void greedy_descent(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, C
   best.value = r.dot(G * r);
 }
 
-inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eigen::VectorXd& c,
+// G = R^T R with R upper triangular. The enumeration's budget is in multiply-adds (a node costs about k).
+inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eigen::MatrixXd& R,
+                                            const Eigen::VectorXd& c,
                                             const std::vector<std::vector<std::int64_t>>& candidates,
-                                            std::size_t node_budget = 2000000)
+                                            double work_budget = 2e7)
 {
   const Eigen::Index k = c.size();
   Closest_vector_result best;
@@ -139,10 +142,8 @@ inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eige
 
   // Schnorr-Euchner: q = sum_i R_ii^2 (m_i - center_i)^2 with G = R^T R, R upper triangular and
   // center_i = c_i - sum_{j>i} R_ij (m_j - c_j) / R_ii; levels are fixed from k-1 down to 0.
-  Eigen::LLT<Eigen::MatrixXd> llt(G);
-  if(llt.info() != Eigen::Success)
-    return best;
-  Enumeration e{llt.matrixU(), c, best.m, best.value, 0, node_budget, false};
+  const std::size_t node_budget = std::size_t((std::max)(1000., work_budget / double(k)));
+  Enumeration e{R, c, best.m, best.value, 0, node_budget, false};
   e.m.assign(std::size_t(k), 0);
   e.search(k - 1, 0.);
   best.m = e.best_m;

@@ -22,9 +22,7 @@
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 
-#ifdef CGAL_EIGEN3_ENABLED
 #include <CGAL/Trivial_connections/solver_traits.h>
-#endif
 
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
@@ -281,7 +279,9 @@ public:
           own[a] = std::int64_t(std::llround(m_loop_holonomy[free[a]] / unit));
         }
         const internal::Closest_vector_result best =
-          internal::closest_vector(G, unit * metric.inverse_factor, center, {rounded, own});
+          internal::closest_vector(G, unit * metric.inverse_factor, center, {rounded, own},
+                                   // about the work of a few back-substitutions, so that a re-solve stays cheap
+                                   (std::max)(2e5, 10. * double(m_A.rows())));
         proven = proven && best.proven;
         auto energy_change = [&](const std::vector<std::int64_t>& m) {
           Eigen::VectorXd mv(kc);
@@ -361,8 +361,8 @@ public:
     typename Geom_traits::Construct_vector_3 vector = m_traits.construct_vector_3_object();
     for(int f = 0; f < m_mesh.nf; ++f) {
       const double c = std::cos(angle[f]), s = std::sin(angle[f]);
-      const internal::Vec3& ex = m_geometry.frame_x[f];
-      const internal::Vec3& ey = m_geometry.frame_y[f];
+      internal::Vec3 ex, ey;
+      internal::Mesh_geometry::frame(m_mesh, f, ex, ey);
       put(field, m_mesh.face_descriptors[f],
           vector(c * ex[0] + s * ey[0], c * ex[1] + s * ey[1], c * ex[2] + s * ey[2]));
     }
@@ -459,32 +459,124 @@ private:
     }
 
     const int ne = m_geometry.number_of_interior_edges();
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(2 * std::size_t(ne));
+    // generator crossings per edge (CSR), so that A is written column by column, already compressed
+    std::vector<int> crossing_start(std::size_t(ne) + 1, 0);
+    for(std::size_t l = 0; l < t.loops.size(); ++l)
+      if(t.loops[l].kind == Loop_kind::generator)
+        for(int i : t.loops[l].crossings)
+          ++crossing_start[std::size_t(m_geometry.edge_of_corner[i]) + 1];
+    for(int e = 0; e < ne; ++e)
+      crossing_start[e + 1] += crossing_start[e];
+    std::vector<std::pair<int, double>> crossings(std::size_t(crossing_start[ne]));
+    {
+      std::vector<int> next(crossing_start.begin(), crossing_start.end() - 1);
+      for(std::size_t l = 0; l < t.loops.size(); ++l)
+        if(t.loops[l].kind == Loop_kind::generator)
+          for(int i : t.loops[l].crossings) {
+            const int e = m_geometry.edge_of_corner[i];
+            crossings[next[e]++] = {m_row_of_loop[l], m_geometry.edge_corner[e] == i ? 1. : -1.};
+          }
+    }
+    m_A.resize(rows, ne);
+    m_A.resizeNonZeros(2 * Eigen::Index(ne) + Eigen::Index(crossings.size()));
+    int* outer = m_A.outerIndexPtr();
+    int* inner = m_A.innerIndexPtr();
+    double* value = m_A.valuePtr();
+    int nnz = 0;
+    std::vector<std::pair<int, double>> column;
     for(int e = 0; e < ne; ++e) {
+      outer[e] = nnz;
+      column.clear();
       // x_e = x(i) is crossed into target(i)'s star and, reversed, into source(i)'s star
       const int i = m_geometry.edge_corner[e];
       const int a = t.node_of_vertex[m_mesh.source_of(i)], b = t.node_of_vertex[m_mesh.target_of(i)];
-      if(a == b)
-        continue;
-      if(m_row_of_node[b] >= 0) entries.emplace_back(m_row_of_node[b], e, 1.);
-      if(m_row_of_node[a] >= 0) entries.emplace_back(m_row_of_node[a], e, -1.);
-    }
-    for(std::size_t l = 0; l < t.loops.size(); ++l)
-      if(t.loops[l].kind == Loop_kind::generator)
-        for(int i : t.loops[l].crossings) {
-          const int e = m_geometry.edge_of_corner[i];
-          entries.emplace_back(m_row_of_loop[l], e, m_geometry.edge_corner[e] == i ? 1. : -1.);
+      if(a != b) {
+        if(m_row_of_node[b] >= 0) column.emplace_back(m_row_of_node[b], 1.);
+        if(m_row_of_node[a] >= 0) column.emplace_back(m_row_of_node[a], -1.);
+      }
+      column.insert(column.end(), crossings.begin() + crossing_start[e], crossings.begin() + crossing_start[e + 1]);
+      std::sort(column.begin(), column.end());
+      // a generator may cross an edge twice; opposite crossings cancel
+      for(std::size_t k = 0; k < column.size();) {
+        const int row = column[k].first;
+        double sum = 0;
+        for(; k < column.size() && column[k].first == row; ++k)
+          sum += column[k].second;
+        if(sum != 0) {
+          inner[nnz] = row;
+          value[nnz] = sum;
+          ++nnz;
         }
-    m_A.resize(rows, ne);
-    m_A.setFromTriplets(entries.begin(), entries.end());
-    m_A.prune(0.);
+      }
+    }
+    outer[ne] = nnz;
+    m_A.resizeNonZeros(nnz);
     m_inverse_weight.resize(ne);
     for(int e = 0; e < ne; ++e)
       m_inverse_weight[e] = 1 / m_geometry.weight[e];
   }
 
-  // M = A W^-1 A^T in a fill-reducing order (AMD) with the free loop rows last, so that the metric of
+  // The lower triangle of M = A W^-1 A^T, column by column (Gustavson's product on the rows of A): no
+  // triplets and no transposed copies, which matters on large meshes where fresh memory is expensive.
+  Sparse lower_triangle_of_system() const
+  {
+    const int rows = int(m_A.rows()), ne = int(m_A.cols());
+    const int* a_outer = m_A.outerIndexPtr();
+    const int* a_inner = m_A.innerIndexPtr();
+    const double* a_value = m_A.valuePtr();
+    std::vector<int> row_start(std::size_t(rows) + 1, 0);
+    for(int p = 0; p < a_outer[ne]; ++p)
+      ++row_start[std::size_t(a_inner[p]) + 1];
+    for(int r = 0; r < rows; ++r)
+      row_start[r + 1] += row_start[r];
+    std::vector<int> row_edge(static_cast<std::size_t>(a_outer[ne]));
+    std::vector<double> row_value(static_cast<std::size_t>(a_outer[ne]));
+    {
+      std::vector<int> next(row_start.begin(), row_start.end() - 1);
+      for(int e = 0; e < ne; ++e)
+        for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
+          const int q = next[a_inner[p]]++;
+          row_edge[q] = e;
+          row_value[q] = a_value[p] * m_inverse_weight[e];
+        }
+    }
+    std::vector<int> outer(std::size_t(rows) + 1), inner, pattern, mark(std::size_t(rows), -1);
+    std::vector<double> values, sum(std::size_t(rows), 0.);
+    inner.reserve(std::size_t(rows) + std::size_t(a_outer[ne]));
+    values.reserve(inner.capacity());
+    for(int c = 0; c < rows; ++c) {
+      outer[c] = int(inner.size());
+      pattern.clear();
+      for(int q = row_start[c]; q < row_start[c + 1]; ++q) {
+        const int e = row_edge[q];
+        for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
+          const int r = a_inner[p];
+          if(r < c)
+            continue;
+          if(mark[r] != c) {
+            mark[r] = c;
+            sum[r] = 0;
+            pattern.push_back(r);
+          }
+          sum[r] += row_value[q] * a_value[p];
+        }
+      }
+      std::sort(pattern.begin(), pattern.end());
+      for(int r : pattern) {
+        inner.push_back(r);
+        values.push_back(sum[r]);
+      }
+    }
+    outer[rows] = int(inner.size());
+    Sparse L(rows, rows);
+    L.resizeNonZeros(Eigen::Index(inner.size()));
+    std::copy(outer.begin(), outer.end(), L.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), L.innerIndexPtr());
+    std::copy(values.begin(), values.end(), L.valuePtr());
+    return L;
+  }
+
+  // M = A W^-1 A^T in the backend's fill-reducing order (AMD for Eigen) with the free loop rows last, so that the metric of
   // the loop integers is a dense block of the factor (see internal::Trailing_schur_complement).
   void factor()
   {
@@ -493,16 +585,16 @@ private:
       notify(Phase::assembly, 1);
       return;
     }
-    Sparse M = (m_A * m_inverse_weight.asDiagonal()) * m_A.transpose();
-    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> fill_reducing; // new position -> row
-    Eigen::AMDOrdering<int>()(M, fill_reducing);
+    Sparse M = lower_triangle_of_system();
+    std::vector<int> fill_reducing; // position -> row
+    internal::Fill_reducing_ordering<Solver_traits>::compute(M, fill_reducing);
     std::vector<char> is_loop_row(std::size_t(rows), 0);
     for(int r : m_free_rows)
       is_loop_row[r] = 1;
     m_permutation.resize(rows); // row -> position
     int position = 0;
     for(Eigen::Index i = 0; i < rows; ++i) {
-      const int r = fill_reducing.size() > 0 ? fill_reducing.indices()[i] : int(i);
+      const int r = fill_reducing[std::size_t(i)];
       if(!is_loop_row[r])
         m_permutation.indices()[r] = position++;
     }
@@ -512,7 +604,8 @@ private:
     ordered = M.selfadjointView<Eigen::Lower>().twistedBy(m_permutation);
     ordered.makeCompressed();
     M = Sparse();
-    m_system.reset(new typename Solver_traits::Matrix(ordered));
+    m_system.reset(new typename Solver_traits::Matrix(Sparse()));
+    m_system->eigen_object().swap(ordered); // no copy
     notify(Phase::assembly, 1);
 
     notify(Phase::factorization, 0);

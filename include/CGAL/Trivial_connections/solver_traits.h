@@ -64,6 +64,24 @@ using Recommended_solver_traits = Default_solver_traits;
 namespace internal {
 
 /*
+  A fill-reducing order of the rows of a symmetric matrix (order[position] = row), computed the way the
+  backend would compute it on its own: the solver then moves the loop rows last and hands the backend
+  the reordered matrix to factor as it is. Default: Eigen's AMD.
+*/
+template <class SolverTraits>
+struct Fill_reducing_ordering
+{
+  static void compute(const Eigen::SparseMatrix<double>& M, std::vector<int>& order)
+  {
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
+    Eigen::AMDOrdering<int>()(M, amd);
+    order.resize(std::size_t(M.rows()));
+    for(Eigen::Index i = 0; i < M.rows(); ++i)
+      order[std::size_t(i)] = amd.size() > 0 ? amd.indices()[i] : int(i);
+  }
+};
+
+/*
   Reading the Schur complement S = M_LL - M_LN M_NN^-1 M_NL of the trailing rows L of a factored
   M = [M_NN M_NL; M_LN M_LL] from the factor: with M = L D L^T and the rows L last, S = L_LL D_L L_LL^T.
   The inverse of S is (M^-1)_LL, the metric of the loop integers, at the cost of a dense k x k block
@@ -136,6 +154,46 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<Cholmod_supernodal_fa
     }
     S = Lt * Lt.transpose();
     return true;
+  }
+};
+
+// CHOLMOD's own choice (AMD, or METIS nested dissection when AMD fills too much), from its analysis.
+template <>
+struct Fill_reducing_ordering<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
+{
+  static void compute(const Eigen::SparseMatrix<double>& M, std::vector<int>& order)
+  {
+    const std::size_t n = std::size_t(M.rows());
+    order.resize(n);
+    for(std::size_t i = 0; i < n; ++i)
+      order[i] = int(i);
+    if(n == 0 || !M.isCompressed())
+      return;
+    cholmod_common common;
+    cholmod_start(&common);
+    common.supernodal = CHOLMOD_SIMPLICIAL; // only the ordering is wanted
+    cholmod_sparse pattern;
+    pattern.nrow = pattern.ncol = n;
+    pattern.nzmax = std::size_t(M.nonZeros());
+    pattern.p = const_cast<int*>(M.outerIndexPtr());
+    pattern.i = const_cast<int*>(M.innerIndexPtr());
+    pattern.nz = nullptr;
+    pattern.x = pattern.z = nullptr;
+    pattern.stype = -1; // the lower triangle
+    pattern.itype = CHOLMOD_INT;
+    pattern.xtype = CHOLMOD_PATTERN;
+    pattern.dtype = CHOLMOD_DOUBLE;
+    pattern.sorted = 1;
+    pattern.packed = 1;
+    cholmod_factor* symbolic = cholmod_analyze(&pattern, &common);
+    if(symbolic != nullptr && symbolic->Perm != nullptr) {
+      const int* perm = static_cast<const int*>(symbolic->Perm);
+      for(std::size_t i = 0; i < n; ++i)
+        order[i] = perm[i];
+    }
+    if(symbolic != nullptr)
+      cholmod_free_factor(&symbolic, &common);
+    cholmod_finish(&common);
   }
 };
 #endif

@@ -51,11 +51,9 @@ inline double angle_between(const Vec3& u, const Vec3& w) { return std::atan2(no
 */
 struct Mesh_geometry
 {
-  std::vector<double> corner_angle;     // per corner halfedge i: angle at source(i)
   std::vector<double> direction;        // per corner halfedge i: angle of its direction in the frame of its face
   std::vector<double> angle_sum;        // per vertex
   std::vector<bool> on_boundary;        // per vertex
-  std::vector<Vec3> normal, frame_x, frame_y;  // per face
 
   std::vector<int> edge_of_corner;      // per corner halfedge: interior edge id, -1 on a border edge
   std::vector<int> edge_corner;         // per interior edge: its canonical corner halfedge
@@ -76,6 +74,18 @@ struct Mesh_geometry
   // face(i) to the face of opposite(i). The edge keeps its direction while the frames change.
   double transport_angle(int i) const { return oriented(transport, i); }
 
+  // the frame (e_f, N_f x e_f) of face f, recomputed when needed rather than stored (fresh memory is
+  // what large meshes pay for)
+  template <class TriangleMesh>
+  static void frame(const Mesh_arrays<TriangleMesh>& m, int f, Vec3& ex, Vec3& ey)
+  {
+    const Vec3& p0 = m.points[m.corner_vertex[3 * f]];
+    const Vec3 e01 = sub(m.points[m.corner_vertex[3 * f + 1]], p0);
+    const Vec3 n = cross(e01, sub(m.points[m.corner_vertex[3 * f + 2]], p0));
+    ex = scaled(e01, 1 / norm(e01));
+    ey = cross(scaled(n, 1 / norm(n)), ex);
+  }
+
   double angle_defect(int v) const { return (on_boundary[v] ? CGAL_PI : 2 * CGAL_PI) - angle_sum[v]; }
 
   template <class TriangleMesh>
@@ -83,11 +93,10 @@ struct Mesh_geometry
   {
     using MA = Mesh_arrays<TriangleMesh>;
     const int nc = 3 * m.nf;
-    corner_angle.resize(nc);
     direction.resize(nc);
     angle_sum.assign(m.nv, 0.);
     on_boundary.assign(m.nv, false);
-    normal.resize(m.nf); frame_x.resize(m.nf); frame_y.resize(m.nf);
+
 
     for(int f = 0; f < m.nf; ++f) {
       const Vec3& p0 = m.points[m.corner_vertex[3 * f]];
@@ -97,17 +106,14 @@ struct Mesh_geometry
       const double a0 = angle_between(e01, scaled(e20, -1));
       const double a1 = angle_between(e12, scaled(e01, -1));
       const double a2 = angle_between(e20, scaled(e12, -1));
-      corner_angle[3 * f] = a0; corner_angle[3 * f + 1] = a1; corner_angle[3 * f + 2] = a2;
-      for(int k = 0; k < 3; ++k)
-        angle_sum[m.corner_vertex[3 * f + k]] += corner_angle[3 * f + k];
-      const Vec3 n = cross(e01, sub(p2, p0));
-      normal[f] = scaled(n, 1 / norm(n));
-      frame_x[f] = scaled(e01, 1 / norm(e01));
-      frame_y[f] = cross(normal[f], frame_x[f]);
-      // directions measured in the frame itself, not accumulated from corner angles
+      angle_sum[m.corner_vertex[3 * f]] += a0;
+      angle_sum[m.corner_vertex[3 * f + 1]] += a1;
+      angle_sum[m.corner_vertex[3 * f + 2]] += a2;
+      // the edges of a counter-clockwise triangle turn by the exterior angles: e12 is at pi - a1 from
+      // e01, and e20 at a0 - pi (both in (-pi, pi]); no further atan2 needed
       direction[3 * f] = 0;
-      direction[3 * f + 1] = std::atan2(dot(e12, frame_y[f]), dot(e12, frame_x[f]));
-      direction[3 * f + 2] = std::atan2(dot(e20, frame_y[f]), dot(e20, frame_x[f]));
+      direction[3 * f + 1] = CGAL_PI - a1;
+      direction[3 * f + 2] = a0 - CGAL_PI;
     }
 
     edge_of_corner.assign(nc, -1);

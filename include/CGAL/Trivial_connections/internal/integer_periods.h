@@ -123,7 +123,7 @@ inline void greedy_descent(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, C
 inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eigen::MatrixXd& R,
                                             const Eigen::VectorXd& c,
                                             const std::vector<std::vector<std::int64_t>>& candidates,
-                                            double work_budget = 2e7)
+                                            double work_budget = 2e6)
 {
   const Eigen::Index k = c.size();
   Closest_vector_result best;

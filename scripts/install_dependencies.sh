@@ -1,17 +1,22 @@
 #!/usr/bin/env bash
 # Installs the Debian (bookworm) packages the project needs, only those that are missing.
-# Usage: bash scripts/install_dependencies.sh [--cholmod]
-#   --cholmod   also install libsuitesparse-dev (for -DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
+# Usage: bash scripts/install_dependencies.sh [--no-cholmod]
+#   --no-cholmod   skip libsuitesparse-dev (CHOLMOD, the program's recommended sparse backend; the library
+#                  itself is header-only and defaults to Eigen's SimplicialLDLT)
 set -euo pipefail
 pkgs=(build-essential cmake libcgal-dev libeigen3-dev libboost-graph-dev
       libgtest-dev googletest libbenchmark-dev python3 python3-numpy)
+cholmod=1
 for arg in "$@"; do
   case "$arg" in
-    --cholmod) pkgs+=(libsuitesparse-dev) ;;
-    -h|--help) sed -n '2,4p' "$0"; exit 0 ;;
+    --cholmod) ;; # installed by default now; kept for old command lines
+    --no-cholmod) cholmod=0 ;;
+    -h|--help) sed -n '2,5p' "$0"; exit 0 ;;
     *) echo "install_dependencies.sh: unknown argument '$arg'" >&2; exit 2 ;;
   esac
 done
+
+if [ "$cholmod" = 1 ]; then pkgs+=(libsuitesparse-dev); fi
 
 missing=()
 for p in "${pkgs[@]}"; do

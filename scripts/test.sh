@@ -4,11 +4,7 @@
 # Usage: bash scripts/test.sh [extra cmake arguments, e.g. -DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-deps_args=()
-for a in "$@"; do
-  [ "$a" = "-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON" ] && deps_args+=(--cholmod)
-done
-bash scripts/install_dependencies.sh "${deps_args[@]}"
+bash scripts/install_dependencies.sh
 bash scripts/fetch_cgal_data.sh
 jobs="${JOBS:-2}"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON "$@"

@@ -15,7 +15,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdint>
 #include <ostream>
 #include <string>
 #include <tuple>
@@ -145,6 +148,85 @@ TEST_P(Real_meshes_unit_weights, every_check)
   const Singularities sing = plan_singularities(view, n, /*unit_indices=*/true);
   solve_and_check(view, solver, sing, n);
 }
+
+/*
+  The sparse backends agree. The default traits read the metric of the loop integers from the factor's
+  trailing block; traits with their own ordering (plain Eigen SimplicialLDLT with AMD) fall back to one
+  back-substitution per loop; CHOLMOD (when built with it) reads its supernodal factor. Same integers
+  when both enumerations are proven optimal, same energy, and with the integers prescribed the same
+  connection; every check of solve_and_check holds on each.
+*/
+using Generic_ldlt_traits = CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>;
+
+template <class Traits>
+void expect_same_as_default(const Mesh_view<Surface_mesh>& view, const Surface_mesh& sm, const Singularities& sing,
+                            int n, const Solution<Surface_mesh>& reference)
+{
+  TC::Trivial_connection_solver<Surface_mesh, CGAL::Default, Traits> solver(sm);
+  const Solution<Surface_mesh> s = solve_and_check(view, solver, sing, n, /*with_field=*/false);
+  EXPECT_NEAR(s.report.energy, reference.report.energy, 1e-9 * std::max(1., reference.report.energy));
+  std::vector<std::int64_t> periods;
+  for(const auto& r : reference.report.loops) periods.push_back(r.period);
+  if(s.report.integers_proven_optimal && reference.report.integers_proven_optimal) {
+    std::vector<std::int64_t> own;
+    for(const auto& r : s.report.loops) own.push_back(r.period);
+    EXPECT_EQ(own, periods);
+  }
+  std::vector<double> x;
+  solver.solve(descriptors(view, sing), view.halfedge_map(x),
+               TC::parameters::loop_periods(periods, TC::parameters::symmetry_order(n)));
+  ASSERT_EQ(x.size(), reference.x.size());
+  double worst = 0;
+  for(std::size_t h = 0; h < x.size(); ++h)
+    worst = std::max(worst, std::abs(x[h] - reference.x[h]));
+  EXPECT_LT(worst, 1e-8) << "largest difference of x(h) between backends";
+}
+
+class Backends : public ::testing::TestWithParam<Real_mesh>
+{
+};
+
+TEST_P(Backends, agree)
+{
+  const Real_mesh& m = GetParam();
+  const int n = 4;
+  Surface_mesh sm;
+  TC_READ_CGAL_MESH_OR_SKIP(m.file, sm);
+  SCOPED_TRACE(std::string(m.file) + " (" + m.what + "), n = 4");
+  const Mesh_view<Surface_mesh> view(sm);
+  const Singularities sing = plan_singularities(view, n);
+  TC::Trivial_connection_solver<Surface_mesh> solver(sm);
+  const Solution<Surface_mesh> reference = solve_and_check(view, solver, sing, n, /*with_field=*/false);
+  {
+    SCOPED_TRACE("SimplicialLDLT with its own AMD ordering (metric by back-substitutions)");
+    expect_same_as_default<Generic_ldlt_traits>(view, sm, sing, n, reference);
+  }
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  {
+    SCOPED_TRACE("CHOLMOD supernodal (metric from the supernodal factor)");
+    expect_same_as_default<TC::Cholmod_solver_traits>(view, sm, sing, n, reference);
+  }
+#endif
+}
+
+const Real_mesh backend_meshes[] = {
+  {"turbine.off", "closed genus 11", 18460, 1, -20, 0, 11, 11, -1},
+  {"cheese.off", "closed genus 133", 17786, 1, -264, 0, 133, 133, -1},
+  {"holes.off", "genus 0, 7 boundary loops", 8288, 1, -5, 7, 0, 0, 1},
+  {"elephant-with-holes.off", "genus 3, 106 boundary loops", 4463, 1, -110, 106, 3, 3, -1},
+  {"knot2.off", "2 closed genus-1 components", 11520, 2, 0, 0, 2, 1, 1},
+  {"b9_mesh.off", "47 components: closed and bordered, genus up to 2, 76 boundary loops", 10174, 47, 10, 76, 4, 2,
+   -1},
+};
+
+INSTANTIATE_TEST_SUITE_P(CGAL_data, Backends, ::testing::ValuesIn(backend_meshes),
+                         [](const ::testing::TestParamInfo<Real_mesh>& info) {
+                           std::string name = info.param.file;
+                           name = name.substr(0, name.find('.'));
+                           for(char& c : name)
+                             if(!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 std::string case_name(const ::testing::TestParamInfo<Case>& info)
 {

@@ -158,6 +158,8 @@ const std::vector<Mesh_spec>& mesh_specs()
     {"knot1", "knot1.off", 0, Size::small},               // genus 1, 6.4k
     {"elephant", "elephant.off", 0, Size::small},         // genus 3, 5.6k
     {"holes", "holes.off", 0, Size::small},               // bordered, 8.3k
+    {"bull", "bull.off", 0, Size::small},                 // genus 0, 12k: genus-0 neighbours of the 18k meshes
+    {"cow_loop1", "cow.off", 1, Size::small},             // genus 0, 23k
     {"turbine", "turbine.off", 0, Size::small},           // genus 11, 18k
     {"cheese", "cheese.off", 0, Size::small},             // genus 133, 18k
     {"bunny00", "bunny00.off", 0, Size::small},           // genus 0, 75k

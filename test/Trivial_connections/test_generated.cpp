@@ -14,6 +14,7 @@
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -460,6 +461,57 @@ TEST(Prefactored_solver, gives_the_same_answers_as_fresh_solvers)
                   std::abs(a2.field[f].z() - a3.field[f].z()), 1e-12);
     }
   }
+}
+
+/*
+  The progress callback: every phase starts (fraction 0) before it ends (fraction 1), fractions stay in
+  [0, 1], phases come in the documented order, the constructor reports mesh set-up to loop metric, solve()
+  its solve (with loop integers inside it on a torus), compute_field() the field. A callback that throws
+  cancels the call, and the exception reaches the caller.
+*/
+TEST(Progress, phases_are_reported_in_order_and_can_cancel)
+{
+  const Surface_mesh sm = to_surface_mesh(generated("torus").soup);
+  const Mesh_view<Surface_mesh> view(sm);
+  std::vector<std::pair<TC::Phase, double>> events;
+  TC::Progress_callback record = [&](TC::Phase p, double fraction) { events.emplace_back(p, fraction); };
+  auto check_events = [&](std::initializer_list<TC::Phase> expected_outer) {
+    std::vector<TC::Phase> open, started;
+    for(const auto& [p, fraction] : events) {
+      EXPECT_GE(fraction, 0.);
+      EXPECT_LE(fraction, 1.);
+      if(fraction == 0) {
+        open.push_back(p);
+        started.push_back(p);
+      } else if(fraction == 1) {
+        ASSERT_FALSE(open.empty()) << TC::phase_name(p) << " ended without starting";
+        EXPECT_EQ(open.back(), p) << TC::phase_name(p) << " ended inside another phase";
+        open.pop_back();
+      }
+    }
+    EXPECT_TRUE(open.empty());
+    for(std::size_t i = 1; i < started.size(); ++i)
+      EXPECT_LT(int(started[i - 1]), int(started[i])) << "phases out of order";
+    std::vector<TC::Phase> expected(expected_outer);
+    for(TC::Phase p : expected)
+      EXPECT_NE(std::find(started.begin(), started.end(), p), started.end()) << TC::phase_name(p) << " missing";
+    events.clear();
+  };
+  Solver<Surface_mesh> solver(sm, TC::parameters::progress(record));
+  check_events({TC::Phase::mesh_setup, TC::Phase::geometry, TC::Phase::trees, TC::Phase::assembly,
+                TC::Phase::factorization, TC::Phase::loop_metric});
+  std::vector<double> x;
+  solver.solve(descriptors(view, Singularities()), view.halfedge_map(x), TC::parameters::progress(record));
+  check_events({TC::Phase::solve, TC::Phase::loop_integers});
+  std::vector<Vector> field(std::size_t(view.nf()));
+  solver.compute_field(view.halfedge_map_const(x), view.face_map(field), TC::parameters::progress(record));
+  check_events({TC::Phase::field});
+  solver.solve(descriptors(view, Singularities()), view.halfedge_map(x));
+  EXPECT_TRUE(events.empty()) << "the constructor's callback must not be called after it returned";
+
+  struct Cancelled {};
+  TC::Progress_callback cancel = [](TC::Phase p, double) { if(p == TC::Phase::factorization) throw Cancelled(); };
+  EXPECT_THROW(Solver<Surface_mesh>(sm, TC::parameters::progress(cancel)), Cancelled);
 }
 
 TEST(Free_functions, agree_with_the_class)

@@ -273,7 +273,8 @@ public:
         Eigen::VectorXd lf(kc);
         for(Eigen::Index a = 0; a < kc; ++a)
           lf[a] = lambda[m_row_of_loop[free[a]]];
-        const Eigen::VectorXd center = -(metric.schur * lf) / unit;
+        const Eigen::VectorXd center =
+          -(metric.schur_factor * (metric.schur_diagonal.asDiagonal() * (metric.schur_factor.transpose() * lf))) / unit;
         const Eigen::MatrixXd G = unit * unit * metric.inverse;
         std::vector<std::int64_t> rounded(kc), own(kc);
         for(Eigen::Index a = 0; a < kc; ++a) {
@@ -657,24 +658,33 @@ private:
     if(k == 0)
       return;
     const Eigen::Index first = m_A.rows() - k;
-    Eigen::MatrixXd S;
-    const bool from_factor = internal::Trailing_schur_complement<Solver_traits>::read(m_solver, k, S);
+    Eigen::MatrixXd Lt;
+    Eigen::VectorXd d;
+    const bool from_factor = internal::Trailing_schur_complement<Solver_traits>::read(m_solver, k, Lt, d);
     for(std::size_t c = 0; c < m_components.size(); ++c) {
       const std::vector<int>& free = m_free_loops[c];
       const Eigen::Index kc = Eigen::Index(free.size());
       if(kc == 0)
         continue;
-      std::vector<Eigen::Index> block(free.size());
+      std::vector<Eigen::Index> block(free.size()); // increasing: the loop rows are placed in this order
       for(Eigen::Index a = 0; a < kc; ++a)
         block[a] = m_permutation.indices()[m_row_of_loop[free[a]]] - first;
       Loop_metric& metric = m_loop_metric[c];
       if(from_factor) {
-        metric.schur.resize(kc, kc);
-        for(Eigen::Index a = 0; a < kc; ++a)
+        // M is block diagonal by component, so is the trailing factor: its block is this component's
+        metric.schur_factor.resize(kc, kc);
+        metric.schur_diagonal.resize(kc);
+        for(Eigen::Index a = 0; a < kc; ++a) {
+          metric.schur_diagonal[a] = d[block[a]];
           for(Eigen::Index r = 0; r < kc; ++r)
-            metric.schur(r, a) = S(block[r], block[a]);
-        metric.schur = (metric.schur + metric.schur.transpose()) / 2;
-        metric.inverse = metric.schur.llt().solve(Eigen::MatrixXd::Identity(kc, kc));
+            metric.schur_factor(r, a) = r >= a ? Lt(block[r], block[a]) : 0.;
+        }
+        if(!(metric.schur_diagonal.minCoeff() > 0) || !metric.schur_factor.allFinite())
+          throw Invalid_input(Error_code::solver_failure, "the metric of the loop integers is not positive definite");
+        // S^-1 = Y^T Y with Y = D^-1/2 L^-1, lower triangular
+        Eigen::MatrixXd Y = metric.schur_factor.template triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(kc, kc));
+        Y = metric.schur_diagonal.cwiseSqrt().cwiseInverse().asDiagonal() * Y;
+        metric.inverse.noalias() = Y.transpose().template triangularView<Eigen::Upper>() * Y;
       } else {
         metric.inverse.resize(kc, kc);
         for(Eigen::Index a = 0; a < kc; ++a) {
@@ -685,7 +695,11 @@ private:
             metric.inverse(r, a) = column[m_row_of_loop[free[r]]];
         }
         metric.inverse = (metric.inverse + metric.inverse.transpose()) / 2;
-        metric.schur = metric.inverse.llt().solve(Eigen::MatrixXd::Identity(kc, kc));
+        Eigen::LLT<Eigen::MatrixXd> schur(metric.inverse.llt().solve(Eigen::MatrixXd::Identity(kc, kc)));
+        if(schur.info() != Eigen::Success)
+          throw Invalid_input(Error_code::solver_failure, "the metric of the loop integers is not positive definite");
+        metric.schur_factor = schur.matrixL();
+        metric.schur_diagonal = Eigen::VectorXd::Ones(kc);
       }
       metric.inverse = (metric.inverse + metric.inverse.transpose()) / 2;
       Eigen::LLT<Eigen::MatrixXd> llt(metric.inverse);
@@ -878,7 +892,9 @@ private:
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> m_permutation; // row -> position in m_system
   struct Loop_metric
   {
-    Eigen::MatrixXd schur, inverse; // S and S^-1 = (M^-1) on the free loop rows of one component
+    Eigen::MatrixXd schur_factor;   // S = schur_factor diag(schur_diagonal) schur_factor^T, lower triangular
+    Eigen::VectorXd schur_diagonal;
+    Eigen::MatrixXd inverse;        // S^-1 = (M^-1) on the free loop rows of one component
     Eigen::MatrixXd inverse_factor; // R upper triangular with R^T R = S^-1
   };
   std::vector<Loop_metric> m_loop_metric;

@@ -84,6 +84,7 @@ struct Fill_reducing_ordering
 /*
   Reading the Schur complement S = M_LL - M_LN M_NN^-1 M_NL of the trailing rows L of a factored
   M = [M_NN M_NL; M_LN M_LL] from the factor: with M = L D L^T and the rows L last, S = L_LL D_L L_LL^T.
+  `read` gives the lower triangular L_LL and the diagonal D_L (ones for an LL^T factorization).
   The inverse of S is (M^-1)_LL, the metric of the loop integers, at the cost of a dense k x k block
   instead of k back-substitutions. `read` returns false when the backend does not expose its factor or
   did not keep the given order; the caller then falls back to back-substitutions.
@@ -91,7 +92,7 @@ struct Fill_reducing_ordering
 template <class SolverTraits>
 struct Trailing_schur_complement
 {
-  static bool read(SolverTraits&, Eigen::Index, Eigen::MatrixXd&) { return false; }
+  static bool read(SolverTraits&, Eigen::Index, Eigen::MatrixXd&, Eigen::VectorXd&) { return false; }
 };
 
 template <class Index>
@@ -99,20 +100,19 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<Index>>>>
 {
   template <class Traits>
-  static bool read(Traits& traits, Eigen::Index k, Eigen::MatrixXd& S)
+  static bool read(Traits& traits, Eigen::Index k, Eigen::MatrixXd& Lt, Eigen::VectorXd& d)
   {
     const auto& solver = traits.solver();
     if(solver.permutationP().size() != 0)
       return false;
     const auto& L = solver.matrixL().nestedExpression(); // strictly lower part, column major
     const Eigen::Index n = L.rows(), first = n - k;
-    Eigen::MatrixXd Lt = Eigen::MatrixXd::Identity(k, k);
+    Lt = Eigen::MatrixXd::Identity(k, k);
     for(Eigen::Index j = first; j < n; ++j)
       for(typename std::decay<decltype(L)>::type::InnerIterator it(L, j); it; ++it)
         if(it.row() > j)
           Lt(it.row() - first, j - first) = it.value();
-    const Eigen::VectorXd d = solver.vectorD().tail(k);
-    S = Lt * d.asDiagonal() * Lt.transpose();
+    d = solver.vectorD().tail(k);
     return true;
   }
 };
@@ -122,7 +122,7 @@ template <>
 struct Trailing_schur_complement<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
 {
   template <class Traits>
-  static bool read(Traits& traits, Eigen::Index k, Eigen::MatrixXd& S)
+  static bool read(Traits& traits, Eigen::Index k, Eigen::MatrixXd& Lt, Eigen::VectorXd& d)
   {
     const cholmod_factor* F = traits.solver().factor();
     if(F == nullptr || !F->is_super || !F->is_ll || F->itype != CHOLMOD_INT)
@@ -138,7 +138,7 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<Cholmod_supernodal_fa
     const int* px = static_cast<const int*>(F->px);
     const int* rows = static_cast<const int*>(F->s);
     const double* x = static_cast<const double*>(F->x);
-    Eigen::MatrixXd Lt = Eigen::MatrixXd::Zero(k, k);
+    Lt = Eigen::MatrixXd::Zero(k, k);
     for(std::size_t s = 0; s < F->nsuper; ++s) {
       const int c0 = super[s], c1 = super[s + 1];
       if(c1 <= first)
@@ -152,7 +152,7 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<Cholmod_supernodal_fa
             Lt(row - first, c - first) = x[px[s] + std::size_t(c - c0) * std::size_t(nrows) + std::size_t(r)];
         }
     }
-    S = Lt * Lt.transpose();
+    d = Eigen::VectorXd::Ones(k);
     return true;
   }
 };

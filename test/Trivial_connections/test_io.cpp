@@ -112,6 +112,17 @@ TC::Invalid_input expect_error(F f, TC::Error_code code, const std::vector<std::
   return TC::Invalid_input(code, "not thrown");
 }
 
+// A call that reads `content`, written to `dir/name`, into a fresh Mesh (for expect_error).
+template <class Mesh>
+auto reader_of(Temp_dir& dir, const std::string& name, const std::string& content)
+{
+  const std::string path = dir.write(name, content);
+  return [path] {
+    Mesh mesh;
+    TC::read_triangle_mesh(path, mesh);
+  };
+}
+
 std::vector<std::pair<std::size_t, TC::Singularity_index>> parse(const std::string& text,
                                                                  std::size_t nv = TC::unchecked_vertex_count)
 {
@@ -597,13 +608,7 @@ TYPED_TEST(IoMeshReader, RejectsEachBadInputWithItsError)
 {
   using Mesh = TypeParam;
   Temp_dir dir;
-  auto read = [&](const std::string& name, const std::string& content) {
-    const std::string path = dir.write(name, content);
-    return [path] {
-      Mesh mesh;
-      TC::read_triangle_mesh(path, mesh);
-    };
-  };
+  auto read = [&](const std::string& name, const std::string& content) { return reader_of<Mesh>(dir, name, content); };
   const std::string four = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
   const std::string six = four + "1 1 1\n-1 0 0\n";
 
@@ -838,13 +843,7 @@ TYPED_TEST(IoMeshReader, FastReaderRejectsMalformedFilesWithTheUsualErrors)
 {
   using Mesh = TypeParam;
   Temp_dir dir;
-  auto read = [&](const std::string& name, const std::string& content) {
-    const std::string path = dir.write(name, content);
-    return [path] {
-      Mesh mesh;
-      TC::read_triangle_mesh(path, mesh);
-    };
-  };
+  auto read = [&](const std::string& name, const std::string& content) { return reader_of<Mesh>(dir, name, content); };
   const std::string four = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
   const std::string tet = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
   // the well-formed file reads

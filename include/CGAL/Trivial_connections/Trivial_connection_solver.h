@@ -25,11 +25,9 @@
 #include <CGAL/Trivial_connections/solver_traits.h>
 
 #include <Eigen/Dense>
-#include <Eigen/OrderingMethods>
 #include <Eigen/Sparse>
 
 #include <algorithm>
-
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -253,15 +251,14 @@ public:
     }
 
     const Progress_callback progress = progress_of(np);
-    auto notify = [&](Phase p, double fraction) { if(progress) progress(p, fraction); };
     const double unit = 2 * CGAL_PI / n;
-    notify(Phase::solve, 0);
+    notify(progress, Phase::solve, 0);
     Eigen::VectorXd b = right_hand_side(k, periods, n);
     Eigen::VectorXd lambda = solve_system(b);
     double rounding_energy = b.dot(lambda);
 
     if(!user_periods && !m_free_rows.empty()) {
-      notify(Phase::loop_integers, 0);
+      notify(progress, Phase::loop_integers, 0);
       bool proven = true;
       for(std::size_t c = 0; c < m_components.size(); ++c) {
         const std::vector<int>& free = m_free_loops[c];
@@ -297,7 +294,7 @@ public:
           periods[free[a]] = best.m[a];
       }
       report.integers_proven_optimal = proven;
-      notify(Phase::loop_integers, 1);
+      notify(progress, Phase::loop_integers, 1);
       b = right_hand_side(k, periods, n);
       lambda = solve_system(b);
     }
@@ -308,7 +305,7 @@ public:
 
     fill_report(xe, k, periods, prescribed, n, report);
     report.rounding_energy = user_periods ? report.energy : rounding_energy;
-    notify(Phase::solve, 1);
+    notify(progress, Phase::solve, 1);
     return report;
   }
 
@@ -345,8 +342,7 @@ public:
     if(!std::isfinite(seed_angle))
       throw Invalid_input(Error_code::invalid_argument, "the seed angle is not finite");
     const Progress_callback progress = progress_of(np);
-    if(progress)
-      progress(Phase::field, 0);
+    notify(progress, Phase::field, 0);
 
     std::vector<double> angle(m_mesh.nf, 0.);
     for(int f : m_topology.face_order) {
@@ -370,8 +366,7 @@ public:
       put(field, m_mesh.face_descriptors[f],
           vector(c * ex[0] + s * ey[0], c * ex[1] + s * ey[1], c * ex[2] + s * ey[2]));
     }
-    if(progress)
-      progress(Phase::field, 1);
+    notify(progress, Phase::field, 1);
   }
 
 private:
@@ -382,11 +377,14 @@ private:
       CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::progress), Progress_callback()));
   }
 
-  void notify(Phase p, double fraction) const
+  static void notify(const Progress_callback& progress, Phase p, double fraction)
   {
-    if(m_progress)
-      m_progress(p, fraction);
+    if(progress)
+      progress(p, fraction);
   }
+
+  // the constructor's phases
+  void notify(Phase p, double fraction) const { notify(m_progress, p, fraction); }
 
   template <class Make>
   auto in_phase(Phase p, Make&& make) -> decltype(make())
@@ -685,6 +683,7 @@ private:
         Eigen::MatrixXd Y = metric.schur_factor.template triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(kc, kc));
         Y = metric.schur_diagonal.cwiseSqrt().cwiseInverse().asDiagonal() * Y;
         metric.inverse.noalias() = Y.transpose().template triangularView<Eigen::Upper>() * Y;
+        metric.inverse = (metric.inverse + metric.inverse.transpose()) / 2;
       } else {
         metric.inverse.resize(kc, kc);
         for(Eigen::Index a = 0; a < kc; ++a) {
@@ -701,7 +700,6 @@ private:
         metric.schur_factor = schur.matrixL();
         metric.schur_diagonal = Eigen::VectorXd::Ones(kc);
       }
-      metric.inverse = (metric.inverse + metric.inverse.transpose()) / 2;
       Eigen::LLT<Eigen::MatrixXd> llt(metric.inverse);
       if(llt.info() != Eigen::Success || !metric.inverse.allFinite())
         throw Invalid_input(Error_code::solver_failure, "the metric of the loop integers is not positive definite");

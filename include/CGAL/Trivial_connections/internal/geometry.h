@@ -97,7 +97,6 @@ struct Mesh_geometry
     angle_sum.assign(m.nv, 0.);
     on_boundary.assign(m.nv, false);
 
-
     for(int f = 0; f < m.nf; ++f) {
       const Vec3& p0 = m.points[m.corner_vertex[3 * f]];
       const Vec3& p1 = m.points[m.corner_vertex[3 * f + 1]];

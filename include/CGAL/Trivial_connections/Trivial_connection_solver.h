@@ -13,6 +13,7 @@
 #include <CGAL/Trivial_connections/Solve_report.h>
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/parameters.h>
+#include <CGAL/Trivial_connections/internal/concurrency.h>
 #include <CGAL/Trivial_connections/internal/geometry.h>
 #include <CGAL/Trivial_connections/internal/integer_periods.h>
 #include <CGAL/Trivial_connections/internal/mesh_arrays.h>
@@ -30,6 +31,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -146,15 +148,39 @@ public:
                       get_const_property_map(CGAL::vertex_point, tm)),
                     m_traits);
       })),
-      m_geometry(in_phase(Phase::geometry, [&] { return internal::Mesh_geometry(m_mesh, m_weighting); })),
-      m_topology((notify(Phase::trees, 0),
-                  internal::Mesh_topology(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner)))
+      m_geometry(),
+      m_topology()
   {
+    // The fill-reducing order of the node rows needs only the connectivity: it runs on a second thread
+    // while the geometry and the trees are computed, and the corner angles (not needed by the system) run
+    // beside the factorization. The other thread never calls user code (property maps, the callback).
+    notify(Phase::geometry, 0);
+    m_topology = internal::Mesh_topology(m_mesh);
+    std::future<std::vector<int>> node_order = internal::concurrently([this] {
+      std::vector<int> column_start, rows, order;
+      m_topology.node_adjacency(m_mesh, column_start, rows);
+      internal::Fill_reducing_ordering<Solver_traits>::compute(m_topology.number_of_nodes, column_start, rows, order);
+      return order;
+    });
+    m_geometry = internal::Mesh_geometry(m_mesh, m_weighting);
+    notify(Phase::geometry, 1);
+    notify(Phase::trees, 0);
+    m_topology.build_trees(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner);
     build_loops();
     notify(Phase::trees, 1);
     notify(Phase::assembly, 0);
     build_constraints();
-    factor(); // ends the assembly phase
+    {
+      const Scaled_rows rows_of_A = scaled_rows_of_constraints();
+      const std::vector<int> order = node_order.get();
+      std::future<int> angles = internal::concurrently([this] {
+        m_geometry.compute_angles(m_mesh);
+        return 0;
+      });
+      factor(rows_of_A, order); // ends the assembly phase
+      angles.get();
+    }
+    compute_loop_holonomies();
     in_phase(Phase::loop_metric, [&] { compute_loop_metric(); return 0; });
     m_progress = nullptr; // the callback may not outlive the constructor call
   }
@@ -405,28 +431,36 @@ private:
       m_components[c].genus = comps[c].genus;
       m_components[c].number_of_boundary_loops = std::size_t(comps[c].boundary_loops);
     }
+    for(const internal::Mesh_topology::Loop& l : m_topology.loops) {
+      Loop loop;
+      loop.kind = l.kind;
+      loop.component = std::size_t(l.component);
+      loop.halfedges.reserve(l.crossings.size());
+      for(int i : l.crossings)
+        loop.halfedges.push_back(m_mesh.halfedges[i]);
+      m_loops.push_back(std::move(loop));
+    }
+  }
+
+  // needs the corner angles
+  void compute_loop_holonomies()
+  {
     // exact geodesic curvature of each boundary loop: sum over its vertices of pi - their angle sums
     std::vector<double> geodesic_curvature(m_topology.number_of_nodes - m_topology.number_of_interior_nodes, 0.);
     for(int v = 0; v < m_mesh.nv; ++v)
       if(m_mesh.faces_at_vertex[v] > 0 && m_geometry.on_boundary[v])
         geodesic_curvature[m_topology.node_of_vertex[v] - m_topology.number_of_interior_nodes] +=
           m_geometry.angle_defect(v);
+    m_loop_holonomy.clear();
     for(const internal::Mesh_topology::Loop& l : m_topology.loops) {
-      Loop loop;
-      loop.kind = l.kind;
-      loop.component = std::size_t(l.component);
-      loop.halfedges.reserve(l.crossings.size());
       double holonomy = 0;
-      for(int i : l.crossings) {
-        loop.halfedges.push_back(m_mesh.halfedges[i]);
-        holonomy += m_geometry.transport_angle(i);
-      }
       if(l.kind == Loop_kind::boundary) {
         holonomy = geodesic_curvature[l.node - m_topology.number_of_interior_nodes];
       } else {
+        for(int i : l.crossings)
+          holonomy += m_geometry.transport_angle(i);
         holonomy = internal::wrap_angle(holonomy);
       }
-      m_loops.push_back(std::move(loop));
       m_loop_holonomy.push_back(holonomy);
     }
   }
@@ -518,94 +552,119 @@ private:
       m_inverse_weight[e] = 1 / m_geometry.weight[e];
   }
 
-  // The lower triangle of M = A W^-1 A^T, column by column (Gustavson's product on the rows of A): no
-  // triplets and no transposed copies, which matters on large meshes where fresh memory is expensive.
-  Sparse lower_triangle_of_system() const
+  // The rows of A (its transpose, as compressed rows) with the entries scaled by W^-1, so that M = A W^-1 A^T
+  // can be formed row by row once the order of the rows is known.
+  struct Scaled_rows
+  {
+    std::vector<int> start, edge;
+    std::vector<double> value;
+  };
+
+  Scaled_rows scaled_rows_of_constraints() const
   {
     const int rows = int(m_A.rows()), ne = int(m_A.cols());
     const int* a_outer = m_A.outerIndexPtr();
     const int* a_inner = m_A.innerIndexPtr();
     const double* a_value = m_A.valuePtr();
-    std::vector<int> row_start(std::size_t(rows) + 1, 0);
+    Scaled_rows t;
+    t.start.assign(std::size_t(rows) + 1, 0);
     for(int p = 0; p < a_outer[ne]; ++p)
-      ++row_start[std::size_t(a_inner[p]) + 1];
+      ++t.start[std::size_t(a_inner[p]) + 1];
     for(int r = 0; r < rows; ++r)
-      row_start[r + 1] += row_start[r];
-    std::vector<int> row_edge(static_cast<std::size_t>(a_outer[ne]));
-    std::vector<double> row_value(static_cast<std::size_t>(a_outer[ne]));
-    {
-      std::vector<int> next(row_start.begin(), row_start.end() - 1);
-      for(int e = 0; e < ne; ++e)
-        for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
-          const int q = next[a_inner[p]]++;
-          row_edge[q] = e;
-          row_value[q] = a_value[p] * m_inverse_weight[e];
-        }
+      t.start[r + 1] += t.start[r];
+    t.edge.resize(std::size_t(a_outer[ne]));
+    t.value.resize(std::size_t(a_outer[ne]));
+    std::vector<int> next(t.start.begin(), t.start.end() - 1);
+    for(int e = 0; e < ne; ++e)
+      for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
+        const int q = next[a_inner[p]]++;
+        t.edge[q] = e;
+        t.value[q] = a_value[p] * m_inverse_weight[e];
+      }
+    return t;
+  }
+
+  // The triangle that the backend reads (or the whole matrix) of M = A W^-1 A^T in the order m_permutation,
+  // column by column (Gustavson's product on the rows of A), sorted: no triplets, no permuted or transposed
+  // copies, which matters on large meshes where fresh memory is expensive.
+  Sparse ordered_system(const Scaled_rows& t) const
+  {
+    const int rows = int(m_A.rows()), ne = int(m_A.cols());
+    const int* a_outer = m_A.outerIndexPtr();
+    const int* a_inner = m_A.innerIndexPtr();
+    const double* a_value = m_A.valuePtr();
+    const int* position = m_permutation.indices().data();
+    std::vector<int> row_at(std::size_t(rows), 0);
+    for(int r = 0; r < rows; ++r)
+      row_at[position[r]] = r;
+    // an upper bound of the number of entries: pages that are reserved but never written cost nothing
+    std::size_t bound = std::size_t(rows);
+    for(int e = 0; e < ne; ++e) {
+      const std::size_t k = std::size_t(a_outer[e + 1] - a_outer[e]);
+      bound += stored_triangle == 0 ? k * (k - 1) : k * (k - 1) / 2;
     }
-    std::vector<int> outer(std::size_t(rows) + 1), inner, pattern, mark(std::size_t(rows), -1);
-    std::vector<double> values, sum(std::size_t(rows), 0.);
-    inner.reserve(std::size_t(rows) + std::size_t(a_outer[ne]));
-    values.reserve(inner.capacity());
+    Sparse S(rows, rows);
+    S.resizeNonZeros(Eigen::Index(bound));
+    int* outer = S.outerIndexPtr();
+    int* inner = S.innerIndexPtr();
+    double* value = S.valuePtr();
+    std::vector<int> pattern, mark(std::size_t(rows), -1);
+    std::vector<double> sum(std::size_t(rows), 0.);
+    int nnz = 0;
     for(int c = 0; c < rows; ++c) {
-      outer[c] = int(inner.size());
+      outer[c] = nnz;
       pattern.clear();
-      for(int q = row_start[c]; q < row_start[c + 1]; ++q) {
-        const int e = row_edge[q];
+      const int row = row_at[c];
+      for(int q = t.start[row]; q < t.start[row + 1]; ++q) {
+        const int e = t.edge[q];
         for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
-          const int r = a_inner[p];
-          if(r < c)
+          const int r = position[a_inner[p]];
+          if((stored_triangle == Eigen::Lower && r < c) || (stored_triangle == Eigen::Upper && r > c))
             continue;
           if(mark[r] != c) {
             mark[r] = c;
             sum[r] = 0;
             pattern.push_back(r);
           }
-          sum[r] += row_value[q] * a_value[p];
+          sum[r] += t.value[q] * a_value[p];
         }
       }
       std::sort(pattern.begin(), pattern.end());
       for(int r : pattern) {
-        inner.push_back(r);
-        values.push_back(sum[r]);
+        inner[nnz] = r;
+        value[nnz] = sum[r];
+        ++nnz;
       }
     }
-    outer[rows] = int(inner.size());
-    Sparse L(rows, rows);
-    L.resizeNonZeros(Eigen::Index(inner.size()));
-    std::copy(outer.begin(), outer.end(), L.outerIndexPtr());
-    std::copy(inner.begin(), inner.end(), L.innerIndexPtr());
-    std::copy(values.begin(), values.end(), L.valuePtr());
-    return L;
+    outer[rows] = nnz;
+    S.resizeNonZeros(nnz);
+    return S;
   }
 
-  // M = A W^-1 A^T in the backend's fill-reducing order (AMD for Eigen) with the free loop rows last, so that the metric of
-  // the loop integers is a dense block of the factor (see internal::Trailing_schur_complement).
-  void factor()
+  // M = A W^-1 A^T with its node rows in the backend's fill-reducing order (`node_order`, AMD for Eigen)
+  // and the free loop rows last, so that the metric of the loop integers is a dense block of the factor
+  // (see internal::Trailing_schur_complement). `rows_of_A`: from scaled_rows_of_constraints().
+  void factor(const Scaled_rows& rows_of_A, const std::vector<int>& node_order)
   {
     const Eigen::Index rows = m_A.rows();
     if(rows == 0) {
       notify(Phase::assembly, 1);
       return;
     }
-    Sparse M = lower_triangle_of_system();
-    std::vector<int> fill_reducing; // position -> row
-    internal::Fill_reducing_ordering<Solver_traits>::compute(M, fill_reducing);
     std::vector<char> is_loop_row(std::size_t(rows), 0);
     for(int r : m_free_rows)
       is_loop_row[r] = 1;
     m_permutation.resize(rows); // row -> position
     int position = 0;
-    for(Eigen::Index i = 0; i < rows; ++i) {
-      const int r = fill_reducing[std::size_t(i)];
-      if(!is_loop_row[r])
+    for(int node : node_order) {
+      const int r = m_row_of_node[node];
+      if(r >= 0 && !is_loop_row[r])
         m_permutation.indices()[r] = position++;
     }
     for(int r : m_free_rows)
       m_permutation.indices()[r] = position++;
-    Sparse ordered(rows, rows);
-    ordered = M.selfadjointView<Eigen::Lower>().twistedBy(m_permutation);
-    ordered.makeCompressed();
-    M = Sparse();
+    CGAL_assertion(position == rows);
+    Sparse ordered = ordered_system(rows_of_A);
     m_system.reset(new typename Solver_traits::Matrix(Sparse()));
     m_system->eigen_object().swap(ordered); // no copy
     notify(Phase::assembly, 1);
@@ -616,6 +675,19 @@ private:
       throw Invalid_input(Error_code::solver_failure,
                           "the sparse factorization of the constraint system failed");
     notify(Phase::factorization, 1);
+  }
+
+  static constexpr int stored_triangle = internal::Stored_triangle<Solver_traits>::value;
+
+  // M v, in the order of m_system
+  Eigen::VectorXd system_times(const Eigen::VectorXd& v) const
+  {
+    const Sparse& M = m_system->eigen_object();
+    if(stored_triangle == Eigen::Lower)
+      return M.template selfadjointView<Eigen::Lower>() * v;
+    if(stored_triangle == Eigen::Upper)
+      return M.template selfadjointView<Eigen::Upper>() * v;
+    return M * v;
   }
 
   // M^-1 b, refined once when the residual is not already at rounding level; the residual is checked.
@@ -629,16 +701,15 @@ private:
     if(!m_solver.linear_solver(rhs, sol))
       throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
     Eigen::VectorXd lambda = sol;
-    const Sparse& M = m_system->eigen_object();
     const double scale = 1 + ordered_b.lpNorm<Eigen::Infinity>();
-    Eigen::VectorXd residual = ordered_b - M * lambda;
+    Eigen::VectorXd residual = ordered_b - system_times(lambda);
     double res = residual.lpNorm<Eigen::Infinity>();
     if(!(res <= 1e-13 * scale)) {
       rhs = residual;
       if(!m_solver.linear_solver(rhs, sol))
         throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
       lambda += Eigen::VectorXd(sol);
-      res = (ordered_b - M * lambda).lpNorm<Eigen::Infinity>();
+      res = (ordered_b - system_times(lambda)).template lpNorm<Eigen::Infinity>();
     }
     if(!std::isfinite(res) || !lambda.allFinite() || res > 1e-8 * scale)
       throw Invalid_input(Error_code::solver_failure,

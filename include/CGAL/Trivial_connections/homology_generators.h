@@ -46,7 +46,8 @@ homology_generators(const TriangleMesh& tm, const NamedParameters& np = paramete
     CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits),
                                        Geom_traits()));
   const internal::Mesh_geometry geometry(mesh, Weighting::unit);
-  const internal::Mesh_topology topology(mesh, geometry.edge_of_corner, geometry.edge_corner);
+  internal::Mesh_topology topology(mesh);
+  topology.build_trees(mesh, geometry.edge_of_corner, geometry.edge_corner);
   std::vector<std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor>> loops;
   for(const internal::Mesh_topology::Loop& loop : topology.loops) {
     if(loop.kind != Loop_kind::generator)

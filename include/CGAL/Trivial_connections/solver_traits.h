@@ -15,6 +15,7 @@
 #include <Eigen/CholmodSupport>
 #endif
 
+#include <algorithm>
 #include <vector>
 
 namespace CGAL {
@@ -24,10 +25,11 @@ namespace Trivial_connections {
 \ingroup PkgTrivialConnectionsRef
 The default sparse solver of `Trivial_connection_solver`: Eigen's header-only `SimplicialLDLT`, with the
 natural ordering because the solver hands it a matrix that is already in a fill-reducing order (AMD) with
-the rows of the loop integers last; the metric of the loop integers is then read from the factor.
+the rows of the loop integers last; the metric of the loop integers is then read from the factor. It reads
+the upper triangle, which is what the solver stores: Eigen copies a lower one first.
 */
 using Default_solver_traits =
-  CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
+  CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper,
                                                   Eigen::NaturalOrdering<int>>>;
 
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
@@ -71,14 +73,46 @@ namespace internal {
 template <class SolverTraits>
 struct Fill_reducing_ordering
 {
-  static void compute(const Eigen::SparseMatrix<double>& M, std::vector<int>& order)
+  // `column_start`, `rows`: the lower triangle of a symmetric pattern (compressed columns, sorted, with
+  // the diagonal); `order[position] = row`
+  static void compute(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
+                      std::vector<int>& order)
   {
+    Eigen::SparseMatrix<double> pattern(n, n);
+    pattern.resizeNonZeros(Eigen::Index(rows.size()));
+    std::copy(column_start.begin(), column_start.end(), pattern.outerIndexPtr());
+    std::copy(rows.begin(), rows.end(), pattern.innerIndexPtr());
+    std::fill(pattern.valuePtr(), pattern.valuePtr() + rows.size(), 1.);
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
-    Eigen::AMDOrdering<int>()(M, amd);
-    order.resize(std::size_t(M.rows()));
-    for(Eigen::Index i = 0; i < M.rows(); ++i)
-      order[std::size_t(i)] = amd.size() > 0 ? amd.indices()[i] : int(i);
+    Eigen::AMDOrdering<int>()(pattern, amd);
+    order.resize(std::size_t(n));
+    for(int i = 0; i < n; ++i)
+      order[std::size_t(i)] = amd.size() > 0 ? amd.indices()[i] : i;
   }
+};
+
+/*
+  The triangle of the symmetric system that the backend reads (Eigen::Lower or Eigen::Upper), so that the
+  solver stores only that one; 0 (the default, for backends it does not know) means the whole matrix.
+*/
+template <class SolverTraits>
+struct Stored_triangle
+{
+  static constexpr int value = 0;
+};
+
+template <class Scalar, int UpLo, class Index>
+struct Stored_triangle<CGAL::Eigen_solver_traits<
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<Scalar>, UpLo, Eigen::NaturalOrdering<Index>>>>
+{
+  static constexpr int value = UpLo;
+};
+
+template <class Scalar, int UpLo, class Index>
+struct Stored_triangle<CGAL::Eigen_solver_traits<
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<Scalar>, UpLo, Eigen::NaturalOrdering<Index>>>>
+{
+  static constexpr int value = UpLo;
 };
 
 /*
@@ -95,9 +129,9 @@ struct Trailing_schur_complement
   static bool read(SolverTraits&, Eigen::Index, Eigen::MatrixXd&, Eigen::VectorXd&) { return false; }
 };
 
-template <class Index>
+template <int UpLo, class Index>
 struct Trailing_schur_complement<CGAL::Eigen_solver_traits<
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<Index>>>>
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, UpLo, Eigen::NaturalOrdering<Index>>>>
 {
   template <class Traits>
   static bool read(Traits& traits, Eigen::Index k, Eigen::MatrixXd& Lt, Eigen::VectorXd& d)
@@ -118,6 +152,12 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<
 };
 
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+template <>
+struct Stored_triangle<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
+{
+  static constexpr int value = Eigen::Lower;
+};
+
 template <>
 struct Trailing_schur_complement<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
 {
@@ -161,22 +201,23 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<Cholmod_supernodal_fa
 template <>
 struct Fill_reducing_ordering<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
 {
-  static void compute(const Eigen::SparseMatrix<double>& M, std::vector<int>& order)
+  static void compute(int rows_and_columns, const std::vector<int>& column_start, const std::vector<int>& rows,
+                      std::vector<int>& order)
   {
-    const std::size_t n = std::size_t(M.rows());
+    const std::size_t n = std::size_t(rows_and_columns);
     order.resize(n);
     for(std::size_t i = 0; i < n; ++i)
       order[i] = int(i);
-    if(n == 0 || !M.isCompressed())
+    if(n == 0)
       return;
     cholmod_common common;
     cholmod_start(&common);
     common.supernodal = CHOLMOD_SIMPLICIAL; // only the ordering is wanted
     cholmod_sparse pattern;
     pattern.nrow = pattern.ncol = n;
-    pattern.nzmax = std::size_t(M.nonZeros());
-    pattern.p = const_cast<int*>(M.outerIndexPtr());
-    pattern.i = const_cast<int*>(M.innerIndexPtr());
+    pattern.nzmax = rows.size();
+    pattern.p = const_cast<int*>(column_start.data());
+    pattern.i = const_cast<int*>(rows.data());
     pattern.nz = nullptr;
     pattern.x = pattern.z = nullptr;
     pattern.stype = -1; // the lower triangle

@@ -30,10 +30,13 @@ inline Vec3 cross(const Vec3& a, const Vec3& b)
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline Vec3 scaled(const Vec3& a, double s) { return {{a[0] * s, a[1] * s, a[2] * s}}; }
 
-// Angle in (-pi, pi] congruent to a modulo 2 pi.
+// Angle in (-pi, pi] congruent to a modulo 2 pi. Sums of a few wrapped angles take the branch without fmod.
 inline double wrap_angle(double a)
 {
   const double two_pi = 2 * CGAL_PI;
+  if(a > CGAL_PI && a <= 3 * CGAL_PI) return a - two_pi;
+  if(a <= -CGAL_PI && a > -3 * CGAL_PI) return a + two_pi;
+  if(a > -CGAL_PI && a <= CGAL_PI) return a;
   double r = std::fmod(a, two_pi);
   if(r > CGAL_PI) r -= two_pi;
   else if(r <= -CGAL_PI) r += two_pi;
@@ -48,17 +51,18 @@ inline double angle_between(const Vec3& u, const Vec3& w) { return std::atan2(no
   unit direction of its corner halfedge 3f; a tangent direction of f is an angle in that frame.
   Interior edges are numbered in the order of their smaller corner halfedge, which is their "canonical"
   halfedge: x_e = x(canonical halfedge).
+  The constructor computes what the constraint system needs (edges, weights); `compute_angles()` what
+  only the right-hand sides, loop holonomies and fields need, so that it can run beside the factorization.
 */
 struct Mesh_geometry
 {
-  std::vector<double> direction;        // per corner halfedge i: angle of its direction in the frame of its face
-  std::vector<double> angle_sum;        // per vertex
   std::vector<bool> on_boundary;        // per vertex
-
   std::vector<int> edge_of_corner;      // per corner halfedge: interior edge id, -1 on a border edge
   std::vector<int> edge_corner;         // per interior edge: its canonical corner halfedge
   std::vector<double> weight;           // per interior edge: w_e
-  std::vector<double> transport;        // per interior edge: rho of its canonical halfedge
+
+  std::vector<double> angle_sum;        // per vertex (compute_angles)
+  std::vector<double> transport;        // per interior edge: rho of its canonical halfedge (compute_angles)
 
   int number_of_interior_edges() const { return int(edge_corner.size()); }
 
@@ -88,15 +92,64 @@ struct Mesh_geometry
 
   double angle_defect(int v) const { return (on_boundary[v] ? CGAL_PI : 2 * CGAL_PI) - angle_sum[v]; }
 
+  Mesh_geometry() = default;
+
   template <class TriangleMesh>
   Mesh_geometry(const Mesh_arrays<TriangleMesh>& m, Weighting weighting)
   {
-    using MA = Mesh_arrays<TriangleMesh>;
     const int nc = 3 * m.nf;
-    direction.resize(nc);
-    angle_sum.assign(m.nv, 0.);
     on_boundary.assign(m.nv, false);
+    edge_of_corner.assign(nc, -1);
+    int ne = 0;
+    for(int i = 0; i < nc; ++i) {
+      const int o = m.opposite_corner[i];
+      if(o < 0) {
+        on_boundary[m.source_of(i)] = true;
+        on_boundary[m.target_of(i)] = true;
+      } else if(i < o) {
+        edge_of_corner[i] = edge_of_corner[o] = ne++;
+      }
+    }
+    edge_corner.resize(ne);
+    for(int i = 0; i < nc; ++i)
+      if(edge_of_corner[i] >= 0 && i < m.opposite_corner[i])
+        edge_corner[edge_of_corner[i]] = i;
 
+    if(weighting == Weighting::unit) {
+      weight.assign(ne, 1.);
+      return;
+    }
+    // w_e = |e| / |e*| with |e*| the sum over the two faces of |barycenter - midpoint of e|, which is a
+    // third of the median from the opposite corner: accumulated face by face, each face read once
+    weight.assign(ne, 0.);
+    for(int f = 0; f < m.nf; ++f) {
+      const Vec3* p[3] = {&m.points[m.corner_vertex[3 * f]], &m.points[m.corner_vertex[3 * f + 1]],
+                          &m.points[m.corner_vertex[3 * f + 2]]};
+      for(int k = 0; k < 3; ++k) {
+        const int e = edge_of_corner[3 * f + k];
+        if(e < 0)
+          continue;
+        const Vec3& a = *p[k];
+        const Vec3& b = *p[(k + 1) % 3];
+        const Vec3& c = *p[(k + 2) % 3];
+        const Vec3 median = {{(a[0] + b[0]) / 2 - c[0], (a[1] + b[1]) / 2 - c[1], (a[2] + b[2]) / 2 - c[2]}};
+        weight[e] += norm(median) / 3;
+      }
+    }
+    for(int e = 0; e < ne; ++e) {
+      const int i = edge_corner[e];
+      weight[e] = norm(sub(m.points[m.target_of(i)], m.points[m.source_of(i)])) / weight[e];
+    }
+  }
+
+  // Corner angles (their sums per vertex) and the transport angle of every interior edge.
+  template <class TriangleMesh>
+  void compute_angles(const Mesh_arrays<TriangleMesh>& m)
+  {
+    const int nc = 3 * m.nf;
+    // per corner halfedge: the angle of its direction in the frame of its face
+    std::vector<double> direction(nc);
+    angle_sum.assign(m.nv, 0.);
     for(int f = 0; f < m.nf; ++f) {
       const Vec3& p0 = m.points[m.corner_vertex[3 * f]];
       const Vec3& p1 = m.points[m.corner_vertex[3 * f + 1]];
@@ -114,43 +167,12 @@ struct Mesh_geometry
       direction[3 * f + 1] = CGAL_PI - a1;
       direction[3 * f + 2] = a0 - CGAL_PI;
     }
-
-    edge_of_corner.assign(nc, -1);
-    for(int i = 0; i < nc; ++i) {
-      const int o = m.opposite_corner[i];
-      if(o < 0) {
-        on_boundary[m.source_of(i)] = true;
-        on_boundary[m.target_of(i)] = true;
-      } else if(i < o) {
-        edge_of_corner[i] = edge_of_corner[o] = int(edge_corner.size());
-        edge_corner.push_back(i);
-      }
-    }
-
     const int ne = number_of_interior_edges();
-    weight.resize(ne);
     transport.resize(ne);
     for(int e = 0; e < ne; ++e) {
       const int i = edge_corner[e], o = m.opposite_corner[i];
       // the edge direction seen from the other face is that of o reversed
       transport[e] = wrap_angle(direction[o] + CGAL_PI - direction[i]);
-      if(weighting == Weighting::unit) {
-        weight[e] = 1;
-        continue;
-      }
-      const Vec3& a = m.points[m.source_of(i)];
-      const Vec3& b = m.points[m.target_of(i)];
-      const Vec3 mid = scaled({{a[0] + b[0], a[1] + b[1], a[2] + b[2]}}, 0.5);
-      double dual = 0;
-      for(int c : {i, o}) {
-        const int f = MA::face_of(c);
-        Vec3 bary = {{0, 0, 0}};
-        for(int k = 0; k < 3; ++k)
-          for(int d = 0; d < 3; ++d)
-            bary[d] += m.points[m.corner_vertex[3 * f + k]][d] / 3;
-        dual += norm(sub(bary, mid));
-      }
-      weight[e] = norm(sub(b, a)) / dual;
     }
   }
 };

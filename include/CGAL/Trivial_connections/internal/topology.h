@@ -9,8 +9,7 @@
 #include <CGAL/Trivial_connections/Solve_report.h>
 #include <CGAL/Trivial_connections/internal/mesh_arrays.h>
 
-#include <boost/graph/breadth_first_search.hpp>
-#include <boost/graph/compressed_sparse_row_graph.hpp>
+#include <boost/pending/disjoint_sets.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -22,52 +21,15 @@ namespace CGAL {
 namespace Trivial_connections {
 namespace internal {
 
-// Graph on int nodes whose arcs carry an int (a corner halfedge or an edge id).
-// 32-bit vertex and arc indices: half the memory of the defaults, which matters on large meshes.
-using Labelled_graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, int,
-                                                          boost::no_property, std::uint32_t, std::uint32_t>;
-
-// Breadth-first spanning forest of `g`, rooted at the first unvisited node in increasing order.
-// Returns the discovery order; arc_to[v] is the label of the tree arc that reached v (-1 at roots).
-inline std::vector<int> spanning_forest(const Labelled_graph& g, std::vector<int>& arc_to)
-{
-  struct Recorder : boost::default_bfs_visitor
-  {
-    std::vector<int>* order; std::vector<int>* arc_to;
-    void discover_vertex(std::uint32_t v, const Labelled_graph&) const { order->push_back(int(v)); }
-    void tree_edge(boost::graph_traits<Labelled_graph>::edge_descriptor e, const Labelled_graph& g) const
-    {
-      (*arc_to)[boost::target(e, g)] = g[e];
-    }
-  };
-  const std::size_t n = boost::num_vertices(g);
-  std::vector<int> order;
-  order.reserve(n);
-  arc_to.assign(n, -1);
-  std::vector<boost::default_color_type> color(n, boost::white_color);
-  auto color_map = boost::make_iterator_property_map(color.begin(), boost::get(boost::vertex_index, g));
-  Recorder rec;
-  rec.order = &order; rec.arc_to = &arc_to;
-  boost::queue<std::uint32_t> queue;
-  for(std::uint32_t s = 0; s < n; ++s)
-    if(color[s] == boost::white_color)
-      boost::breadth_first_visit(g, s, queue, rec, color_map);
-  return order;
-}
-
-inline Labelled_graph make_labelled_graph(int n, const std::vector<std::pair<int, int>>& arcs,
-                                          const std::vector<int>& labels)
-{
-  return Labelled_graph(boost::edges_are_unsorted_multi_pass, arcs.begin(), arcs.end(), labels.begin(),
-                        std::uint32_t(n));
-}
-
 /*
   Tree-cotree decomposition of the "collapsed" surface, where every boundary loop is shrunk to one node:
   then every component is closed, the nodes are its interior vertices plus one node per boundary loop, and
   a node's dual cycle (its star) is exactly the loop of CONVENTIONS.md (for a boundary loop: the open fans
   of its vertices). A dual spanning tree T* on faces, a primal spanning tree T on nodes using only edges
   outside T*, and the 2g remaining edges, each closing one generator loop in T*.
+  Two steps: the constructor finds the boundary loops and numbers the nodes (enough to order the
+  constraint system, which may then start on another thread); `build_trees()` does the rest and never
+  writes what the constructor computed.
 */
 struct Mesh_topology
 {
@@ -89,9 +51,11 @@ struct Mesh_topology
     std::vector<int> loops;   // indices in `loops`
   };
 
+  // constructor
   int number_of_interior_nodes = 0;
   int number_of_nodes = 0;
   std::vector<int> node_of_vertex;   // -1: isolated vertex
+  // build_trees()
   std::vector<int> component_of_face;
   std::vector<int> component_of_node;
   std::vector<int> face_order;       // breadth-first, components contiguous, each root first
@@ -101,82 +65,129 @@ struct Mesh_topology
   std::vector<Loop> loops;           // per component: its boundary loops, then its generators
   std::vector<Component> components;
 
+  Mesh_topology() = default;
+
   template <class TriangleMesh>
-  Mesh_topology(const Mesh_arrays<TriangleMesh>& m, const std::vector<int>& edge_of_corner,
-                const std::vector<int>& edge_corner)
+  explicit Mesh_topology(const Mesh_arrays<TriangleMesh>& m)
   {
     using MA = Mesh_arrays<TriangleMesh>;
     const int nc = 3 * m.nf;
-    const int ne = int(edge_corner.size());
-
-    // dual spanning forest: components and T*
-    {
-      std::vector<std::pair<int, int>> arcs;
-      std::vector<int> labels;
-      arcs.reserve(2 * std::size_t(ne)); labels.reserve(2 * std::size_t(ne));
-      for(int i = 0; i < nc; ++i)
-        if(m.opposite_corner[i] >= 0) {
-          arcs.emplace_back(MA::face_of(i), MA::face_of(m.opposite_corner[i]));
-          labels.push_back(i);
-        }
-      face_order = spanning_forest(make_labelled_graph(m.nf, arcs, labels), parent_corner);
-    }
-    component_of_face.assign(m.nf, -1);
-    depth.assign(m.nf, 0);
-    in_dual_tree.assign(ne, 0);
-    for(int f : face_order) {
-      const int i = parent_corner[f];
-      if(i < 0) {
-        components.emplace_back();
-        components.back().root_face = f;
-        component_of_face[f] = int(components.size()) - 1;
-      } else {
-        const int parent = MA::face_of(i);
-        component_of_face[f] = component_of_face[parent];
-        depth[f] = depth[parent] + 1;
-        in_dual_tree[edge_of_corner[i]] = 1;
-      }
-      ++components[component_of_face[f]].faces;
-    }
-
-    // boundary loops, each collapsed to one node
     node_of_vertex.assign(m.nv, -1);
-    std::vector<Loop> boundary;
-    {
-      std::vector<char> visited(nc, 0);
-      for(int start = 0; start < nc; ++start) {
-        if(m.opposite_corner[start] >= 0 || visited[start])
-          continue;
-        Loop loop{Loop_kind::boundary, component_of_face[MA::face_of(start)], -1, {}};
-        std::vector<int> loop_vertices;
-        int cur = start;
-        do {
-          visited[cur] = 1;
-          loop_vertices.push_back(m.source_of(cur));
-          // the open fan at source(cur), counter-clockwise, starting at the face of cur
-          int j = MA::prev_corner(cur);
-          while(m.opposite_corner[j] >= 0) {
-            loop.crossings.push_back(j);
-            j = MA::prev_corner(m.opposite_corner[j]);
-          }
-          cur = j;
-        } while(cur != start);
-        boundary.push_back(std::move(loop));
-        for(int v : loop_vertices)
-          node_of_vertex[v] = -2 - int(boundary.size() - 1); // provisional: boundary loop id
-      }
+    std::vector<char> visited(nc, 0);
+    for(int start = 0; start < nc; ++start) {
+      if(m.opposite_corner[start] >= 0 || visited[start])
+        continue;
+      Loop loop{Loop_kind::boundary, -1, -1, {}};
+      int cur = start;
+      do {
+        visited[cur] = 1;
+        node_of_vertex[m.source_of(cur)] = -2 - int(m_boundary.size()); // provisional: boundary loop id
+        // the open fan at source(cur), counter-clockwise, starting at the face of cur
+        int j = MA::prev_corner(cur);
+        while(m.opposite_corner[j] >= 0) {
+          loop.crossings.push_back(j);
+          j = MA::prev_corner(m.opposite_corner[j]);
+        }
+        cur = j;
+      } while(cur != start);
+      m_boundary.push_back(std::move(loop));
+      m_boundary_start.push_back(start);
     }
     // nodes: interior vertices in index order, then boundary loops
     for(int v = 0; v < m.nv; ++v)
       if(node_of_vertex[v] == -1 && m.faces_at_vertex[v] > 0)
         node_of_vertex[v] = number_of_interior_nodes++;
-    number_of_nodes = number_of_interior_nodes + int(boundary.size());
+    number_of_nodes = number_of_interior_nodes + int(m_boundary.size());
     for(int v = 0; v < m.nv; ++v)
       if(node_of_vertex[v] <= -2)
         node_of_vertex[v] = number_of_interior_nodes + (-2 - node_of_vertex[v]);
-    for(std::size_t b = 0; b < boundary.size(); ++b)
-      boundary[b].node = number_of_interior_nodes + int(b);
+    for(std::size_t b = 0; b < m_boundary.size(); ++b)
+      m_boundary[b].node = number_of_interior_nodes + int(b);
+  }
 
+  // The lower triangle (row >= column, sorted, diagonal included) of the pattern of the node adjacency:
+  // two nodes are adjacent when an interior edge joins them. It is the pattern of the node rows of the
+  // constraint system.
+  template <class TriangleMesh>
+  void node_adjacency(const Mesh_arrays<TriangleMesh>& m, std::vector<int>& column_start,
+                      std::vector<int>& rows) const
+  {
+    const int nc = 3 * m.nf;
+    auto for_each_arc = [&](auto&& visit) {
+      for(int i = 0; i < nc; ++i)
+        if(i < m.opposite_corner[i]) {
+          const int a = node_of_vertex[m.source_of(i)], b = node_of_vertex[m.target_of(i)];
+          if(a != b)
+            visit((std::min)(a, b), (std::max)(a, b));
+        }
+    };
+    std::vector<int> start(std::size_t(number_of_nodes) + 1, 0);
+    for_each_arc([&](int c, int) { ++start[std::size_t(c) + 1]; });
+    for(int c = 0; c < number_of_nodes; ++c)
+      start[c + 1] += start[c];
+    std::vector<int> entries(std::size_t(start[number_of_nodes]));
+    {
+      std::vector<int> next(start.begin(), start.end() - 1);
+      for_each_arc([&](int c, int r) { entries[next[c]++] = r; });
+    }
+    // sorted and without the repeats of boundary nodes
+    column_start.assign(std::size_t(number_of_nodes) + 1, 0);
+    rows.clear();
+    rows.reserve(entries.size() + std::size_t(number_of_nodes));
+    for(int c = 0; c < number_of_nodes; ++c) {
+      std::sort(entries.begin() + start[c], entries.begin() + start[c + 1]);
+      rows.push_back(c);
+      for(int p = start[c]; p < start[c + 1]; ++p)
+        if(p == start[c] || entries[p] != entries[p - 1])
+          rows.push_back(entries[p]);
+      column_start[c + 1] = int(rows.size());
+    }
+  }
+
+  template <class TriangleMesh>
+  void build_trees(const Mesh_arrays<TriangleMesh>& m, const std::vector<int>& edge_of_corner,
+                   const std::vector<int>& edge_corner)
+  {
+    using MA = Mesh_arrays<TriangleMesh>;
+    const int nc = 3 * m.nf;
+    const int ne = int(edge_corner.size());
+
+    // dual spanning forest T* by breadth-first search over the faces; the corner arrays are the graph
+    face_order.clear();
+    face_order.reserve(m.nf);
+    parent_corner.assign(m.nf, -1);
+    component_of_face.assign(m.nf, -1);
+    depth.assign(m.nf, 0);
+    in_dual_tree.assign(ne, 0);
+    for(int root = 0; root < m.nf; ++root) {
+      if(component_of_face[root] >= 0)
+        continue;
+      const int c = int(components.size());
+      components.emplace_back();
+      components.back().root_face = root;
+      component_of_face[root] = c;
+      const std::size_t first = face_order.size();
+      face_order.push_back(root);
+      std::size_t head = first;
+      for(; head < face_order.size(); ++head) {
+        const int f = face_order[head];
+        for(int i = 3 * f; i < 3 * f + 3; ++i) {
+          const int o = m.opposite_corner[i];
+          if(o < 0 || component_of_face[MA::face_of(o)] >= 0)
+            continue;
+          const int g = MA::face_of(o);
+          component_of_face[g] = c;
+          parent_corner[g] = i;
+          depth[g] = depth[f] + 1;
+          in_dual_tree[edge_of_corner[i]] = 1;
+          face_order.push_back(g);
+        }
+      }
+      components[c].faces = int(face_order.size() - first);
+    }
+
+    for(std::size_t b = 0; b < m_boundary.size(); ++b)
+      m_boundary[b].component = component_of_face[MA::face_of(m_boundary_start[b])];
     component_of_node.assign(number_of_nodes, -1);
     for(int i = 0; i < nc; ++i) {
       const int c = component_of_face[MA::face_of(i)];
@@ -187,28 +198,28 @@ struct Mesh_topology
     for(int v = 0; v < m.nv; ++v)
       if(m.faces_at_vertex[v] > 0)
         ++components[component_of_node[node_of_vertex[v]]].vertices;
-    for(const Loop& b : boundary)
+    for(const Loop& b : m_boundary)
       ++components[b.component].boundary_loops;
 
-    // primal spanning forest on nodes, with the edges outside T*
+    // primal spanning forest T on the nodes with the edges outside T*: any spanning forest will do, and
+    // union-find needs no graph
+    in_primal_tree.assign(ne, 0);
     {
-      std::vector<std::pair<int, int>> arcs;
-      std::vector<int> labels;
+      std::vector<int> rank(std::size_t(number_of_nodes), 0);
+      std::vector<int> parent(std::size_t(number_of_nodes), 0);
+      boost::disjoint_sets<int*, int*> sets(rank.data(), parent.data());
+      for(int v = 0; v < number_of_nodes; ++v)
+        sets.make_set(v);
       for(int e = 0; e < ne; ++e) {
         if(in_dual_tree[e])
           continue;
-        const int a = node_of_vertex[m.source_of(edge_corner[e])], b = node_of_vertex[m.target_of(edge_corner[e])];
-        if(a == b)
-          continue;
-        arcs.emplace_back(a, b); labels.push_back(e);
-        arcs.emplace_back(b, a); labels.push_back(e);
+        const int a = sets.find_set(node_of_vertex[m.source_of(edge_corner[e])]);
+        const int b = sets.find_set(node_of_vertex[m.target_of(edge_corner[e])]);
+        if(a != b) {
+          sets.link(a, b);
+          in_primal_tree[e] = 1;
+        }
       }
-      std::vector<int> arc_to;
-      spanning_forest(make_labelled_graph(number_of_nodes, arcs, labels), arc_to);
-      in_primal_tree.assign(ne, 0);
-      for(int label : arc_to)
-        if(label >= 0)
-          in_primal_tree[label] = 1;
     }
 
     // generators: one per edge in neither tree
@@ -235,8 +246,7 @@ struct Mesh_topology
       generators.push_back(std::move(loop));
     }
 
-    for(Loop& b : boundary)
-      loops.push_back(std::move(b));
+    loops = std::move(m_boundary); // not read by node_adjacency(), which may be running meanwhile
     for(Loop& g : generators)
       loops.push_back(std::move(g));
     std::stable_sort(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) {
@@ -267,6 +277,9 @@ struct Mesh_topology
     }
   }
 
+private:
+  std::vector<Loop> m_boundary; // boundary loops in the order found; `component` set by build_trees()
+  std::vector<int> m_boundary_start; // a border corner halfedge of each
 };
 
 } // namespace internal

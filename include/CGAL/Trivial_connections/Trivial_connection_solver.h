@@ -280,49 +280,62 @@ public:
     const double unit = 2 * CGAL_PI / n;
     notify(progress, Phase::solve, 0);
     Eigen::VectorXd b = right_hand_side(k, periods, n);
-    Eigen::VectorXd lambda = solve_system(b);
-    double rounding_energy = b.dot(lambda);
-
-    if(!user_periods && !m_free_rows.empty()) {
-      notify(progress, Phase::loop_integers, 0);
-      bool proven = true;
+    Eigen::VectorXd lambda;
+    double rounding_energy = 0;
+    const bool choose_periods = !user_periods && !m_free_rows.empty();
+    if(choose_periods && m_loop_rows_in_factor) {
+      // One forward and one backward substitution in all. The free loop rows are last, so the forward
+      // pass z = L^-1 P b gives their multipliers from the dense trailing block alone, and new loop
+      // integers change b only there, hence only the trailing part of z.
+      using Substitutions = internal::Factor_substitutions<Solver_traits>;
+      Eigen::VectorXd z = m_permutation * b;
+      Substitutions::forward(m_solver, z);
+      Eigen::VectorXd w = z;
+      Substitutions::scale(m_solver, w);
+      rounding_energy = z.dot(w); // b^T M^-1 b
+      const Eigen::Index first = m_A.rows() - Eigen::Index(m_free_rows.size());
+      std::vector<Eigen::VectorXd> loop_lambda(m_components.size());
       for(std::size_t c = 0; c < m_components.size(); ++c) {
-        const std::vector<int>& free = m_free_loops[c];
-        if(free.empty())
-          continue;
-        const Eigen::Index kc = Eigen::Index(free.size());
-        // energy(m) = b.lambda + 2 unit m.lambda_F + unit^2 m^T Ginv m with Ginv = (M^-1)_FF = S^-1
         const Loop_metric& metric = m_loop_metric[c];
-        Eigen::VectorXd lf(kc);
+        const Eigen::Index kc = Eigen::Index(metric.block.size());
+        Eigen::VectorXd wc(kc);
         for(Eigen::Index a = 0; a < kc; ++a)
-          lf[a] = lambda[m_row_of_loop[free[a]]];
-        const Eigen::VectorXd center =
-          -(metric.schur_factor * (metric.schur_diagonal.asDiagonal() * (metric.schur_factor.transpose() * lf))) / unit;
-        const Eigen::MatrixXd G = unit * unit * metric.inverse;
-        std::vector<std::int64_t> rounded(kc), own(kc);
-        for(Eigen::Index a = 0; a < kc; ++a) {
-          rounded[a] = std::int64_t(std::llround(center[a]));
-          // each loop on its own: the integer making its own connection sum smallest
-          own[a] = std::int64_t(std::llround(m_loop_holonomy[free[a]] / unit));
-        }
-        const internal::Closest_vector_result best =
-          internal::closest_vector(G, unit * metric.inverse_factor, center, {rounded, own},
-                                   // about the work of a few back-substitutions, so that a re-solve stays cheap
-                                   (std::max)(2e5, 10. * double(m_A.rows())));
-        proven = proven && best.proven;
-        auto energy_change = [&](const std::vector<std::int64_t>& m) {
-          Eigen::VectorXd mv(kc);
-          for(Eigen::Index a = 0; a < kc; ++a) mv[a] = double(m[a]);
-          return 2 * unit * mv.dot(lf) + mv.dot(G * mv);
-        };
-        rounding_energy += energy_change(rounded);
-        for(Eigen::Index a = 0; a < kc; ++a)
-          periods[free[a]] = best.m[a];
+          wc[a] = w[first + metric.block[a]];
+        loop_lambda[c] = metric.schur_factor.template triangularView<Eigen::Lower>().transpose().solve(wc);
       }
-      report.integers_proven_optimal = proven;
+      notify(progress, Phase::loop_integers, 0);
+      rounding_energy += choose_loop_periods(loop_lambda, unit, periods, report);
       notify(progress, Phase::loop_integers, 1);
+      for(std::size_t c = 0; c < m_components.size(); ++c) {
+        const Loop_metric& metric = m_loop_metric[c];
+        const Eigen::Index kc = Eigen::Index(metric.block.size());
+        Eigen::VectorXd change(kc);
+        for(Eigen::Index a = 0; a < kc; ++a)
+          change[a] = unit * double(periods[m_free_loops[c][a]]);
+        metric.schur_factor.template triangularView<Eigen::Lower>().solveInPlace(change);
+        for(Eigen::Index a = 0; a < kc; ++a)
+          z[first + metric.block[a]] += change[a];
+      }
+      Substitutions::scale(m_solver, z);
+      Substitutions::backward(m_solver, z);
       b = right_hand_side(k, periods, n);
+      lambda = checked_solution(m_permutation * b, std::move(z));
+    } else {
       lambda = solve_system(b);
+      rounding_energy = b.dot(lambda);
+      if(choose_periods) {
+        std::vector<Eigen::VectorXd> loop_lambda(m_components.size());
+        for(std::size_t c = 0; c < m_components.size(); ++c) {
+          loop_lambda[c].resize(Eigen::Index(m_free_loops[c].size()));
+          for(std::size_t a = 0; a < m_free_loops[c].size(); ++a)
+            loop_lambda[c][Eigen::Index(a)] = lambda[m_row_of_loop[m_free_loops[c][a]]];
+        }
+        notify(progress, Phase::loop_integers, 0);
+        rounding_energy += choose_loop_periods(loop_lambda, unit, periods, report);
+        notify(progress, Phase::loop_integers, 1);
+        b = right_hand_side(k, periods, n);
+        lambda = solve_system(b);
+      }
     }
 
     // x = W^-1 A^T lambda
@@ -696,15 +709,22 @@ private:
     if(b.size() == 0)
       return b;
     typename Solver_traits::Vector rhs(b.size()), sol(b.size());
-    const Eigen::VectorXd ordered_b = m_permutation * b;
+    Eigen::VectorXd ordered_b = m_permutation * b;
     rhs = ordered_b;
     if(!m_solver.linear_solver(rhs, sol))
       throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
-    Eigen::VectorXd lambda = sol;
-    const double scale = 1 + ordered_b.lpNorm<Eigen::Infinity>();
+    return checked_solution(ordered_b, Eigen::VectorXd(sol));
+  }
+
+  // `lambda` solves M lambda = `ordered_b` (both in the order of m_system): refined once when the residual
+  // is not already at rounding level, checked, and returned in the order of the rows.
+  Eigen::VectorXd checked_solution(const Eigen::VectorXd& ordered_b, Eigen::VectorXd lambda)
+  {
+    const double scale = 1 + ordered_b.template lpNorm<Eigen::Infinity>();
     Eigen::VectorXd residual = ordered_b - system_times(lambda);
-    double res = residual.lpNorm<Eigen::Infinity>();
+    double res = residual.template lpNorm<Eigen::Infinity>();
     if(!(res <= 1e-13 * scale)) {
+      typename Solver_traits::Vector rhs(lambda.size()), sol(lambda.size());
       rhs = residual;
       if(!m_solver.linear_solver(rhs, sol))
         throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
@@ -730,15 +750,17 @@ private:
     Eigen::MatrixXd Lt;
     Eigen::VectorXd d;
     const bool from_factor = internal::Trailing_schur_complement<Solver_traits>::read(m_solver, k, Lt, d);
+    m_loop_rows_in_factor = from_factor && internal::Factor_substitutions<Solver_traits>::available(m_solver);
     for(std::size_t c = 0; c < m_components.size(); ++c) {
       const std::vector<int>& free = m_free_loops[c];
       const Eigen::Index kc = Eigen::Index(free.size());
       if(kc == 0)
         continue;
-      std::vector<Eigen::Index> block(free.size()); // increasing: the loop rows are placed in this order
+      Loop_metric& metric = m_loop_metric[c];
+      std::vector<Eigen::Index>& block = metric.block; // increasing: the loop rows are placed in this order
+      block.resize(free.size());
       for(Eigen::Index a = 0; a < kc; ++a)
         block[a] = m_permutation.indices()[m_row_of_loop[free[a]]] - first;
-      Loop_metric& metric = m_loop_metric[c];
       if(from_factor) {
         // M is block diagonal by component, so is the trailing factor: its block is this component's
         metric.schur_factor.resize(kc, kc);
@@ -859,6 +881,47 @@ private:
     return given;
   }
 
+  // The integers of the free loops minimising the energy, per component, written into `periods` (0 there on
+  // entry); `loop_lambda[c]`: the multipliers of component c's free loop rows for the integers 0. Returns the
+  // energy change of rounding the continuous optimum (for Solve_report::rounding_energy).
+  double choose_loop_periods(const std::vector<Eigen::VectorXd>& loop_lambda, double unit,
+                             std::vector<std::int64_t>& periods, Solve_report& report) const
+  {
+    bool proven = true;
+    double rounding_change = 0;
+    for(std::size_t c = 0; c < m_components.size(); ++c) {
+      const std::vector<int>& free = m_free_loops[c];
+      if(free.empty())
+        continue;
+      const Eigen::Index kc = Eigen::Index(free.size());
+      // energy(m) = b.lambda + 2 unit m.lambda_F + unit^2 m^T Ginv m with Ginv = (M^-1)_FF = S^-1; the
+      // minimiser of the quadratic (m - center)^T Ginv (m - center) does not depend on unit
+      const Loop_metric& metric = m_loop_metric[c];
+      const Eigen::VectorXd& lf = loop_lambda[c];
+      const Eigen::VectorXd center =
+        -(metric.schur_factor * (metric.schur_diagonal.asDiagonal() * (metric.schur_factor.transpose() * lf))) / unit;
+      std::vector<std::int64_t> rounded(kc), own(kc);
+      for(Eigen::Index a = 0; a < kc; ++a) {
+        rounded[a] = std::int64_t(std::llround(center[a]));
+        // each loop on its own: the integer making its own connection sum smallest
+        own[a] = std::int64_t(std::llround(m_loop_holonomy[free[a]] / unit));
+      }
+      const internal::Closest_vector_result best =
+        internal::closest_vector(metric.inverse, metric.inverse_factor, center, {rounded, own},
+                                 // about the work of a few back-substitutions, so that a re-solve stays cheap
+                                 (std::max)(2e5, 10. * double(m_A.rows())));
+      proven = proven && best.proven;
+      Eigen::VectorXd mv(kc);
+      for(Eigen::Index a = 0; a < kc; ++a)
+        mv[a] = double(rounded[a]);
+      rounding_change += 2 * unit * mv.dot(lf) + unit * unit * mv.dot(metric.inverse * mv);
+      for(Eigen::Index a = 0; a < kc; ++a)
+        periods[free[a]] = best.m[a];
+    }
+    report.integers_proven_optimal = proven;
+    return rounding_change;
+  }
+
   Eigen::VectorXd right_hand_side(const std::vector<std::int64_t>& k, const std::vector<std::int64_t>& periods,
                                   int n) const
   {
@@ -965,8 +1028,10 @@ private:
     Eigen::VectorXd schur_diagonal;
     Eigen::MatrixXd inverse;        // S^-1 = (M^-1) on the free loop rows of one component
     Eigen::MatrixXd inverse_factor; // R upper triangular with R^T R = S^-1
+    std::vector<Eigen::Index> block; // per free loop of the component: its position after the first loop row
   };
   std::vector<Loop_metric> m_loop_metric;
+  bool m_loop_rows_in_factor = false; // the metric was read from the factor, whose substitutions are available
 };
 
 } // namespace Trivial_connections

@@ -6,6 +6,7 @@
 #ifndef CGAL_TRIVIAL_CONNECTIONS_SOLVER_TRAITS_H
 #define CGAL_TRIVIAL_CONNECTIONS_SOLVER_TRAITS_H
 
+#include <CGAL/assertions.h>
 #include <CGAL/Eigen_solver_traits.h>
 
 #include <Eigen/Dense>
@@ -16,6 +17,7 @@
 #endif
 
 #include <algorithm>
+#include <new>
 #include <vector>
 
 namespace CGAL {
@@ -151,6 +153,50 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<
   }
 };
 
+/*
+  The substitutions of a factorization M = L D L^T in the order given to the backend (no permutation of its
+  own): forward (v <- L^-1 v), scale (v <- D^-1 v), backward (v <- L^-T v). With the loop rows last, a solve
+  that must choose the loop integers first needs one forward and one backward substitution instead of two
+  solves. `available` is false for backends that do not expose them.
+*/
+template <class SolverTraits>
+struct Factor_substitutions
+{
+  static bool available(const SolverTraits&) { return false; }
+  static void forward(SolverTraits&, Eigen::VectorXd&) { CGAL_error(); }
+  static void scale(SolverTraits&, Eigen::VectorXd&) { CGAL_error(); }
+  static void backward(SolverTraits&, Eigen::VectorXd&) { CGAL_error(); }
+};
+
+template <int UpLo, class Index>
+struct Factor_substitutions<CGAL::Eigen_solver_traits<
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, UpLo, Eigen::NaturalOrdering<Index>>>>
+{
+  // the steps of SimplicialCholeskyBase::_solve_impl without its permutations (empty with the natural ordering)
+  template <class Traits>
+  static bool available(Traits& traits)
+  {
+    return traits.solver().info() == Eigen::Success && traits.solver().permutationP().size() == 0;
+  }
+  template <class Traits>
+  static void forward(Traits& traits, Eigen::VectorXd& v)
+  {
+    if(traits.solver().matrixL().nestedExpression().nonZeros() > 0)
+      traits.solver().matrixL().solveInPlace(v);
+  }
+  template <class Traits>
+  static void scale(Traits& traits, Eigen::VectorXd& v)
+  {
+    v = v.cwiseQuotient(traits.solver().vectorD());
+  }
+  template <class Traits>
+  static void backward(Traits& traits, Eigen::VectorXd& v)
+  {
+    if(traits.solver().matrixL().nestedExpression().nonZeros() > 0)
+      traits.solver().matrixU().solveInPlace(v);
+  }
+};
+
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
 template <>
 struct Stored_triangle<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
@@ -194,6 +240,50 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<Cholmod_supernodal_fa
     }
     d = Eigen::VectorXd::Ones(k);
     return true;
+  }
+};
+
+template <>
+struct Factor_substitutions<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
+{
+  template <class Traits>
+  static bool available(Traits& traits)
+  {
+    const cholmod_factor* F = traits.solver().factor();
+    if(F == nullptr || !F->is_ll || F->itype != CHOLMOD_INT || F->xtype != CHOLMOD_REAL)
+      return false;
+    const int* perm = static_cast<const int*>(F->Perm);
+    if(perm != nullptr)
+      for(std::size_t i = 0; i < F->n; ++i)
+        if(perm[i] != int(i))
+          return false;
+    return true;
+  }
+  template <class Traits>
+  static void forward(Traits& traits, Eigen::VectorXd& v) { solve(traits, CHOLMOD_L, v); }
+  template <class Traits>
+  static void scale(Traits&, Eigen::VectorXd&) {} // L L^T: D = I
+  template <class Traits>
+  static void backward(Traits& traits, Eigen::VectorXd& v) { solve(traits, CHOLMOD_Lt, v); }
+
+private:
+  template <class Traits>
+  static void solve(Traits& traits, int system, Eigen::VectorXd& v)
+  {
+    Cholmod_supernodal_factorization& solver = traits.solver();
+    cholmod_dense b;
+    b.nrow = std::size_t(v.size());
+    b.ncol = 1;
+    b.nzmax = b.d = b.nrow;
+    b.x = v.data();
+    b.z = nullptr;
+    b.xtype = CHOLMOD_REAL;
+    b.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense* x = cholmod_solve(system, const_cast<cholmod_factor*>(solver.factor()), &b, &solver.cholmod());
+    if(x == nullptr)
+      throw std::bad_alloc();
+    std::copy(static_cast<const double*>(x->x), static_cast<const double*>(x->x) + v.size(), v.data());
+    cholmod_free_dense(&x, &solver.cholmod());
   }
 };
 

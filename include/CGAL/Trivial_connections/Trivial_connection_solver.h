@@ -171,8 +171,8 @@ public:
     notify(Phase::assembly, 0);
     build_constraints();
     {
-      const Scaled_rows rows_of_A = scaled_rows_of_constraints();
-      const std::vector<int> order = node_order.get();
+      Scaled_rows rows_of_A = scaled_rows_of_constraints();
+      std::vector<int> order = node_order.get();
       std::future<int> angles = internal::concurrently([this] {
         m_geometry.compute_angles(m_mesh);
         return 0;
@@ -656,8 +656,9 @@ private:
 
   // M = A W^-1 A^T with its node rows in the backend's fill-reducing order (`node_order`, AMD for Eigen)
   // and the free loop rows last, so that the metric of the loop integers is a dense block of the factor
-  // (see internal::Trailing_schur_complement). `rows_of_A`: from scaled_rows_of_constraints().
-  void factor(const Scaled_rows& rows_of_A, const std::vector<int>& node_order)
+  // (see internal::Trailing_schur_complement). `rows_of_A`: from scaled_rows_of_constraints(). Both
+  // arguments are released before the factorization, whose memory is the peak.
+  void factor(Scaled_rows& rows_of_A, std::vector<int>& node_order)
   {
     const Eigen::Index rows = m_A.rows();
     if(rows == 0) {
@@ -678,6 +679,8 @@ private:
       m_permutation.indices()[r] = position++;
     CGAL_assertion(position == rows);
     Sparse ordered = ordered_system(rows_of_A);
+    rows_of_A = Scaled_rows();
+    std::vector<int>().swap(node_order);
     m_system.reset(new typename Solver_traits::Matrix(Sparse()));
     m_system->eigen_object().swap(ordered); // no copy
     notify(Phase::assembly, 1);

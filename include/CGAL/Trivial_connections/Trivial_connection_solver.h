@@ -171,15 +171,17 @@ public:
     notify(Phase::assembly, 0);
     build_constraints();
     {
-      Scaled_rows rows_of_A = scaled_rows_of_constraints();
+      Sparse M = system_in_row_order();
       std::vector<int> order = node_order.get();
-      std::future<int> angles = internal::concurrently([this] {
-        m_geometry.compute_angles(m_mesh);
-        return 0;
-      });
-      factor(rows_of_A, order); // ends the assembly phase
-      angles.get();
+      assemble_system(M, order); // ends the assembly phase
     }
+    // beside the factorization rather than the assembly, which is more sensitive to a shared cache
+    std::future<int> angles = internal::concurrently([this] {
+      m_geometry.compute_angles(m_mesh);
+      return 0;
+    });
+    factor();
+    angles.get();
     compute_loop_holonomies();
     in_phase(Phase::loop_metric, [&] { compute_loop_metric(); return 0; });
     m_progress = nullptr; // the callback may not outlive the constructor call
@@ -539,6 +541,18 @@ private:
       // x_e = x(i) is crossed into target(i)'s star and, reversed, into source(i)'s star
       const int i = m_geometry.edge_corner[e];
       const int a = t.node_of_vertex[m_mesh.source_of(i)], b = t.node_of_vertex[m_mesh.target_of(i)];
+      if(crossing_start[e] == crossing_start[e + 1]) {
+        // no generator crosses e (most edges): at most two entries, in increasing row order
+        const int ra = a != b ? m_row_of_node[a] : -1, rb = a != b ? m_row_of_node[b] : -1;
+        const int first_row = (std::min)(ra, rb), second_row = (std::max)(ra, rb);
+        for(int row : {first_row, second_row})
+          if(row >= 0) {
+            inner[nnz] = row;
+            value[nnz] = row == rb ? 1. : -1.;
+            ++nnz;
+          }
+        continue;
+      }
       if(a != b) {
         if(m_row_of_node[b] >= 0) column.emplace_back(m_row_of_node[b], 1.);
         if(m_row_of_node[a] >= 0) column.emplace_back(m_row_of_node[a], -1.);
@@ -565,81 +579,59 @@ private:
       m_inverse_weight[e] = 1 / m_geometry.weight[e];
   }
 
-  // The rows of A (its transpose, as compressed rows) with the entries scaled by W^-1, so that M = A W^-1 A^T
-  // can be formed row by row once the order of the rows is known.
-  struct Scaled_rows
-  {
-    std::vector<int> start, edge;
-    std::vector<double> value;
-  };
-
-  Scaled_rows scaled_rows_of_constraints() const
+  // M = A W^-1 A^T, both triangles, in the order of the rows (where mesh files usually have locality),
+  // column by column with Gustavson's product on the rows of A: no triplets, no transposed copies. It
+  // needs no fill-reducing order, so it is formed while that order is computed on the other thread.
+  Sparse system_in_row_order() const
   {
     const int rows = int(m_A.rows()), ne = int(m_A.cols());
     const int* a_outer = m_A.outerIndexPtr();
     const int* a_inner = m_A.innerIndexPtr();
     const double* a_value = m_A.valuePtr();
-    Scaled_rows t;
-    t.start.assign(std::size_t(rows) + 1, 0);
+    // A^T as compressed rows, scaled by W^-1
+    std::vector<int> row_start(std::size_t(rows) + 1, 0);
     for(int p = 0; p < a_outer[ne]; ++p)
-      ++t.start[std::size_t(a_inner[p]) + 1];
+      ++row_start[std::size_t(a_inner[p]) + 1];
     for(int r = 0; r < rows; ++r)
-      t.start[r + 1] += t.start[r];
-    t.edge.resize(std::size_t(a_outer[ne]));
-    t.value.resize(std::size_t(a_outer[ne]));
-    std::vector<int> next(t.start.begin(), t.start.end() - 1);
-    for(int e = 0; e < ne; ++e)
-      for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
-        const int q = next[a_inner[p]]++;
-        t.edge[q] = e;
-        t.value[q] = a_value[p] * m_inverse_weight[e];
-      }
-    return t;
-  }
-
-  // The triangle that the backend reads (or the whole matrix) of M = A W^-1 A^T in the order m_permutation,
-  // column by column (Gustavson's product on the rows of A), sorted: no triplets, no permuted or transposed
-  // copies, which matters on large meshes where fresh memory is expensive.
-  Sparse ordered_system(const Scaled_rows& t) const
-  {
-    const int rows = int(m_A.rows()), ne = int(m_A.cols());
-    const int* a_outer = m_A.outerIndexPtr();
-    const int* a_inner = m_A.innerIndexPtr();
-    const double* a_value = m_A.valuePtr();
-    const int* position = m_permutation.indices().data();
-    std::vector<int> row_at(std::size_t(rows), 0);
-    for(int r = 0; r < rows; ++r)
-      row_at[position[r]] = r;
+      row_start[r + 1] += row_start[r];
+    std::vector<int> row_edge(static_cast<std::size_t>(a_outer[ne]));
+    std::vector<double> row_value(static_cast<std::size_t>(a_outer[ne]));
+    {
+      std::vector<int> next(row_start.begin(), row_start.end() - 1);
+      for(int e = 0; e < ne; ++e)
+        for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
+          const int q = next[a_inner[p]]++;
+          row_edge[q] = e;
+          row_value[q] = a_value[p] * m_inverse_weight[e];
+        }
+    }
     // an upper bound of the number of entries: pages that are reserved but never written cost nothing
     std::size_t bound = std::size_t(rows);
     for(int e = 0; e < ne; ++e) {
       const std::size_t k = std::size_t(a_outer[e + 1] - a_outer[e]);
-      bound += stored_triangle == 0 ? k * (k - 1) : k * (k - 1) / 2;
+      bound += k * (k - 1);
     }
-    Sparse S(rows, rows);
-    S.resizeNonZeros(Eigen::Index(bound));
-    int* outer = S.outerIndexPtr();
-    int* inner = S.innerIndexPtr();
-    double* value = S.valuePtr();
+    Sparse M(rows, rows);
+    M.resizeNonZeros(Eigen::Index(bound));
+    int* outer = M.outerIndexPtr();
+    int* inner = M.innerIndexPtr();
+    double* value = M.valuePtr();
     std::vector<int> pattern, mark(std::size_t(rows), -1);
     std::vector<double> sum(std::size_t(rows), 0.);
     int nnz = 0;
     for(int c = 0; c < rows; ++c) {
       outer[c] = nnz;
       pattern.clear();
-      const int row = row_at[c];
-      for(int q = t.start[row]; q < t.start[row + 1]; ++q) {
-        const int e = t.edge[q];
+      for(int q = row_start[c]; q < row_start[c + 1]; ++q) {
+        const int e = row_edge[q];
         for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
-          const int r = position[a_inner[p]];
-          if((stored_triangle == Eigen::Lower && r < c) || (stored_triangle == Eigen::Upper && r > c))
-            continue;
+          const int r = a_inner[p];
           if(mark[r] != c) {
             mark[r] = c;
             sum[r] = 0;
             pattern.push_back(r);
           }
-          sum[r] += t.value[q] * a_value[p];
+          sum[r] += row_value[q] * a_value[p];
         }
       }
       std::sort(pattern.begin(), pattern.end());
@@ -650,15 +642,55 @@ private:
       }
     }
     outer[rows] = nnz;
+    M.resizeNonZeros(nnz);
+    return M;
+  }
+
+  // The triangle that the backend reads (or the whole matrix) of `M` (from system_in_row_order()) in the
+  // order m_permutation, columns sorted (short: insertion sort).
+  Sparse ordered_system(const Sparse& M) const
+  {
+    const int rows = int(M.rows());
+    const int* position = m_permutation.indices().data();
+    std::vector<int> row_at(std::size_t(rows), 0);
+    for(int r = 0; r < rows; ++r)
+      row_at[position[r]] = r;
+    Sparse S(rows, rows);
+    S.resizeNonZeros(stored_triangle == 0 ? M.nonZeros() : (M.nonZeros() + rows) / 2);
+    int* outer = S.outerIndexPtr();
+    int* inner = S.innerIndexPtr();
+    double* value = S.valuePtr();
+    const int* m_outer = M.outerIndexPtr();
+    const int* m_inner = M.innerIndexPtr();
+    const double* m_value = M.valuePtr();
+    int nnz = 0;
+    for(int c = 0; c < rows; ++c) {
+      outer[c] = nnz;
+      const int begin = nnz;
+      const int row = row_at[c];
+      for(int p = m_outer[row]; p < m_outer[row + 1]; ++p) {
+        const int r = position[m_inner[p]];
+        if((stored_triangle == Eigen::Lower && r < c) || (stored_triangle == Eigen::Upper && r > c))
+          continue;
+        int q = nnz++;
+        for(; q > begin && inner[q - 1] > r; --q) {
+          inner[q] = inner[q - 1];
+          value[q] = value[q - 1];
+        }
+        inner[q] = r;
+        value[q] = m_value[p];
+      }
+    }
+    outer[rows] = nnz;
     S.resizeNonZeros(nnz);
     return S;
   }
 
   // M = A W^-1 A^T with its node rows in the backend's fill-reducing order (`node_order`, AMD for Eigen)
   // and the free loop rows last, so that the metric of the loop integers is a dense block of the factor
-  // (see internal::Trailing_schur_complement). `rows_of_A`: from scaled_rows_of_constraints(). Both
-  // arguments are released before the factorization, whose memory is the peak.
-  void factor(Scaled_rows& rows_of_A, std::vector<int>& node_order)
+  // (see internal::Trailing_schur_complement). `M`: from system_in_row_order(). Both arguments are
+  // released before the factorization, whose memory is the peak.
+  void assemble_system(Sparse& M, std::vector<int>& node_order)
   {
     const Eigen::Index rows = m_A.rows();
     if(rows == 0) {
@@ -678,14 +710,21 @@ private:
     for(int r : m_free_rows)
       m_permutation.indices()[r] = position++;
     CGAL_assertion(position == rows);
-    Sparse ordered = ordered_system(rows_of_A);
-    rows_of_A = Scaled_rows();
+    Sparse ordered = ordered_system(M);
+    M = Sparse();
     std::vector<int>().swap(node_order);
     m_system.reset(new typename Solver_traits::Matrix(Sparse()));
     m_system->eigen_object().swap(ordered); // no copy
     notify(Phase::assembly, 1);
+  }
 
+  void factor()
+  {
     notify(Phase::factorization, 0);
+    if(m_A.rows() == 0) {
+      notify(Phase::factorization, 1);
+      return;
+    }
     double d = 1;
     if(!m_solver.factor(*m_system, d))
       throw Invalid_input(Error_code::solver_failure,

@@ -75,18 +75,21 @@ namespace internal {
 template <class SolverTraits>
 struct Fill_reducing_ordering
 {
-  // `column_start`, `rows`: the lower triangle of a symmetric pattern (compressed columns, sorted, with
-  // the diagonal); `order[position] = row`
+  // `column_start`, `rows`: a symmetric pattern, both triangles and the diagonal (compressed columns,
+  // sorted); `order[position] = row`. Eigen's AMD (as AMDOrdering, without its copy into A + A^T).
   static void compute(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
                       std::vector<int>& order)
   {
+    const Eigen::Index nnz = Eigen::Index(rows.size());
     Eigen::SparseMatrix<double> pattern(n, n);
-    pattern.resizeNonZeros(Eigen::Index(rows.size()));
+    // the workspace minimum_degree_ordering resizes the matrix to, reserved so that nothing is copied
+    pattern.resizeNonZeros(nnz + nnz / 5 + 2 * Eigen::Index(n));
+    pattern.resizeNonZeros(nnz);
     std::copy(column_start.begin(), column_start.end(), pattern.outerIndexPtr());
     std::copy(rows.begin(), rows.end(), pattern.innerIndexPtr());
-    std::fill(pattern.valuePtr(), pattern.valuePtr() + rows.size(), 1.);
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
-    Eigen::AMDOrdering<int>()(pattern, amd);
+    if(n > 0)
+      Eigen::internal::minimum_degree_ordering(pattern, amd);
     order.resize(std::size_t(n));
     for(int i = 0; i < n; ++i)
       order[std::size_t(i)] = amd.size() > 0 ? amd.indices()[i] : i;
@@ -310,7 +313,7 @@ struct Fill_reducing_ordering<CGAL::Eigen_solver_traits<Cholmod_supernodal_facto
     pattern.i = const_cast<int*>(rows.data());
     pattern.nz = nullptr;
     pattern.x = pattern.z = nullptr;
-    pattern.stype = -1; // the lower triangle
+    pattern.stype = -1; // symmetric: the lower triangle is read, the upper one ignored
     pattern.itype = CHOLMOD_INT;
     pattern.xtype = CHOLMOD_PATTERN;
     pattern.dtype = CHOLMOD_DOUBLE;

@@ -105,8 +105,8 @@ struct Mesh_topology
       m_boundary[b].node = number_of_interior_nodes + int(b);
   }
 
-  // The lower triangle (row >= column, sorted, diagonal included) of the pattern of the node adjacency:
-  // two nodes are adjacent when an interior edge joins them. It is the pattern of the node rows of the
+  // The pattern of the node adjacency (two nodes are adjacent when an interior edge joins them), both
+  // triangles and the diagonal, compressed columns sorted: the pattern of the node rows of the
   // constraint system.
   template <class TriangleMesh>
   void node_adjacency(const Mesh_arrays<TriangleMesh>& m, std::vector<int>& column_start,
@@ -117,31 +117,36 @@ struct Mesh_topology
       for(int i = 0; i < nc; ++i)
         if(i < m.opposite_corner[i]) {
           const int a = node_of_vertex[m.source_of(i)], b = node_of_vertex[m.target_of(i)];
-          if(a != b)
-            visit((std::min)(a, b), (std::max)(a, b));
+          if(a != b) {
+            visit(a, b);
+            visit(b, a);
+          }
         }
     };
     std::vector<int> start(std::size_t(number_of_nodes) + 1, 0);
+    for(int c = 0; c < number_of_nodes; ++c)
+      start[std::size_t(c) + 1] = 1; // the diagonal
     for_each_arc([&](int c, int) { ++start[std::size_t(c) + 1]; });
     for(int c = 0; c < number_of_nodes; ++c)
       start[c + 1] += start[c];
-    std::vector<int> entries(std::size_t(start[number_of_nodes]));
+    rows.assign(std::size_t(start[number_of_nodes]), 0);
     {
       std::vector<int> next(start.begin(), start.end() - 1);
-      for_each_arc([&](int c, int r) { entries[next[c]++] = r; });
+      for(int c = 0; c < number_of_nodes; ++c)
+        rows[next[c]++] = c;
+      for_each_arc([&](int c, int r) { rows[next[c]++] = r; });
     }
-    // sorted and without the repeats of boundary nodes
+    // sorted, without the repeats of boundary nodes (compacted in place)
     column_start.assign(std::size_t(number_of_nodes) + 1, 0);
-    rows.clear();
-    rows.reserve(entries.size() + std::size_t(number_of_nodes));
+    int out = 0;
     for(int c = 0; c < number_of_nodes; ++c) {
-      std::sort(entries.begin() + start[c], entries.begin() + start[c + 1]);
-      rows.push_back(c);
+      std::sort(rows.begin() + start[c], rows.begin() + start[c + 1]);
       for(int p = start[c]; p < start[c + 1]; ++p)
-        if(p == start[c] || entries[p] != entries[p - 1])
-          rows.push_back(entries[p]);
-      column_start[c + 1] = int(rows.size());
+        if(p == start[c] || rows[p] != rows[p - 1])
+          rows[out++] = rows[p];
+      column_start[c + 1] = out;
     }
+    rows.resize(std::size_t(out));
   }
 
   template <class TriangleMesh>

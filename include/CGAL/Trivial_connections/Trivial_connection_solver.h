@@ -295,7 +295,7 @@ public:
       Eigen::VectorXd w = z;
       Substitutions::scale(m_solver, w);
       rounding_energy = z.dot(w); // b^T M^-1 b
-      const Eigen::Index first = m_A.rows() - Eigen::Index(m_free_rows.size());
+      const Eigen::Index first = m_rows - Eigen::Index(m_free_rows.size());
       std::vector<Eigen::VectorXd> loop_lambda(m_components.size());
       for(std::size_t c = 0; c < m_components.size(); ++c) {
         const Loop_metric& metric = m_loop_metric[c];
@@ -340,8 +340,7 @@ public:
       }
     }
 
-    // x = W^-1 A^T lambda
-    const Eigen::VectorXd xe = m_inverse_weight.cwiseProduct(m_A.transpose() * lambda);
+    const Eigen::VectorXd xe = connection_of(lambda);
     write_connection(xe, x);
 
     fill_report(xe, k, periods, prescribed, n, report);
@@ -503,10 +502,13 @@ private:
       }
     }
     m_vertex_of_node.assign(t.number_of_interior_nodes, -1);
+    m_row_of_vertex.assign(m_mesh.nv, -1);
     for(int v = 0; v < m_mesh.nv; ++v) {
       const int node = t.node_of_vertex[v];
       if(node >= 0 && node < t.number_of_interior_nodes)
         m_vertex_of_node[node] = v;
+      if(node >= 0)
+        m_row_of_vertex[v] = m_row_of_node[node];
     }
 
     const int ne = m_geometry.number_of_interior_edges();
@@ -528,6 +530,7 @@ private:
             crossings[next[e]++] = {m_row_of_loop[l], m_geometry.edge_corner[e] == i ? 1. : -1.};
           }
     }
+    m_rows = rows;
     m_A.resize(rows, ne);
     m_A.resizeNonZeros(2 * Eigen::Index(ne) + Eigen::Index(crossings.size()));
     int* outer = m_A.outerIndexPtr();
@@ -712,6 +715,9 @@ private:
     CGAL_assertion(position == rows);
     Sparse ordered = ordered_system(M);
     M = Sparse();
+    // the solves need neither A nor W^-1 (connection_of()): their memory is returned before the factorization
+    m_A = Sparse();
+    m_inverse_weight = Eigen::VectorXd();
     std::vector<int>().swap(node_order);
     m_system.reset(new typename Solver_traits::Matrix(Sparse()));
     m_system->eigen_object().swap(ordered); // no copy
@@ -721,7 +727,7 @@ private:
   void factor()
   {
     notify(Phase::factorization, 0);
-    if(m_A.rows() == 0) {
+    if(m_rows == 0) {
       notify(Phase::factorization, 1);
       return;
     }
@@ -788,7 +794,7 @@ private:
     const Eigen::Index k = Eigen::Index(m_free_rows.size());
     if(k == 0)
       return;
-    const Eigen::Index first = m_A.rows() - k;
+    const Eigen::Index first = m_rows - k;
     Eigen::MatrixXd Lt;
     Eigen::VectorXd d;
     const bool from_factor = internal::Trailing_schur_complement<Solver_traits>::read(m_solver, k, Lt, d);
@@ -822,7 +828,7 @@ private:
       } else {
         metric.inverse.resize(kc, kc);
         for(Eigen::Index a = 0; a < kc; ++a) {
-          Eigen::VectorXd unit_rhs = Eigen::VectorXd::Zero(m_A.rows());
+          Eigen::VectorXd unit_rhs = Eigen::VectorXd::Zero(m_rows);
           unit_rhs[m_row_of_loop[free[a]]] = 1;
           const Eigen::VectorXd column = solve_system(unit_rhs);
           for(Eigen::Index r = 0; r < kc; ++r)
@@ -951,7 +957,7 @@ private:
       const internal::Closest_vector_result best =
         internal::closest_vector(metric.inverse, metric.inverse_factor, center, {rounded, own},
                                  // about the work of a few back-substitutions, so that a re-solve stays cheap
-                                 (std::max)(2e5, 10. * double(m_A.rows())));
+                                 (std::max)(2e5, 10. * double(m_rows)));
       proven = proven && best.proven;
       Eigen::VectorXd mv(kc);
       for(Eigen::Index a = 0; a < kc; ++a)
@@ -964,11 +970,40 @@ private:
     return rounding_change;
   }
 
+  // x = W^-1 A^T lambda from the mesh, without A: each interior edge e gets the multipliers of the stars
+  // it enters (+ at its target's node, - at its source's) and of the generators that cross it.
+  Eigen::VectorXd connection_of(const Eigen::VectorXd& lambda) const
+  {
+    const internal::Mesh_topology& t = m_topology;
+    const int ne = m_geometry.number_of_interior_edges();
+    Eigen::VectorXd xe(ne);
+    // both ends on one boundary loop: the same row, so the difference vanishes as it should
+    auto multiplier = [&](int v) {
+      const int r = m_row_of_vertex[v];
+      return r >= 0 ? lambda[r] : 0.;
+    };
+    for(int e = 0; e < ne; ++e) {
+      const int i = m_geometry.edge_corner[e];
+      xe[e] = multiplier(m_mesh.target_of(i)) - multiplier(m_mesh.source_of(i));
+    }
+    for(std::size_t l = 0; l < t.loops.size(); ++l)
+      if(t.loops[l].kind == Loop_kind::generator) {
+        const double g = lambda[m_row_of_loop[l]];
+        for(int i : t.loops[l].crossings) {
+          const int e = m_geometry.edge_of_corner[i];
+          xe[e] += m_geometry.edge_corner[e] == i ? g : -g;
+        }
+      }
+    for(int e = 0; e < ne; ++e)
+      xe[e] /= m_geometry.weight[e];
+    return xe;
+  }
+
   Eigen::VectorXd right_hand_side(const std::vector<std::int64_t>& k, const std::vector<std::int64_t>& periods,
                                   int n) const
   {
     const double unit = 2 * CGAL_PI / n;
-    Eigen::VectorXd b(m_A.rows());
+    Eigen::VectorXd b(m_rows);
     for(std::size_t node = 0; node < m_vertex_of_node.size(); ++node) {
       const int r = m_row_of_node[node];
       if(r >= 0) {
@@ -1058,9 +1093,11 @@ private:
   std::vector<Component_report> m_components;
 
   std::vector<int> m_row_of_node, m_row_of_loop, m_vertex_of_node, m_free_rows;
+  std::vector<int> m_row_of_vertex;            // the row of its node, -1 if none (pinned, isolated)
   std::vector<std::vector<int>> m_free_loops;  // per component: loops whose integer is free
-  Sparse m_A;                                  // rows x interior edges
-  Eigen::VectorXd m_inverse_weight;
+  Eigen::Index m_rows = 0;                     // of the constraint system
+  Sparse m_A;                                  // rows x interior edges, only until the system is assembled
+  Eigen::VectorXd m_inverse_weight;            // likewise
   std::unique_ptr<typename Solver_traits::Matrix> m_system;  // the solver keeps a pointer to it
   Solver_traits m_solver;
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> m_permutation; // row -> position in m_system

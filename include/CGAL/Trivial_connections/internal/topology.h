@@ -60,8 +60,6 @@ struct Mesh_topology
   std::vector<int> component_of_node;
   std::vector<int> face_order;       // breadth-first, components contiguous, each root first
   std::vector<int> parent_corner;    // per face: corner halfedge of the parent crossed to reach it (-1: root)
-  std::vector<int> depth;
-  std::vector<char> in_dual_tree, in_primal_tree; // per interior edge
   std::vector<Loop> loops;           // per component: its boundary loops, then its generators
   std::vector<Component> components;
 
@@ -162,8 +160,9 @@ struct Mesh_topology
     face_order.reserve(m.nf);
     parent_corner.assign(m.nf, -1);
     component_of_face.assign(m.nf, -1);
-    depth.assign(m.nf, 0);
-    in_dual_tree.assign(ne, 0);
+    // only needed here: per face its depth in T*, per interior edge whether it is in T* or T
+    std::vector<int> depth(std::size_t(m.nf), 0);
+    std::vector<char> in_dual_tree(std::size_t(ne), 0), in_primal_tree(std::size_t(ne), 0);
     for(int root = 0; root < m.nf; ++root) {
       if(component_of_face[root] >= 0)
         continue;
@@ -208,7 +207,6 @@ struct Mesh_topology
 
     // primal spanning forest T on the nodes with the edges outside T*: any spanning forest will do, and
     // union-find needs no graph
-    in_primal_tree.assign(ne, 0);
     {
       std::vector<int> rank(std::size_t(number_of_nodes), 0);
       std::vector<int> parent(std::size_t(number_of_nodes), 0);

@@ -127,7 +127,8 @@ struct Mesh_arrays
         throw Invalid_input(Error_code::not_triangle_mesh,
                             "face " + std::to_string(f) + " is not a triangle", std::size_t(f));
       for(int j = 0; j < 3; ++j) {
-        const int v = int(get(vertex_index, source(halfedges[3 * f + j], tm)));
+        // the source of a corner halfedge is the target of the previous one: no opposite() lookup
+        const int v = int(get(vertex_index, target(halfedges[3 * f + (j + 2) % 3], tm)));
         corner_vertex[3 * f + j] = v;
         ++faces_at_vertex[v];
       }

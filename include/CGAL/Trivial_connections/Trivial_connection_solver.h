@@ -511,6 +511,19 @@ private:
         m_row_of_vertex[v] = m_row_of_node[node];
     }
 
+    // per loop, its crossings as oriented interior edges (e: x_e, ~e: -x_e), for the solves
+    m_loop_edge_start.assign(t.loops.size() + 1, 0);
+    for(std::size_t l = 0; l < t.loops.size(); ++l)
+      m_loop_edge_start[l + 1] = m_loop_edge_start[l] + int(t.loops[l].crossings.size());
+    m_loop_edges.resize(std::size_t(m_loop_edge_start.back()));
+    for(std::size_t l = 0; l < t.loops.size(); ++l) {
+      int* out = m_loop_edges.data() + m_loop_edge_start[l];
+      for(int i : t.loops[l].crossings) {
+        const int e = m_geometry.edge_of_corner[i];
+        *out++ = m_geometry.edge_corner[e] == i ? e : ~e;
+      }
+    }
+
     const int ne = m_geometry.number_of_interior_edges();
     // generator crossings per edge (CSR), so that A is written column by column, already compressed
     std::vector<int> crossing_start(std::size_t(ne) + 1, 0);
@@ -989,9 +1002,10 @@ private:
     for(std::size_t l = 0; l < t.loops.size(); ++l)
       if(t.loops[l].kind == Loop_kind::generator) {
         const double g = lambda[m_row_of_loop[l]];
-        for(int i : t.loops[l].crossings) {
-          const int e = m_geometry.edge_of_corner[i];
-          xe[e] += m_geometry.edge_corner[e] == i ? g : -g;
+        for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
+          const int code = m_loop_edges[p];
+          if(code >= 0) xe[code] += g;
+          else xe[~code] -= g;
         }
       }
     for(int e = 0; e < ne; ++e)
@@ -1068,8 +1082,10 @@ private:
     report.loops.resize(m_loops.size());
     for(std::size_t l = 0; l < m_loops.size(); ++l) {
       double sum = 0;
-      for(int i : m_topology.loops[l].crossings)
-        sum += m_geometry.oriented(xe, i);
+      for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
+        const int code = m_loop_edges[p];
+        sum += code >= 0 ? xe[code] : -xe[~code];
+      }
       Loop_report& r = report.loops[l];
       r.kind = m_loops[l].kind;
       r.component = m_loops[l].component;
@@ -1094,6 +1110,7 @@ private:
 
   std::vector<int> m_row_of_node, m_row_of_loop, m_vertex_of_node, m_free_rows;
   std::vector<int> m_row_of_vertex;            // the row of its node, -1 if none (pinned, isolated)
+  std::vector<int> m_loop_edge_start, m_loop_edges; // per loop (CSR): e for x_e, ~e for -x_e, per crossing
   std::vector<std::vector<int>> m_free_loops;  // per component: loops whose integer is free
   Eigen::Index m_rows = 0;                     // of the constraint system
   Sparse m_A;                                  // rows x interior edges, only until the system is assembled
@@ -1106,7 +1123,7 @@ private:
     Eigen::MatrixXd schur_factor;   // S = schur_factor diag(schur_diagonal) schur_factor^T, lower triangular
     Eigen::VectorXd schur_diagonal;
     Eigen::MatrixXd inverse;        // S^-1 = (M^-1) on the free loop rows of one component
-    Eigen::MatrixXd inverse_factor; // R upper triangular with R^T R = S^-1
+    internal::Row_major_matrix inverse_factor; // R upper triangular with R^T R = S^-1
     std::vector<Eigen::Index> block; // per free loop of the component: its position after the first loop row
   };
   std::vector<Loop_metric> m_loop_metric;

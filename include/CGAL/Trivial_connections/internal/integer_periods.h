@@ -45,9 +45,12 @@ inline double quadratic_distance(const Eigen::MatrixXd& G, const Eigen::VectorXd
   return d.dot(G * d);
 }
 
+// Rows of the upper triangular R are read along the enumeration: stored row by row.
+using Row_major_matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 struct Enumeration
 {
-  const Eigen::MatrixXd& R;
+  const Row_major_matrix& R;
   const Eigen::VectorXd& c;
   std::vector<std::int64_t> best_m;
   double best_value;
@@ -120,7 +123,7 @@ inline void greedy_descent(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, C
 }
 
 // G = R^T R with R upper triangular. The enumeration's budget is in multiply-adds (a node costs about k).
-inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eigen::MatrixXd& R,
+inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Row_major_matrix& R,
                                             const Eigen::VectorXd& c,
                                             const std::vector<std::vector<std::int64_t>>& candidates,
                                             double work_budget = 2e6)

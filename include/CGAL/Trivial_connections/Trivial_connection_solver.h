@@ -1034,14 +1034,17 @@ private:
   template <class HalfedgeAngleMap>
   void write_connection(const Eigen::VectorXd& xe, HalfedgeAngleMap x) const
   {
-    for(int i = 0; i < 3 * m_mesh.nf; ++i) {
+    // by edges: both halfedges of an interior edge at once (much faster than corner by corner on some meshes)
+    for(int e = 0; e < int(xe.size()); ++e) {
+      const int i = m_geometry.edge_corner[e];
+      put(x, m_mesh.halfedges[i], xe[e]);
+      put(x, m_mesh.halfedges[m_mesh.opposite_corner[i]], -xe[e]);
+    }
+    for(int i = 0; i < 3 * m_mesh.nf; ++i)
       if(m_mesh.opposite_corner[i] < 0) {
         put(x, m_mesh.halfedges[i], 0.);
         put(x, opposite(m_mesh.halfedges[i], m_tm), 0.);
-      } else {
-        put(x, m_mesh.halfedges[i], m_geometry.oriented(xe, i));
       }
-    }
   }
 
   void fill_report(const Eigen::VectorXd& xe, const std::vector<std::int64_t>& k,

@@ -526,11 +526,12 @@ private:
 
     const int ne = m_geometry.number_of_interior_edges();
     // generator crossings per edge (CSR), so that A is written column by column, already compressed
+    auto edge_of_code = [](int code) { return code >= 0 ? code : ~code; };
     std::vector<int> crossing_start(std::size_t(ne) + 1, 0);
     for(std::size_t l = 0; l < t.loops.size(); ++l)
       if(t.loops[l].kind == Loop_kind::generator)
-        for(int i : t.loops[l].crossings)
-          ++crossing_start[std::size_t(m_geometry.edge_of_corner[i]) + 1];
+        for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p)
+          ++crossing_start[std::size_t(edge_of_code(m_loop_edges[p])) + 1];
     for(int e = 0; e < ne; ++e)
       crossing_start[e + 1] += crossing_start[e];
     std::vector<std::pair<int, double>> crossings(std::size_t(crossing_start[ne]));
@@ -538,9 +539,9 @@ private:
       std::vector<int> next(crossing_start.begin(), crossing_start.end() - 1);
       for(std::size_t l = 0; l < t.loops.size(); ++l)
         if(t.loops[l].kind == Loop_kind::generator)
-          for(int i : t.loops[l].crossings) {
-            const int e = m_geometry.edge_of_corner[i];
-            crossings[next[e]++] = {m_row_of_loop[l], m_geometry.edge_corner[e] == i ? 1. : -1.};
+          for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
+            const int code = m_loop_edges[p];
+            crossings[next[edge_of_code(code)]++] = {m_row_of_loop[l], code >= 0 ? 1. : -1.};
           }
     }
     m_rows = rows;

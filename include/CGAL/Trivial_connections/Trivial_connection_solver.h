@@ -321,11 +321,12 @@ public:
       Substitutions::scale(m_solver, z);
       Substitutions::backward(m_solver, z);
       b = right_hand_side(k, periods, n);
-      lambda = checked_solution(m_permutation * b, std::move(z));
+      lambda = m_permutation.transpose() * z;
     } else {
-      lambda = solve_system(b);
-      rounding_energy = b.dot(lambda);
       if(choose_periods) {
+        // checked here already: its loop multipliers choose the integers
+        lambda = solve_system(b);
+        rounding_energy = b.dot(lambda);
         std::vector<Eigen::VectorXd> loop_lambda(m_components.size());
         for(std::size_t c = 0; c < m_components.size(); ++c) {
           loop_lambda[c].resize(Eigen::Index(m_free_loops[c].size()));
@@ -336,14 +337,17 @@ public:
         rounding_energy += choose_loop_periods(loop_lambda, unit, periods, report);
         notify(progress, Phase::loop_integers, 1);
         b = right_hand_side(k, periods, n);
-        lambda = solve_system(b);
       }
+      lambda = unchecked_solve(b);
     }
 
-    const Eigen::VectorXd xe = connection_of(lambda);
+    Constraint_sums sums;
+    const Eigen::VectorXd xe = checked_connection(b, lambda, sums);
+    if(!choose_periods)
+      rounding_energy = b.dot(lambda);
     write_connection(xe, x);
 
-    fill_report(xe, k, periods, prescribed, n, report);
+    fill_report(xe, sums, k, periods, prescribed, n, report);
     report.rounding_energy = user_periods ? report.energy : rounding_energy;
     notify(progress, Phase::solve, 1);
     return report;
@@ -501,6 +505,9 @@ private:
         m_free_rows.push_back(m_row_of_loop[l]);
       }
     }
+    for(int i = 0; i < 3 * m_mesh.nf; ++i)
+      if(m_mesh.opposite_corner[i] < 0)
+        m_border_corners.push_back(i);
     m_vertex_of_node.assign(t.number_of_interior_nodes, -1);
     m_row_of_vertex.assign(m_mesh.nv, -1);
     for(int v = 0; v < m_mesh.nv; ++v) {
@@ -765,6 +772,89 @@ private:
     return M * v;
   }
 
+  // The sums the constraints read from a connection: per node its star sum (collapsed for a boundary
+  // loop; pinned nodes too), per loop the signed sum of its crossings (a boundary loop's is its node's).
+  struct Constraint_sums
+  {
+    std::vector<double> node, loop;
+  };
+
+  // M^-1 b (rows in their own order), to be checked by the caller
+  Eigen::VectorXd unchecked_solve(const Eigen::VectorXd& b)
+  {
+    if(b.size() == 0)
+      return b;
+    typename Solver_traits::Vector rhs(b.size()), sol(b.size());
+    rhs = m_permutation * b;
+    if(!m_solver.linear_solver(rhs, sol))
+      throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
+    return m_permutation.transpose() * Eigen::VectorXd(sol);
+  }
+
+  // The connection x = W^-1 A^T lambda, checked through the constraints it must satisfy: A x - b is
+  // M lambda - b, computed from x at the cost of one pass over the edges (cheaper than a product with M,
+  // and the sums are the ones the report needs). Refined once when the residual is not already at
+  // rounding level.
+  Eigen::VectorXd checked_connection(const Eigen::VectorXd& b, Eigen::VectorXd& lambda, Constraint_sums& sums)
+  {
+    const double scale = 1 + b.template lpNorm<Eigen::Infinity>();
+    Eigen::VectorXd xe = connection_of(lambda);
+    constraint_sums(xe, sums);
+    Eigen::VectorXd residual = b - row_sums(sums);
+    double res = residual.template lpNorm<Eigen::Infinity>();
+    if(!(res <= 1e-13 * scale)) {
+      lambda += unchecked_solve(residual);
+      xe = connection_of(lambda);
+      constraint_sums(xe, sums);
+      res = (b - row_sums(sums)).template lpNorm<Eigen::Infinity>();
+    }
+    if(!std::isfinite(res) || !xe.allFinite() || res > 1e-8 * scale)
+      throw Invalid_input(Error_code::solver_failure,
+                          "the linear solve is inaccurate (residual " + std::to_string(res) + ")");
+    return xe;
+  }
+
+  void constraint_sums(const Eigen::VectorXd& xe, Constraint_sums& sums) const
+  {
+    const internal::Mesh_topology& t = m_topology;
+    sums.node.assign(std::size_t(t.number_of_nodes), 0.);
+    // x(i) enters target(i)'s star, -x(i) = x(opposite(i)) enters source(i)'s star
+    for(int e = 0; e < int(xe.size()); ++e) {
+      const int i = m_geometry.edge_corner[e];
+      const int a = t.node_of_vertex[m_mesh.source_of(i)], c = t.node_of_vertex[m_mesh.target_of(i)];
+      if(a != c) {
+        sums.node[c] += xe[e];
+        sums.node[a] -= xe[e];
+      }
+    }
+    sums.loop.assign(t.loops.size(), 0.);
+    for(std::size_t l = 0; l < t.loops.size(); ++l) {
+      if(t.loops[l].kind == Loop_kind::boundary) {
+        sums.loop[l] = sums.node[t.loops[l].node];
+        continue;
+      }
+      double sum = 0;
+      for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
+        const int code = m_loop_edges[p];
+        sum += code >= 0 ? xe[code] : -xe[~code];
+      }
+      sums.loop[l] = sum;
+    }
+  }
+
+  // A x, from its constraint sums
+  Eigen::VectorXd row_sums(const Constraint_sums& sums) const
+  {
+    Eigen::VectorXd ax(m_rows);
+    for(int node = 0; node < m_topology.number_of_nodes; ++node)
+      if(m_row_of_node[node] >= 0)
+        ax[m_row_of_node[node]] = sums.node[node];
+    for(std::size_t l = 0; l < m_row_of_loop.size(); ++l)
+      if(m_row_of_loop[l] >= 0)
+        ax[m_row_of_loop[l]] = sums.loop[l];
+    return ax;
+  }
+
   // M^-1 b, refined once when the residual is not already at rounding level; the residual is checked.
   Eigen::VectorXd solve_system(const Eigen::VectorXd& b)
   {
@@ -960,8 +1050,8 @@ private:
       // minimiser of the quadratic (m - center)^T Ginv (m - center) does not depend on unit
       const Loop_metric& metric = m_loop_metric[c];
       const Eigen::VectorXd& lf = loop_lambda[c];
-      const Eigen::VectorXd center =
-        -(metric.schur_factor * (metric.schur_diagonal.asDiagonal() * (metric.schur_factor.transpose() * lf))) / unit;
+      const auto L = metric.schur_factor.template triangularView<Eigen::Lower>();
+      const Eigen::VectorXd center = -(L * (metric.schur_diagonal.asDiagonal() * (L.transpose() * lf))) / unit;
       std::vector<std::int64_t> rounded(kc), own(kc);
       for(Eigen::Index a = 0; a < kc; ++a) {
         rounded[a] = std::int64_t(std::llround(center[a]));
@@ -976,7 +1066,8 @@ private:
       Eigen::VectorXd mv(kc);
       for(Eigen::Index a = 0; a < kc; ++a)
         mv[a] = double(rounded[a]);
-      rounding_change += 2 * unit * mv.dot(lf) + unit * unit * mv.dot(metric.inverse * mv);
+      rounding_change += 2 * unit * mv.dot(lf) +
+                         unit * unit * (metric.inverse_factor.template triangularView<Eigen::Upper>() * mv).squaredNorm();
       for(Eigen::Index a = 0; a < kc; ++a)
         periods[free[a]] = best.m[a];
     }
@@ -1041,14 +1132,13 @@ private:
       put(x, m_mesh.halfedges[i], xe[e]);
       put(x, m_mesh.halfedges[m_mesh.opposite_corner[i]], -xe[e]);
     }
-    for(int i = 0; i < 3 * m_mesh.nf; ++i)
-      if(m_mesh.opposite_corner[i] < 0) {
-        put(x, m_mesh.halfedges[i], 0.);
-        put(x, opposite(m_mesh.halfedges[i], m_tm), 0.);
-      }
+    for(int i : m_border_corners) {
+      put(x, m_mesh.halfedges[i], 0.);
+      put(x, opposite(m_mesh.halfedges[i], m_tm), 0.);
+    }
   }
 
-  void fill_report(const Eigen::VectorXd& xe, const std::vector<std::int64_t>& k,
+  void fill_report(const Eigen::VectorXd& xe, const Constraint_sums& sums, const std::vector<std::int64_t>& k,
                    std::vector<std::int64_t>& periods, const std::vector<char>& prescribed, int n,
                    Solve_report& report) const
   {
@@ -1057,18 +1147,13 @@ private:
     for(Eigen::Index e = 0; e < xe.size(); ++e)
       report.energy += m_geometry.weight[e] * xe[e] * xe[e];
 
-    // star sums: x(i) enters target(i)'s star, -x(i) = x(opposite(i)) enters source(i)'s star
-    std::vector<double> star(m_mesh.nv, 0.);
-    for(int e = 0; e < int(xe.size()); ++e) {
-      const int i = m_geometry.edge_corner[e];
-      star[m_mesh.target_of(i)] += xe[e];
-      star[m_mesh.source_of(i)] -= xe[e];
-    }
+    // every interior vertex, the pinned ones included
     report.max_vertex_residual = 0;
-    for(int v = 0; v < m_mesh.nv; ++v)
-      if(m_mesh.faces_at_vertex[v] > 0 && !m_geometry.on_boundary[v])
-        report.max_vertex_residual = (std::max)(
-          report.max_vertex_residual, std::abs(m_geometry.angle_defect(v) + star[v] - unit * double(k[v])));
+    for(int node = 0; node < m_topology.number_of_interior_nodes; ++node) {
+      const int v = m_vertex_of_node[node];
+      report.max_vertex_residual = (std::max)(
+        report.max_vertex_residual, std::abs(m_geometry.angle_defect(v) + sums.node[node] - unit * double(k[v])));
+    }
 
     // the pinned boundary loop's integer follows from Poincare-Hopf
     std::vector<std::int64_t> total(m_components.size(), 0);
@@ -1085,11 +1170,7 @@ private:
     report.max_loop_residual = 0;
     report.loops.resize(m_loops.size());
     for(std::size_t l = 0; l < m_loops.size(); ++l) {
-      double sum = 0;
-      for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
-        const int code = m_loop_edges[p];
-        sum += code >= 0 ? xe[code] : -xe[~code];
-      }
+      const double sum = sums.loop[l];
       Loop_report& r = report.loops[l];
       r.kind = m_loops[l].kind;
       r.component = m_loops[l].component;
@@ -1114,6 +1195,7 @@ private:
 
   std::vector<int> m_row_of_node, m_row_of_loop, m_vertex_of_node, m_free_rows;
   std::vector<int> m_row_of_vertex;            // the row of its node, -1 if none (pinned, isolated)
+  std::vector<int> m_border_corners;           // corner halfedges on a border edge
   std::vector<int> m_loop_edge_start, m_loop_edges; // per loop (CSR): e for x_e, ~e for -x_e, per crossing
   std::vector<std::vector<int>> m_free_loops;  // per component: loops whose integer is free
   Eigen::Index m_rows = 0;                     // of the constraint system
@@ -1127,7 +1209,7 @@ private:
     Eigen::MatrixXd schur_factor;   // S = schur_factor diag(schur_diagonal) schur_factor^T, lower triangular
     Eigen::VectorXd schur_diagonal;
     Eigen::MatrixXd inverse;        // S^-1 = (M^-1) on the free loop rows of one component
-    internal::Row_major_matrix inverse_factor; // R upper triangular with R^T R = S^-1
+    Eigen::MatrixXd inverse_factor; // R upper triangular with R^T R = S^-1
     std::vector<Eigen::Index> block; // per free loop of the component: its position after the first loop row
   };
   std::vector<Loop_metric> m_loop_metric;

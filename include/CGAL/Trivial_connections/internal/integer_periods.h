@@ -37,20 +37,18 @@ struct Closest_vector_result
   bool proven = false;
 };
 
-inline double quadratic_distance(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, const std::vector<std::int64_t>& m)
+// q(m) = |R (m - c)|^2 with G = R^T R: a triangular product, half the work of one with G
+inline double quadratic_distance(const Eigen::MatrixXd& R, const Eigen::VectorXd& c, const std::vector<std::int64_t>& m)
 {
   Eigen::VectorXd d(c.size());
   for(Eigen::Index i = 0; i < c.size(); ++i)
     d[i] = double(m[i]) - c[i];
-  return d.dot(G * d);
+  return (R.triangularView<Eigen::Upper>() * d).squaredNorm();
 }
-
-// Rows of the upper triangular R are read along the enumeration: stored row by row.
-using Row_major_matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 struct Enumeration
 {
-  const Row_major_matrix& R;
+  const Eigen::MatrixXd& R;
   const Eigen::VectorXd& c;
   std::vector<std::int64_t> best_m;
   double best_value;
@@ -58,15 +56,36 @@ struct Enumeration
   std::size_t node_budget;
   bool out_of_budget;
   std::vector<std::int64_t> m;
+  // sum[l] = sum_{j > l} R(l, j) (m_j - c_j) for the current m, kept up to date when a coordinate
+  // changes: a change at level j costs j, so the many nodes near the leaves are cheap.
+  std::vector<double> sum;
+  bool improved = false;
+
+  void start()
+  {
+    const Eigen::Index k = c.size();
+    m.assign(std::size_t(k), 0);
+    sum.assign(std::size_t(k), 0.);
+    for(Eigen::Index j = 1; j < k; ++j)
+      for(Eigen::Index l = 0; l < j; ++l)
+        sum[l] -= R(l, j) * c[j];
+  }
+
+  void assign(Eigen::Index level, std::int64_t v)
+  {
+    const double delta = double(v - m[level]);
+    m[level] = v;
+    if(delta != 0) {
+      const double* column = R.col(level).data();
+      for(Eigen::Index l = 0; l < level; ++l)
+        sum[l] += column[l] * delta;
+    }
+  }
 
   void search(Eigen::Index level, double partial)
   {
-    const Eigen::Index k = c.size();
-    double s = 0;
-    for(Eigen::Index j = level + 1; j < k; ++j)
-      s += R(level, j) * (double(m[j]) - c[j]);
     const double r = R(level, level);
-    const double center = c[level] - s / r;
+    const double center = c[level] - sum[level] / r;
     // candidates by increasing distance to the center: the first one beyond the bound ends the level
     std::int64_t up = std::int64_t(std::ceil(center)), down = up - 1;
     while(true) {
@@ -82,10 +101,11 @@ struct Enumeration
       const double cost = partial + r * r * d * d;
       if(!(cost < best_value))
         return;
-      m[level] = v;
+      assign(level, v);
       if(level == 0) {
         best_value = cost;
         best_m = m;
+        improved = true;
       } else {
         search(level - 1, cost);
       }
@@ -113,17 +133,19 @@ inline void greedy_descent(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, C
         best.m[i] += std::int64_t(step);
         r[i] += step;
         Gr += step * G.col(i);
+        best.value += gain;
         improved = true;
       }
     }
     if(!improved)
       break;
   }
-  best.value = r.dot(G * r);
+  best.value = r.dot(Gr); // the same, without the rounding drift of the updates
 }
 
-// G = R^T R with R upper triangular. The enumeration's budget is in multiply-adds (a node costs about k).
-inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Row_major_matrix& R,
+// G = R^T R with R upper triangular. The enumeration may visit work_budget / k nodes (at least 1000): its
+// first descent costs about k^2 / 2, a node at level l about l.
+inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eigen::MatrixXd& R,
                                             const Eigen::VectorXd& c,
                                             const std::vector<std::vector<std::int64_t>>& candidates,
                                             double work_budget = 2e6)
@@ -137,7 +159,7 @@ inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Row_
     return best;
   }
   for(const std::vector<std::int64_t>& m : candidates) {
-    const double q = quadratic_distance(G, c, m);
+    const double q = quadratic_distance(R, c, m);
     if(q < best.value) { best.value = q; best.m = m; }
   }
 
@@ -146,11 +168,13 @@ inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Row_
   // Schnorr-Euchner: q = sum_i R_ii^2 (m_i - center_i)^2 with G = R^T R, R upper triangular and
   // center_i = c_i - sum_{j>i} R_ij (m_j - c_j) / R_ii; levels are fixed from k-1 down to 0.
   const std::size_t node_budget = std::size_t((std::max)(1000., work_budget / double(k)));
-  Enumeration e{R, c, best.m, best.value, 0, node_budget, false};
-  e.m.assign(std::size_t(k), 0);
+  Enumeration e{R, c, best.m, best.value, 0, node_budget, false, {}, {}};
+  e.start();
   e.search(k - 1, 0.);
-  best.m = e.best_m;
-  best.value = e.best_value;
+  if(e.improved) {
+    best.m = e.best_m;
+    best.value = quadratic_distance(R, c, best.m); // without the drift of the running sums
+  }
   best.proven = !e.out_of_budget;
   if(!best.proven)
     greedy_descent(G, c, best); // the interrupted enumeration's point may not be locally optimal

@@ -141,27 +141,34 @@ public:
       m_weighting(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::weighting),
                                                      Weighting::hodge_star)),
       m_progress(progress_of(np)),
-      m_mesh(in_phase(Phase::mesh_setup, [&] {
-        return Mesh(tm,
-                    CGAL::parameters::choose_parameter(
-                      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-                      get_const_property_map(CGAL::vertex_point, tm)),
-                    m_traits);
-      })),
+      m_mesh([&] {
+        notify(Phase::mesh_setup, 0);
+        return Mesh(tm);
+      }()),
       m_geometry(),
       m_topology()
   {
     // The fill-reducing order of the node rows needs only the connectivity: it runs on a second thread
-    // while the geometry and the trees are computed, and the corner angles (not needed by the system) run
-    // beside the factorization. The other thread never calls user code (property maps, the callback).
-    notify(Phase::geometry, 0);
+    // while the rest of the set-up (points, degenerate faces), the geometry and the trees are computed, and
+    // the corner angles (not needed by the system) run beside the factorization. The other thread never
+    // calls user code (property maps, the callback) and never reads what the main thread writes meanwhile;
+    // when the main thread throws, the future's destructor waits for it.
     m_topology = internal::Mesh_topology(m_mesh);
-    std::future<std::vector<int>> node_order = internal::concurrently([this] {
-      std::vector<int> column_start, rows, order;
-      m_topology.node_adjacency(m_mesh, column_start, rows);
-      internal::Fill_reducing_ordering<Solver_traits>::compute(m_topology.number_of_nodes, column_start, rows, order);
+    // the pattern of the node rows: the other thread orders it, this one fills in M's values on it
+    std::vector<int> node_start, node_rows;
+    m_topology.node_adjacency(m_mesh, node_start, node_rows);
+    std::future<std::vector<int>> node_order = internal::concurrently([this, &node_start, &node_rows] {
+      std::vector<int> order;
+      internal::Fill_reducing_ordering<Solver_traits>::compute(m_topology.number_of_nodes, node_start, node_rows, order);
       return order;
     });
+    m_mesh.check_and_read_points(tm,
+                                 CGAL::parameters::choose_parameter(
+                                   CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                                   get_const_property_map(CGAL::vertex_point, tm)),
+                                 m_traits);
+    notify(Phase::mesh_setup, 1);
+    notify(Phase::geometry, 0);
     m_geometry = internal::Mesh_geometry(m_mesh, m_weighting);
     notify(Phase::geometry, 1);
     notify(Phase::trees, 0);
@@ -171,8 +178,10 @@ public:
     notify(Phase::assembly, 0);
     build_constraints();
     {
-      Sparse M = system_in_row_order();
-      std::vector<int> order = node_order.get();
+      Sparse M = system_in_row_order(node_start, node_rows);
+      std::vector<int> order = node_order.get(); // the other thread is done with the pattern
+      std::vector<int>().swap(node_start);
+      std::vector<int>().swap(node_rows);
       assemble_system(M, order); // ends the assembly phase
     }
     // beside the factorization rather than the assembly, which is more sensitive to a shared cache
@@ -531,9 +540,26 @@ private:
       }
     }
 
-    const int ne = m_geometry.number_of_interior_edges();
-    // generator crossings per edge (CSR), so that A is written column by column, already compressed
+    m_rows = rows;
+  }
+
+  // M = A W^-1 A^T, both triangles, in the order of the rows (where mesh files usually have locality),
+  // without forming A. The node rows are the weighted Laplacian of the node graph: its pattern is
+  // `node_start`/`node_rows` (from node_adjacency(), which the fill-reducing order reads meanwhile on the
+  // other thread) and every interior edge adds its 1/w_e to four entries. The generator rows (last)
+  // gather their crossings, Gustavson-style. Needs no fill-reducing order, so it is formed while that
+  // order is computed.
+  Sparse system_in_row_order(const std::vector<int>& node_start, const std::vector<int>& node_rows) const
+  {
+    const internal::Mesh_topology& t = m_topology;
+    const int rows = int(m_rows), ne = m_geometry.number_of_interior_edges();
+    int node_row_count = 0;
+    for(int node = 0; node < t.number_of_nodes; ++node)
+      if(m_row_of_node[node] >= 0)
+        ++node_row_count;
     auto edge_of_code = [](int code) { return code >= 0 ? code : ~code; };
+
+    // generator crossings per edge (CSR): (generator row, +-1)
     std::vector<int> crossing_start(std::size_t(ne) + 1, 0);
     for(std::size_t l = 0; l < t.loops.size(); ++l)
       if(t.loops[l].kind == Loop_kind::generator)
@@ -551,122 +577,119 @@ private:
             crossings[next[edge_of_code(code)]++] = {m_row_of_loop[l], code >= 0 ? 1. : -1.};
           }
     }
-    m_rows = rows;
-    m_A.resize(rows, ne);
-    m_A.resizeNonZeros(2 * Eigen::Index(ne) + Eigen::Index(crossings.size()));
-    int* outer = m_A.outerIndexPtr();
-    int* inner = m_A.innerIndexPtr();
-    double* value = m_A.valuePtr();
-    int nnz = 0;
-    std::vector<std::pair<int, double>> column;
-    for(int e = 0; e < ne; ++e) {
-      outer[e] = nnz;
-      column.clear();
-      // x_e = x(i) is crossed into target(i)'s star and, reversed, into source(i)'s star
-      const int i = m_geometry.edge_corner[e];
-      const int a = t.node_of_vertex[m_mesh.source_of(i)], b = t.node_of_vertex[m_mesh.target_of(i)];
-      if(crossing_start[e] == crossing_start[e + 1]) {
-        // no generator crosses e (most edges): at most two entries, in increasing row order
-        const int ra = a != b ? m_row_of_node[a] : -1, rb = a != b ? m_row_of_node[b] : -1;
-        const int first_row = (std::min)(ra, rb), second_row = (std::max)(ra, rb);
-        for(int row : {first_row, second_row})
-          if(row >= 0) {
-            inner[nnz] = row;
-            value[nnz] = row == rb ? 1. : -1.;
-            ++nnz;
-          }
-        continue;
-      }
-      if(a != b) {
-        if(m_row_of_node[b] >= 0) column.emplace_back(m_row_of_node[b], 1.);
-        if(m_row_of_node[a] >= 0) column.emplace_back(m_row_of_node[a], -1.);
-      }
-      column.insert(column.end(), crossings.begin() + crossing_start[e], crossings.begin() + crossing_start[e + 1]);
-      std::sort(column.begin(), column.end());
-      // a generator may cross an edge twice; opposite crossings cancel
-      for(std::size_t k = 0; k < column.size();) {
-        const int row = column[k].first;
-        double sum = 0;
-        for(; k < column.size() && column[k].first == row; ++k)
-          sum += column[k].second;
-        if(sum != 0) {
-          inner[nnz] = row;
-          value[nnz] = sum;
-          ++nnz;
-        }
-      }
-    }
-    outer[ne] = nnz;
-    m_A.resizeNonZeros(nnz);
-    m_inverse_weight.resize(ne);
-    for(int e = 0; e < ne; ++e)
-      m_inverse_weight[e] = 1 / m_geometry.weight[e];
-  }
 
-  // M = A W^-1 A^T, both triangles, in the order of the rows (where mesh files usually have locality),
-  // column by column with Gustavson's product on the rows of A: no triplets, no transposed copies. It
-  // needs no fill-reducing order, so it is formed while that order is computed on the other thread.
-  Sparse system_in_row_order() const
-  {
-    const int rows = int(m_A.rows()), ne = int(m_A.cols());
-    const int* a_outer = m_A.outerIndexPtr();
-    const int* a_inner = m_A.innerIndexPtr();
-    const double* a_value = m_A.valuePtr();
-    // A^T as compressed rows, scaled by W^-1
-    std::vector<int> row_start(std::size_t(rows) + 1, 0);
-    for(int p = 0; p < a_outer[ne]; ++p)
-      ++row_start[std::size_t(a_inner[p]) + 1];
-    for(int r = 0; r < rows; ++r)
-      row_start[r + 1] += row_start[r];
-    std::vector<int> row_edge(static_cast<std::size_t>(a_outer[ne]));
-    std::vector<double> row_value(static_cast<std::size_t>(a_outer[ne]));
+    // the generator rows (all their entries, sorted), which are also the generator entries of the node columns
+    std::vector<int> generator_start(1, 0), generator_row;
+    std::vector<double> generator_value;
     {
-      std::vector<int> next(row_start.begin(), row_start.end() - 1);
-      for(int e = 0; e < ne; ++e)
-        for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
-          const int q = next[a_inner[p]]++;
-          row_edge[q] = e;
-          row_value[q] = a_value[p] * m_inverse_weight[e];
+      std::vector<int> pattern, mark(std::size_t(rows), -1);
+      std::vector<double> sum(std::size_t(rows), 0.);
+      auto add = [&](int r, double v, int g) {
+        if(mark[r] != g) {
+          mark[r] = g;
+          sum[r] = 0;
+          pattern.push_back(r);
         }
+        sum[r] += v;
+      };
+      for(std::size_t l = 0; l < t.loops.size(); ++l) {
+        if(t.loops[l].kind != Loop_kind::generator)
+          continue;
+        const int g = m_row_of_loop[l];
+        pattern.clear();
+        for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
+          const int code = m_loop_edges[p], e = edge_of_code(code);
+          const double v = (code >= 0 ? 1. : -1.) / m_geometry.weight[e];
+          // x_e enters target(i)'s star and, reversed, source(i)'s (a != b: A's column of e has both rows)
+          const int i = m_geometry.edge_corner[e];
+          const int a = t.node_of_vertex[m_mesh.source_of(i)], b = t.node_of_vertex[m_mesh.target_of(i)];
+          if(a != b) {
+            if(m_row_of_node[b] >= 0) add(m_row_of_node[b], v, g);
+            if(m_row_of_node[a] >= 0) add(m_row_of_node[a], -v, g);
+          }
+          for(int q = crossing_start[e]; q < crossing_start[e + 1]; ++q)
+            add(crossings[q].first, v * crossings[q].second, g);
+        }
+        std::sort(pattern.begin(), pattern.end());
+        for(int r : pattern) {
+          generator_row.push_back(r);
+          generator_value.push_back(sum[r]);
+        }
+        generator_start.push_back(int(generator_row.size()));
+      }
     }
-    // an upper bound of the number of entries: pages that are reserved but never written cost nothing
-    std::size_t bound = std::size_t(rows);
-    for(int e = 0; e < ne; ++e) {
-      const std::size_t k = std::size_t(a_outer[e + 1] - a_outer[e]);
-      bound += k * (k - 1);
-    }
+    CGAL_assertion(int(generator_start.size()) - 1 == rows - node_row_count);
+
+    // column sizes: the non-pinned nodes of the pattern, then the generator rows coupled to the column
     Sparse M(rows, rows);
-    M.resizeNonZeros(Eigen::Index(bound));
     int* outer = M.outerIndexPtr();
+    std::fill(outer, outer + rows + 1, 0);
+    for(int node = 0; node < t.number_of_nodes; ++node) {
+      const int c = m_row_of_node[node];
+      if(c < 0)
+        continue;
+      for(int p = node_start[node]; p < node_start[node + 1]; ++p)
+        if(m_row_of_node[node_rows[p]] >= 0)
+          ++outer[c + 1];
+    }
+    for(int g = node_row_count; g < rows; ++g) {
+      const int first = generator_start[g - node_row_count], last = generator_start[g - node_row_count + 1];
+      outer[g + 1] = last - first;
+      for(int p = first; p < last; ++p)
+        if(generator_row[p] < node_row_count)
+          ++outer[generator_row[p] + 1];
+    }
+    for(int c = 0; c < rows; ++c)
+      outer[c + 1] += outer[c];
+    M.resizeNonZeros(outer[rows]);
     int* inner = M.innerIndexPtr();
     double* value = M.valuePtr();
-    std::vector<int> pattern, mark(std::size_t(rows), -1);
-    std::vector<double> sum(std::size_t(rows), 0.);
-    int nnz = 0;
-    for(int c = 0; c < rows; ++c) {
-      outer[c] = nnz;
-      pattern.clear();
-      for(int q = row_start[c]; q < row_start[c + 1]; ++q) {
-        const int e = row_edge[q];
-        for(int p = a_outer[e]; p < a_outer[e + 1]; ++p) {
-          const int r = a_inner[p];
-          if(mark[r] != c) {
-            mark[r] = c;
-            sum[r] = 0;
-            pattern.push_back(r);
-          }
-          sum[r] += row_value[q] * a_value[p];
-        }
-      }
-      std::sort(pattern.begin(), pattern.end());
-      for(int r : pattern) {
-        inner[nnz] = r;
-        value[nnz] = sum[r];
-        ++nnz;
+    std::fill(value, value + outer[rows], 0.);
+    // the node part of a node column, in row order (rows grow with nodes); then its generator rows
+    std::vector<int> next(outer, outer + rows);
+    for(int node = 0; node < t.number_of_nodes; ++node) {
+      const int c = m_row_of_node[node];
+      if(c < 0)
+        continue;
+      for(int p = node_start[node]; p < node_start[node + 1]; ++p) {
+        const int r = m_row_of_node[node_rows[p]];
+        if(r >= 0)
+          inner[next[c]++] = r;
       }
     }
-    outer[rows] = nnz;
-    M.resizeNonZeros(nnz);
+    const std::vector<int> node_part_end(next); // end of each node column's node part
+    for(int g = node_row_count; g < rows; ++g)
+      for(int p = generator_start[g - node_row_count]; p < generator_start[g - node_row_count + 1]; ++p) {
+        const int r = generator_row[p];
+        if(r < node_row_count) { // (g, r) and its mirror (r, g), generator rows in increasing order
+          inner[next[r]] = g;
+          value[next[r]++] = generator_value[p];
+        }
+        inner[next[g]] = r;
+        value[next[g]++] = generator_value[p];
+      }
+    // the weighted Laplacian of the node graph: a few entries per column, found by a short scan
+    auto entry = [&](int c, int r) -> double& {
+      int p = outer[c];
+      while(inner[p] != r)
+        ++p;
+      CGAL_assertion(p < node_part_end[c]);
+      return value[p];
+    };
+    for(int e = 0; e < ne; ++e) {
+      const int i = m_geometry.edge_corner[e];
+      const int a = t.node_of_vertex[m_mesh.source_of(i)], b = t.node_of_vertex[m_mesh.target_of(i)];
+      if(a == b)
+        continue;
+      const double v = 1 / m_geometry.weight[e];
+      const int ra = m_row_of_node[a], rb = m_row_of_node[b];
+      if(ra >= 0) entry(ra, ra) += v;
+      if(rb >= 0) entry(rb, rb) += v;
+      if(ra >= 0 && rb >= 0) {
+        entry(ra, rb) -= v;
+        entry(rb, ra) -= v;
+      }
+    }
     return M;
   }
 
@@ -716,7 +739,7 @@ private:
   // released before the factorization, whose memory is the peak.
   void assemble_system(Sparse& M, std::vector<int>& node_order)
   {
-    const Eigen::Index rows = m_A.rows();
+    const Eigen::Index rows = m_rows;
     if(rows == 0) {
       notify(Phase::assembly, 1);
       return;
@@ -735,10 +758,7 @@ private:
       m_permutation.indices()[r] = position++;
     CGAL_assertion(position == rows);
     Sparse ordered = ordered_system(M);
-    M = Sparse();
-    // the solves need neither A nor W^-1 (connection_of()): their memory is returned before the factorization
-    m_A = Sparse();
-    m_inverse_weight = Eigen::VectorXd();
+    M = Sparse(); // returned before the factorization, whose memory is the peak
     std::vector<int>().swap(node_order);
     m_system.reset(new typename Solver_traits::Matrix(Sparse()));
     m_system->eigen_object().swap(ordered); // no copy
@@ -1199,8 +1219,6 @@ private:
   std::vector<int> m_loop_edge_start, m_loop_edges; // per loop (CSR): e for x_e, ~e for -x_e, per crossing
   std::vector<std::vector<int>> m_free_loops;  // per component: loops whose integer is free
   Eigen::Index m_rows = 0;                     // of the constraint system
-  Sparse m_A;                                  // rows x interior edges, only until the system is assembled
-  Eigen::VectorXd m_inverse_weight;            // likewise
   std::unique_ptr<typename Solver_traits::Matrix> m_system;  // the solver keeps a pointer to it
   Solver_traits m_solver;
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> m_permutation; // row -> position in m_system

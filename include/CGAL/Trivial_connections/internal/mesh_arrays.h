@@ -81,6 +81,14 @@ struct Mesh_arrays
 
   template <class VertexPointMap, class Traits>
   Mesh_arrays(const TriangleMesh& tm, VertexPointMap vpm, const Traits& traits)
+    : Mesh_arrays(tm)
+  {
+    check_and_read_points(tm, vpm, traits);
+  }
+
+  // The connectivity alone (checked: triangles, contiguous indices, manifold). check_and_read_points() completes the
+  // set-up; the connectivity is all the fill-reducing order needs, so it may start in between.
+  explicit Mesh_arrays(const TriangleMesh& tm)
     : vertex_index(CGAL::get_initialized_vertex_index_map(tm)),
       face_index(CGAL::get_initialized_face_index_map(tm))
   {
@@ -137,8 +145,13 @@ struct Mesh_arrays
       const halfedge_descriptor o = opposite(halfedges[i], tm);
       opposite_corner[i] = corner_of(o, tm);
     }
-
     check_manifold_vertices(tm);
+  }
+
+  // The points (finite) and non-degenerate faces. Writes `points` only.
+  template <class VertexPointMap, class Traits>
+  void check_and_read_points(const TriangleMesh& tm, VertexPointMap vpm, const Traits& traits)
+  {
 
     typename Traits::Compute_x_3 x = traits.compute_x_3_object();
     typename Traits::Compute_y_3 y = traits.compute_y_3_object();

@@ -29,6 +29,7 @@
 #include <Eigen/Sparse>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <future>
@@ -154,16 +155,26 @@ public:
     // calls user code (property maps, the callback) and never reads what the main thread writes meanwhile;
     // when the main thread throws, the future's destructor waits for it.
     m_topology = internal::Mesh_topology(m_mesh);
-    // the pattern of the node rows: the other thread orders it, this one fills in M's values on it
+    // The pattern of the node rows, made by the other thread: it orders the pattern, this thread fills in
+    // M's values on it (read-only for both once `pattern_ready`).
     std::vector<int> node_start, node_rows;
-    m_topology.node_adjacency(m_mesh, node_start, node_rows);
-    std::future<std::vector<int>> node_order = internal::concurrently([this, &node_start, &node_rows] {
-      std::vector<int> order;
-      internal::Fill_reducing_ordering<Solver_traits>::compute(m_topology.number_of_nodes, node_start, node_rows, order);
-      return order;
-    });
-    m_mesh.check_and_read_points(tm,
-                                 CGAL::parameters::choose_parameter(
+    std::promise<void> pattern_made;
+    std::future<void> pattern_ready = pattern_made.get_future();
+    std::future<std::vector<int>> node_order =
+      internal::concurrently([this, &node_start, &node_rows, &pattern_made] {
+        try {
+          m_topology.node_adjacency(m_mesh, node_start, node_rows);
+        } catch(...) {
+          pattern_made.set_exception(std::current_exception());
+          throw;
+        }
+        pattern_made.set_value();
+        std::vector<int> order;
+        internal::Fill_reducing_ordering<Solver_traits>::compute(m_topology.number_of_nodes, node_start, node_rows,
+                                                                 order);
+        return order;
+      });
+    m_mesh.check_and_read_points(CGAL::parameters::choose_parameter(
                                    CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
                                    get_const_property_map(CGAL::vertex_point, tm)),
                                  m_traits);
@@ -178,8 +189,15 @@ public:
     notify(Phase::assembly, 0);
     build_constraints();
     {
+      std::vector<int> order;
+      const bool deferred = node_order.wait_for(std::chrono::seconds(0)) == std::future_status::deferred;
+      if(deferred)
+        order = node_order.get(); // no second thread: the task runs here, now
+      else
+        pattern_ready.get();
       Sparse M = system_in_row_order(node_start, node_rows);
-      std::vector<int> order = node_order.get(); // the other thread is done with the pattern
+      if(!deferred)
+        order = node_order.get(); // the other thread is done with the pattern
       std::vector<int>().swap(node_start);
       std::vector<int>().swap(node_rows);
       assemble_system(M, order); // ends the assembly phase

@@ -83,7 +83,7 @@ struct Mesh_arrays
   Mesh_arrays(const TriangleMesh& tm, VertexPointMap vpm, const Traits& traits)
     : Mesh_arrays(tm)
   {
-    check_and_read_points(tm, vpm, traits);
+    check_and_read_points(vpm, traits);
   }
 
   // The connectivity alone (checked: triangles, contiguous indices, manifold). check_and_read_points() completes the
@@ -150,9 +150,8 @@ struct Mesh_arrays
 
   // The points (finite) and non-degenerate faces. Writes `points` only.
   template <class VertexPointMap, class Traits>
-  void check_and_read_points(const TriangleMesh& tm, VertexPointMap vpm, const Traits& traits)
+  void check_and_read_points(VertexPointMap vpm, const Traits& traits)
   {
-
     typename Traits::Compute_x_3 x = traits.compute_x_3_object();
     typename Traits::Compute_y_3 y = traits.compute_y_3_object();
     typename Traits::Compute_z_3 z = traits.compute_z_3_object();

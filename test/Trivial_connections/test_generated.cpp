@@ -16,7 +16,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <random>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -675,6 +677,75 @@ TEST(Checker_self_test, wrong_connections_fields_and_integers_are_caught)
                        TC::parameters::loop_periods(periods, TC::parameters::symmetry_order(2)));
   EXPECT_GT(worse.energy, s.report.energy);
   EXPECT_TRUE(fails_with([&] { check_integers_by_enumeration(view, solver, sing, 2, worse, 1); }, "brute force found lower energy"));
+}
+
+
+// ---------------------------------------------------------------------------------------------------
+// The closest-vector search on its own: random lattices against an exhaustive search of a box that
+// contains the optimum (a ball of radius sqrt(q(rounding)) around c, bounded through G's smallest eigenvalue)
+// ---------------------------------------------------------------------------------------------------
+
+TEST(Closest_vector, matches_exhaustive_search_on_random_lattices)
+{
+  std::mt19937 random(20261123);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  int proven = 0;
+  for(int trial = 0; trial < 300; ++trial) {
+    const int k = 1 + trial % 4;
+    // G = B^T B with a skewed B, so that rounding c is often not optimal
+    Eigen::MatrixXd B(k, k);
+    for(int i = 0; i < k; ++i)
+      for(int j = 0; j < k; ++j)
+        B(i, j) = uniform(random) + (i == j ? 0.3 : 0.);
+    const Eigen::MatrixXd G = B.transpose() * B + 1e-3 * Eigen::MatrixXd::Identity(k, k);
+    Eigen::VectorXd c(k);
+    for(int i = 0; i < k; ++i)
+      c[i] = 3 * uniform(random);
+    Eigen::LLT<Eigen::MatrixXd> llt(G);
+    ASSERT_EQ(llt.info(), Eigen::Success);
+    const Eigen::MatrixXd R = llt.matrixU();
+    std::vector<std::int64_t> rounded(k);
+    for(int i = 0; i < k; ++i)
+      rounded[i] = std::int64_t(std::llround(c[i]));
+    auto q = [&](const std::vector<std::int64_t>& m) {
+      Eigen::VectorXd d(k);
+      for(int i = 0; i < k; ++i)
+        d[i] = double(m[i]) - c[i];
+      return d.dot(G * d);
+    };
+
+    const TC::internal::Closest_vector_result result = TC::internal::closest_vector(G, R, c, {rounded});
+    ASSERT_EQ(int(result.m.size()), k);
+    EXPECT_NEAR(result.value, q(result.m), 1e-9 * (1 + q(result.m)));
+    EXPECT_LE(q(result.m), q(rounded) + 1e-12);
+    if(!result.proven)
+      continue;
+    ++proven;
+
+    // every integer point with q < q(rounded) lies within |m - c| <= sqrt(q(rounded) / lambda_min(G))
+    const double lambda_min = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(G).eigenvalues()[0];
+    const double radius = std::sqrt(q(rounded) / lambda_min);
+    std::vector<std::int64_t> low(k), high(k), m(k);
+    for(int i = 0; i < k; ++i) {
+      low[i] = std::int64_t(std::floor(c[i] - radius));
+      high[i] = std::int64_t(std::ceil(c[i] + radius));
+    }
+    if(std::pow(double(high[0] - low[0] + 1), k) > 2e6)
+      continue; // too large a box for a test
+    double best = std::numeric_limits<double>::infinity();
+    m = low;
+    while(true) {
+      best = (std::min)(best, q(m));
+      int i = 0;
+      while(i < k && m[i] == high[i])
+        m[i] = low[i], ++i;
+      if(i == k)
+        break;
+      ++m[i];
+    }
+    EXPECT_NEAR(q(result.m), best, 1e-9 * (1 + best)) << "trial " << trial << ", k = " << k;
+  }
+  EXPECT_GT(proven, 250); // small k: the enumeration finishes
 }
 
 } // namespace

@@ -142,14 +142,15 @@ struct Mesh_geometry
     }
   }
 
-  // Corner angles (their sums per vertex) and the transport angle of every interior edge.
+  // Corner angles (their sums per vertex) and the transport angle of every interior edge. It runs beside
+  // the factorization, whose memory is the peak: nothing per corner is stored.
   template <class TriangleMesh>
   void compute_angles(const Mesh_arrays<TriangleMesh>& m)
   {
-    const int nc = 3 * m.nf;
-    // per corner halfedge: the angle of its direction in the frame of its face
-    std::vector<double> direction(nc);
     angle_sum.assign(m.nv, 0.);
+    // transport(e) = direction(o) + pi - direction(i) for e's canonical corner halfedge i and its opposite
+    // o, where a corner halfedge's direction is its angle in the frame of its face: summed face by face
+    transport.assign(edge_corner.size(), CGAL_PI);
     for(int f = 0; f < m.nf; ++f) {
       const Vec3& p0 = m.points[m.corner_vertex[3 * f]];
       const Vec3& p1 = m.points[m.corner_vertex[3 * f + 1]];
@@ -163,17 +164,15 @@ struct Mesh_geometry
       angle_sum[m.corner_vertex[3 * f + 2]] += a2;
       // the edges of a counter-clockwise triangle turn by the exterior angles: e12 is at pi - a1 from
       // e01, and e20 at a0 - pi (both in (-pi, pi]); no further atan2 needed
-      direction[3 * f] = 0;
-      direction[3 * f + 1] = CGAL_PI - a1;
-      direction[3 * f + 2] = a0 - CGAL_PI;
+      const double direction[3] = {0., CGAL_PI - a1, a0 - CGAL_PI};
+      for(int j = 0; j < 3; ++j) {
+        const int i = 3 * f + j, e = edge_of_corner[i];
+        if(e >= 0)
+          transport[e] += edge_corner[e] == i ? -direction[j] : direction[j];
+      }
     }
-    const int ne = number_of_interior_edges();
-    transport.resize(ne);
-    for(int e = 0; e < ne; ++e) {
-      const int i = edge_corner[e], o = m.opposite_corner[i];
-      // the edge direction seen from the other face is that of o reversed
-      transport[e] = wrap_angle(direction[o] + CGAL_PI - direction[i]);
-    }
+    for(double& t : transport)
+      t = wrap_angle(t);
   }
 };
 

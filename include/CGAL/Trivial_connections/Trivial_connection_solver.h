@@ -799,17 +799,6 @@ private:
 
   static constexpr int stored_triangle = internal::Stored_triangle<Solver_traits>::value;
 
-  // M v, in the order of m_system
-  Eigen::VectorXd system_times(const Eigen::VectorXd& v) const
-  {
-    const Sparse& M = m_system->eigen_object();
-    if(stored_triangle == Eigen::Lower)
-      return M.template selfadjointView<Eigen::Lower>() * v;
-    if(stored_triangle == Eigen::Upper)
-      return M.template selfadjointView<Eigen::Upper>() * v;
-    return M * v;
-  }
-
   // The sums the constraints read from a connection: per node its star sum (collapsed for a boundary
   // loop; pinned nodes too), per loop the signed sum of its crossings (a boundary loop's is its node's).
   struct Constraint_sums
@@ -893,38 +882,13 @@ private:
     return ax;
   }
 
-  // M^-1 b, refined once when the residual is not already at rounding level; the residual is checked.
+  // M^-1 b (rows in their own order), checked and refined like the solution of a solve (checked_connection())
   Eigen::VectorXd solve_system(const Eigen::VectorXd& b)
   {
-    if(b.size() == 0)
-      return b;
-    typename Solver_traits::Vector rhs(b.size()), sol(b.size());
-    Eigen::VectorXd ordered_b = m_permutation * b;
-    rhs = ordered_b;
-    if(!m_solver.linear_solver(rhs, sol))
-      throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
-    return checked_solution(ordered_b, Eigen::VectorXd(sol));
-  }
-
-  // `lambda` solves M lambda = `ordered_b` (both in the order of m_system): refined once when the residual
-  // is not already at rounding level, checked, and returned in the order of the rows.
-  Eigen::VectorXd checked_solution(const Eigen::VectorXd& ordered_b, Eigen::VectorXd lambda)
-  {
-    const double scale = 1 + ordered_b.template lpNorm<Eigen::Infinity>();
-    Eigen::VectorXd residual = ordered_b - system_times(lambda);
-    double res = residual.template lpNorm<Eigen::Infinity>();
-    if(!(res <= 1e-13 * scale)) {
-      typename Solver_traits::Vector rhs(lambda.size()), sol(lambda.size());
-      rhs = residual;
-      if(!m_solver.linear_solver(rhs, sol))
-        throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
-      lambda += Eigen::VectorXd(sol);
-      res = (ordered_b - system_times(lambda)).template lpNorm<Eigen::Infinity>();
-    }
-    if(!std::isfinite(res) || !lambda.allFinite() || res > 1e-8 * scale)
-      throw Invalid_input(Error_code::solver_failure,
-                          "the linear solve is inaccurate (residual " + std::to_string(res) + ")");
-    return m_permutation.transpose() * lambda;
+    Eigen::VectorXd lambda = unchecked_solve(b);
+    Constraint_sums sums;
+    checked_connection(b, lambda, sums);
+    return lambda;
   }
 
   // Per component, the Schur complement S of its free loop rows and S^-1 = (M^-1) on those rows: the

@@ -29,6 +29,7 @@
 #include <Eigen/Sparse>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -208,6 +209,9 @@ public:
       return 0;
     });
     factor();
+    m_edge_nodes.resize(std::size_t(m_geometry.number_of_interior_edges()));
+    for(int e = 0; e < m_geometry.number_of_interior_edges(); ++e)
+      m_edge_nodes[e] = nodes_of_edge(e);
     angles.get();
     compute_loop_holonomies();
     in_phase(Phase::loop_metric, [&] { compute_loop_metric(); return 0; });
@@ -313,55 +317,75 @@ public:
     double rounding_energy = 0;
     const bool choose_periods = !user_periods && !m_free_rows.empty();
     if(choose_periods && m_loop_rows_in_factor) {
-      // One forward and one backward substitution in all. The free loop rows are last, so the forward
-      // pass z = L^-1 P b gives their multipliers from the dense trailing block alone, and new loop
-      // integers change b only there, hence only the trailing part of z.
+      // One forward and one backward substitution in all, the free loop rows F last. The forward
+      // substitution through the node columns N leaves on the rows F y = b_F - M_FN M_NN^-1 b_N, the
+      // right-hand side of their Schur complement S = L_FF D_F L_FF^T (the trailing block of the factor):
+      // lambda_F = S^-1 (y + unit m) for the loop integers m. So the continuous optimum is m = -y / unit,
+      // and the integers change y only.
       using Substitutions = internal::Factor_substitutions<Solver_traits>;
-      Eigen::VectorXd z = m_permutation * b;
-      Substitutions::forward(m_solver, z);
-      Eigen::VectorXd w = z;
-      Substitutions::scale(m_solver, w);
-      rounding_energy = z.dot(w); // b^T M^-1 b
       const Eigen::Index first = m_rows - Eigen::Index(m_free_rows.size());
-      std::vector<Eigen::VectorXd> loop_lambda(m_components.size());
+      Eigen::VectorXd z = m_permutation * b;
+      if constexpr(Substitutions::leading_columns)
+        Substitutions::forward(m_solver, z, first);
+      else
+        Substitutions::forward(m_solver, z);
+      std::vector<Eigen::VectorXd> y(m_components.size());
       for(std::size_t c = 0; c < m_components.size(); ++c) {
         const Loop_metric& metric = m_loop_metric[c];
-        const Eigen::Index kc = Eigen::Index(metric.block.size());
-        Eigen::VectorXd wc(kc);
-        for(Eigen::Index a = 0; a < kc; ++a)
-          wc[a] = w[first + metric.block[a]];
-        loop_lambda[c] = metric.schur_factor.template triangularView<Eigen::Lower>().transpose().solve(wc);
+        y[c].resize(Eigen::Index(metric.block.size()));
+        for(Eigen::Index a = 0; a < y[c].size(); ++a)
+          y[c][a] = z[first + metric.block[a]];
+        if constexpr(!Substitutions::leading_columns) // the whole forward substitution gave L_FF^-1 y
+          y[c] = metric.schur_factor.template triangularView<Eigen::Lower>() * y[c];
       }
       notify(progress, Phase::loop_integers, 0);
-      rounding_energy += choose_loop_periods(loop_lambda, unit, periods, report);
+      const double loop_energy = choose_loop_periods(y, unit, periods, report);
       notify(progress, Phase::loop_integers, 1);
       for(std::size_t c = 0; c < m_components.size(); ++c) {
         const Loop_metric& metric = m_loop_metric[c];
-        const Eigen::Index kc = Eigen::Index(metric.block.size());
-        Eigen::VectorXd change(kc);
-        for(Eigen::Index a = 0; a < kc; ++a)
-          change[a] = unit * double(periods[m_free_loops[c][a]]);
-        metric.schur_factor.template triangularView<Eigen::Lower>().solveInPlace(change);
-        for(Eigen::Index a = 0; a < kc; ++a)
-          z[first + metric.block[a]] += change[a];
+        Eigen::VectorXd& t = y[c];
+        for(Eigen::Index a = 0; a < t.size(); ++a)
+          t[a] += unit * double(periods[m_free_loops[c][a]]);
+        metric.schur_factor.template triangularView<Eigen::Lower>().solveInPlace(t);
+        for(Eigen::Index a = 0; a < t.size(); ++a)
+          z[first + metric.block[a]] = t[a];
       }
+      const Eigen::VectorXd z_nodes = z.head(first);
       Substitutions::scale(m_solver, z);
-      Substitutions::backward(m_solver, z);
+      rounding_energy = z_nodes.dot(z.head(first)) + loop_energy; // b_N^T M_NN^-1 b_N + the loop part
+      if constexpr(Substitutions::leading_columns) {
+        for(std::size_t c = 0; c < m_components.size(); ++c) {
+          const Loop_metric& metric = m_loop_metric[c];
+          Eigen::VectorXd t(Eigen::Index(metric.block.size()));
+          for(Eigen::Index a = 0; a < t.size(); ++a)
+            t[a] = z[first + metric.block[a]];
+          metric.schur_factor.template triangularView<Eigen::Lower>().transpose().solveInPlace(t);
+          for(Eigen::Index a = 0; a < t.size(); ++a)
+            z[first + metric.block[a]] = t[a];
+        }
+        Substitutions::backward(m_solver, z, first);
+      } else {
+        Substitutions::backward(m_solver, z);
+      }
       b = right_hand_side(k, periods, n);
       lambda = m_permutation.transpose() * z;
     } else {
       if(choose_periods) {
         // checked here already: its loop multipliers choose the integers
         lambda = solve_system(b);
-        rounding_energy = b.dot(lambda);
-        std::vector<Eigen::VectorXd> loop_lambda(m_components.size());
+        std::vector<Eigen::VectorXd> y(m_components.size());
+        double loop_part = 0; // y^T S^-1 y = lambda_F . y
         for(std::size_t c = 0; c < m_components.size(); ++c) {
-          loop_lambda[c].resize(Eigen::Index(m_free_loops[c].size()));
+          const Loop_metric& metric = m_loop_metric[c];
+          Eigen::VectorXd lf(Eigen::Index(m_free_loops[c].size()));
           for(std::size_t a = 0; a < m_free_loops[c].size(); ++a)
-            loop_lambda[c][Eigen::Index(a)] = lambda[m_row_of_loop[m_free_loops[c][a]]];
+            lf[Eigen::Index(a)] = lambda[m_row_of_loop[m_free_loops[c][a]]];
+          const auto L = metric.schur_factor.template triangularView<Eigen::Lower>();
+          y[c] = L * (metric.schur_diagonal.asDiagonal() * (L.transpose() * lf)); // S lambda_F
+          loop_part += lf.dot(y[c]);
         }
         notify(progress, Phase::loop_integers, 0);
-        rounding_energy += choose_loop_periods(loop_lambda, unit, periods, report);
+        rounding_energy = b.dot(lambda) - loop_part + choose_loop_periods(y, unit, periods, report);
         notify(progress, Phase::loop_integers, 1);
         b = right_hand_side(k, periods, n);
       }
@@ -374,7 +398,7 @@ public:
       rounding_energy = b.dot(lambda);
     write_connection(xe, x);
 
-    fill_report(xe, sums, k, periods, prescribed, n, report);
+    fill_report(sums, k, periods, prescribed, n, report);
     report.rounding_energy = user_periods ? report.energy : rounding_energy;
     notify(progress, Phase::solve, 1);
     return report;
@@ -536,13 +560,10 @@ private:
       if(m_mesh.opposite_corner[i] < 0)
         m_border_corners.push_back(i);
     m_vertex_of_node.assign(t.number_of_interior_nodes, -1);
-    m_row_of_vertex.assign(m_mesh.nv, -1);
     for(int v = 0; v < m_mesh.nv; ++v) {
       const int node = t.node_of_vertex[v];
       if(node >= 0 && node < t.number_of_interior_nodes)
         m_vertex_of_node[node] = v;
-      if(node >= 0)
-        m_row_of_vertex[v] = m_row_of_node[node];
     }
 
     // per loop, its crossings as oriented interior edges (e: x_e, ~e: -x_e), for the solves
@@ -575,7 +596,6 @@ private:
     for(int node = 0; node < t.number_of_nodes; ++node)
       if(m_row_of_node[node] >= 0)
         ++node_row_count;
-    auto edge_of_code = [](int code) { return code >= 0 ? code : ~code; };
 
     // generator crossings per edge (CSR): (generator row, +-1)
     std::vector<int> crossing_start(std::size_t(ne) + 1, 0);
@@ -592,7 +612,7 @@ private:
         if(t.loops[l].kind == Loop_kind::generator)
           for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
             const int code = m_loop_edges[p];
-            crossings[next[edge_of_code(code)]++] = {m_row_of_loop[l], code >= 0 ? 1. : -1.};
+            crossings[next[edge_of_code(code)]++] = {m_row_of_loop[l], sign_of_code(code)};
           }
     }
 
@@ -617,10 +637,9 @@ private:
         pattern.clear();
         for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
           const int code = m_loop_edges[p], e = edge_of_code(code);
-          const double v = (code >= 0 ? 1. : -1.) / m_geometry.weight[e];
-          // x_e enters target(i)'s star and, reversed, source(i)'s (a != b: A's column of e has both rows)
-          const int i = m_geometry.edge_corner[e];
-          const int a = t.node_of_vertex[m_mesh.source_of(i)], b = t.node_of_vertex[m_mesh.target_of(i)];
+          const double v = sign_of_code(code) / m_geometry.weight[e];
+          const std::array<int, 2> ends = nodes_of_edge(e);
+          const int a = ends[0], b = ends[1];
           if(a != b) {
             if(m_row_of_node[b] >= 0) add(m_row_of_node[b], v, g);
             if(m_row_of_node[a] >= 0) add(m_row_of_node[a], -v, g);
@@ -695,8 +714,8 @@ private:
       return value[p];
     };
     for(int e = 0; e < ne; ++e) {
-      const int i = m_geometry.edge_corner[e];
-      const int a = t.node_of_vertex[m_mesh.source_of(i)], b = t.node_of_vertex[m_mesh.target_of(i)];
+      const std::array<int, 2> ends = nodes_of_edge(e);
+      const int a = ends[0], b = ends[1];
       if(a == b)
         continue;
       const double v = 1 / m_geometry.weight[e];
@@ -804,6 +823,7 @@ private:
   struct Constraint_sums
   {
     std::vector<double> node, loop;
+    double energy = 0; // sum of w_e x_e^2, read on the way
   };
 
   // M^-1 b (rows in their own order), to be checked by the caller
@@ -825,14 +845,13 @@ private:
   Eigen::VectorXd checked_connection(const Eigen::VectorXd& b, Eigen::VectorXd& lambda, Constraint_sums& sums)
   {
     const double scale = 1 + b.template lpNorm<Eigen::Infinity>();
-    Eigen::VectorXd xe = connection_of(lambda);
-    constraint_sums(xe, sums);
+    Eigen::VectorXd xe;
+    connection_and_sums(lambda, xe, sums);
     Eigen::VectorXd residual = b - row_sums(sums);
     double res = residual.template lpNorm<Eigen::Infinity>();
     if(!(res <= 1e-13 * scale)) {
       lambda += unchecked_solve(residual);
-      xe = connection_of(lambda);
-      constraint_sums(xe, sums);
+      connection_and_sums(lambda, xe, sums);
       res = (b - row_sums(sums)).template lpNorm<Eigen::Infinity>();
     }
     if(!std::isfinite(res) || !xe.allFinite() || res > 1e-8 * scale)
@@ -841,32 +860,67 @@ private:
     return xe;
   }
 
-  void constraint_sums(const Eigen::VectorXd& xe, Constraint_sums& sums) const
+  // x = W^-1 A^T lambda, without A: each interior edge gets the multipliers of the stars it enters (+ at
+  // its target's node, - at its source's; the difference vanishes when both are one boundary loop) and of
+  // the generators that cross it. Then the sums the constraints read from x, in the same pass.
+  void connection_and_sums(const Eigen::VectorXd& lambda, Eigen::VectorXd& xe, Constraint_sums& sums) const
   {
     const internal::Mesh_topology& t = m_topology;
-    sums.node.assign(std::size_t(t.number_of_nodes), 0.);
+    const int ne = m_geometry.number_of_interior_edges();
+    std::vector<double> multiplier(std::size_t(t.number_of_nodes), 0.);
+    for(int node = 0; node < t.number_of_nodes; ++node)
+      if(m_row_of_node[node] >= 0)
+        multiplier[node] = lambda[m_row_of_node[node]];
+    xe.resize(ne);
+    for(int e = 0; e < ne; ++e)
+      xe[e] = multiplier[m_edge_nodes[e][1]] - multiplier[m_edge_nodes[e][0]];
+    for(std::size_t l = 0; l < t.loops.size(); ++l)
+      if(t.loops[l].kind == Loop_kind::generator) {
+        const double g = lambda[m_row_of_loop[l]];
+        for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p)
+          xe[edge_of_code(m_loop_edges[p])] += sign_of_code(m_loop_edges[p]) * g;
+      }
+
     // x(i) enters target(i)'s star, -x(i) = x(opposite(i)) enters source(i)'s star
-    for(int e = 0; e < int(xe.size()); ++e) {
-      const int i = m_geometry.edge_corner[e];
-      const int a = t.node_of_vertex[m_mesh.source_of(i)], c = t.node_of_vertex[m_mesh.target_of(i)];
+    std::vector<double>& node_sum = multiplier; // read for the last time above
+    std::fill(node_sum.begin(), node_sum.end(), 0.);
+    double energy = 0;
+    for(int e = 0; e < ne; ++e) {
+      const double w = m_geometry.weight[e], x = xe[e] / w;
+      xe[e] = x;
+      energy += w * x * x;
+      const int a = m_edge_nodes[e][0], c = m_edge_nodes[e][1];
       if(a != c) {
-        sums.node[c] += xe[e];
-        sums.node[a] -= xe[e];
+        node_sum[c] += x;
+        node_sum[a] -= x;
       }
     }
+    sums.energy = energy;
     sums.loop.assign(t.loops.size(), 0.);
     for(std::size_t l = 0; l < t.loops.size(); ++l) {
       if(t.loops[l].kind == Loop_kind::boundary) {
-        sums.loop[l] = sums.node[t.loops[l].node];
+        sums.loop[l] = node_sum[t.loops[l].node];
         continue;
       }
       double sum = 0;
-      for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
-        const int code = m_loop_edges[p];
-        sum += code >= 0 ? xe[code] : -xe[~code];
-      }
+      for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p)
+        sum += sign_of_code(m_loop_edges[p]) * xe[edge_of_code(m_loop_edges[p])];
       sums.loop[l] = sum;
     }
+    sums.node.swap(node_sum);
+  }
+
+  // A crossing of a loop is coded e (x_e) or ~e (-x_e); decoded without branches, whose sign pattern is
+  // random
+  static int edge_of_code(int code) { return code ^ (code >> 31); }
+  static double sign_of_code(int code) { return double(1 | (code >> 31)); }
+
+  // the nodes of interior edge e's canonical corner: x_e enters the star of the second and, reversed, the
+  // star of the first; both are the same node when the edge joins two vertices of one boundary loop
+  std::array<int, 2> nodes_of_edge(int e) const
+  {
+    const int i = m_geometry.edge_corner[e];
+    return {m_topology.node_of_vertex[m_mesh.source_of(i)], m_topology.node_of_vertex[m_mesh.target_of(i)]};
   }
 
   // A x, from its constraint sums
@@ -1036,24 +1090,22 @@ private:
   }
 
   // The integers of the free loops minimising the energy, per component, written into `periods` (0 there on
-  // entry); `loop_lambda[c]`: the multipliers of component c's free loop rows for the integers 0. Returns the
-  // energy change of rounding the continuous optimum (for Solve_report::rounding_energy).
-  double choose_loop_periods(const std::vector<Eigen::VectorXd>& loop_lambda, double unit,
-                             std::vector<std::int64_t>& periods, Solve_report& report) const
+  // entry). `y[c]`: the right-hand side of the Schur complement S of component c's free loop rows for the
+  // integers 0, so that the loop part of the energy is (y + unit m)^T S^-1 (y + unit m). Returns that part
+  // for the integers rounded one by one (for Solve_report::rounding_energy).
+  double choose_loop_periods(const std::vector<Eigen::VectorXd>& y, double unit, std::vector<std::int64_t>& periods,
+                             Solve_report& report) const
   {
     bool proven = true;
-    double rounding_change = 0;
+    double rounding_part = 0;
     for(std::size_t c = 0; c < m_components.size(); ++c) {
       const std::vector<int>& free = m_free_loops[c];
       if(free.empty())
         continue;
       const Eigen::Index kc = Eigen::Index(free.size());
-      // energy(m) = b.lambda + 2 unit m.lambda_F + unit^2 m^T Ginv m with Ginv = (M^-1)_FF = S^-1; the
-      // minimiser of the quadratic (m - center)^T Ginv (m - center) does not depend on unit
+      // the minimiser of (m - center)^T S^-1 (m - center) does not depend on unit
       const Loop_metric& metric = m_loop_metric[c];
-      const Eigen::VectorXd& lf = loop_lambda[c];
-      const auto L = metric.schur_factor.template triangularView<Eigen::Lower>();
-      const Eigen::VectorXd center = -(L * (metric.schur_diagonal.asDiagonal() * (L.transpose() * lf))) / unit;
+      const Eigen::VectorXd center = -y[c] / unit;
       std::vector<std::int64_t> rounded(kc), own(kc);
       for(Eigen::Index a = 0; a < kc; ++a) {
         rounded[a] = std::int64_t(std::llround(center[a]));
@@ -1065,46 +1117,15 @@ private:
                                  // about the work of a few back-substitutions, so that a re-solve stays cheap
                                  (std::max)(2e5, 10. * double(m_rows)));
       proven = proven && best.proven;
-      Eigen::VectorXd mv(kc);
+      Eigen::VectorXd t(kc);
       for(Eigen::Index a = 0; a < kc; ++a)
-        mv[a] = double(rounded[a]);
-      rounding_change += 2 * unit * mv.dot(lf) +
-                         unit * unit * (metric.inverse_factor.template triangularView<Eigen::Upper>() * mv).squaredNorm();
+        t[a] = y[c][a] + unit * double(rounded[a]);
+      rounding_part += (metric.inverse_factor.template triangularView<Eigen::Upper>() * t).squaredNorm();
       for(Eigen::Index a = 0; a < kc; ++a)
         periods[free[a]] = best.m[a];
     }
     report.integers_proven_optimal = proven;
-    return rounding_change;
-  }
-
-  // x = W^-1 A^T lambda from the mesh, without A: each interior edge e gets the multipliers of the stars
-  // it enters (+ at its target's node, - at its source's) and of the generators that cross it.
-  Eigen::VectorXd connection_of(const Eigen::VectorXd& lambda) const
-  {
-    const internal::Mesh_topology& t = m_topology;
-    const int ne = m_geometry.number_of_interior_edges();
-    Eigen::VectorXd xe(ne);
-    // both ends on one boundary loop: the same row, so the difference vanishes as it should
-    auto multiplier = [&](int v) {
-      const int r = m_row_of_vertex[v];
-      return r >= 0 ? lambda[r] : 0.;
-    };
-    for(int e = 0; e < ne; ++e) {
-      const int i = m_geometry.edge_corner[e];
-      xe[e] = multiplier(m_mesh.target_of(i)) - multiplier(m_mesh.source_of(i));
-    }
-    for(std::size_t l = 0; l < t.loops.size(); ++l)
-      if(t.loops[l].kind == Loop_kind::generator) {
-        const double g = lambda[m_row_of_loop[l]];
-        for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
-          const int code = m_loop_edges[p];
-          if(code >= 0) xe[code] += g;
-          else xe[~code] -= g;
-        }
-      }
-    for(int e = 0; e < ne; ++e)
-      xe[e] /= m_geometry.weight[e];
-    return xe;
+    return rounding_part;
   }
 
   Eigen::VectorXd right_hand_side(const std::vector<std::int64_t>& k, const std::vector<std::int64_t>& periods,
@@ -1140,14 +1161,12 @@ private:
     }
   }
 
-  void fill_report(const Eigen::VectorXd& xe, const Constraint_sums& sums, const std::vector<std::int64_t>& k,
+  void fill_report(const Constraint_sums& sums, const std::vector<std::int64_t>& k,
                    std::vector<std::int64_t>& periods, const std::vector<char>& prescribed, int n,
                    Solve_report& report) const
   {
     const double unit = 2 * CGAL_PI / n;
-    report.energy = 0;
-    for(Eigen::Index e = 0; e < xe.size(); ++e)
-      report.energy += m_geometry.weight[e] * xe[e] * xe[e];
+    report.energy = sums.energy;
 
     // every interior vertex, the pinned ones included
     report.max_vertex_residual = 0;
@@ -1196,7 +1215,9 @@ private:
   std::vector<Component_report> m_components;
 
   std::vector<int> m_row_of_node, m_row_of_loop, m_vertex_of_node, m_free_rows;
-  std::vector<int> m_row_of_vertex;            // the row of its node, -1 if none (pinned, isolated)
+  // per interior edge, the nodes of its canonical corner's source and target (made after the factorization,
+  // whose memory is the peak: the solves read it)
+  std::vector<std::array<int, 2>> m_edge_nodes;
   std::vector<int> m_border_corners;           // corner halfedges on a border edge
   std::vector<int> m_loop_edge_start, m_loop_edges; // per loop (CSR): e for x_e, ~e for -x_e, per crossing
   std::vector<std::vector<int>> m_free_loops;  // per component: loops whose integer is free

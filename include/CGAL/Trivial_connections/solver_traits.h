@@ -161,10 +161,15 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<
   own): forward (v <- L^-1 v), scale (v <- D^-1 v), backward (v <- L^-T v). With the loop rows last, a solve
   that must choose the loop integers first needs one forward and one backward substitution instead of two
   solves. `available` is false for backends that do not expose them.
+  With `leading_columns`, the substitutions also run through the first `columns` columns of L only:
+  forward(v, columns) leaves on the trailing rows their right-hand side for the trailing block of L, and
+  backward(v, columns) expects the trailing rows solved already. The solver does the trailing block with
+  its dense copy (the Schur complement of the loop rows), faster than a sparse substitution.
 */
 template <class SolverTraits>
 struct Factor_substitutions
 {
+  static constexpr bool leading_columns = false;
   static bool available(const SolverTraits&) { return false; }
   static void forward(SolverTraits&, Eigen::VectorXd&) { CGAL_error(); }
   static void scale(SolverTraits&, Eigen::VectorXd&) { CGAL_error(); }
@@ -176,6 +181,7 @@ struct Factor_substitutions<CGAL::Eigen_solver_traits<
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, UpLo, Eigen::NaturalOrdering<Index>>>>
 {
   // the steps of SimplicialCholeskyBase::_solve_impl without its permutations (empty with the natural ordering)
+  static constexpr bool leading_columns = true;
   template <class Traits>
   static bool available(Traits& traits)
   {
@@ -197,6 +203,37 @@ struct Factor_substitutions<CGAL::Eigen_solver_traits<
   {
     if(traits.solver().matrixL().nestedExpression().nonZeros() > 0)
       traits.solver().matrixU().solveInPlace(v);
+  }
+  // L is stored strictly lower (unit diagonal), column major
+  template <class Traits>
+  static void forward(Traits& traits, Eigen::VectorXd& v, Eigen::Index columns)
+  {
+    const auto& L = traits.solver().matrixL().nestedExpression();
+    CGAL_precondition(L.isCompressed() && columns <= L.cols());
+    const int* start = L.outerIndexPtr();
+    const int* row = L.innerIndexPtr();
+    const double* value = L.valuePtr();
+    for(Eigen::Index j = 0; j < columns; ++j) {
+      const double vj = v[j];
+      if(vj != 0)
+        for(int p = start[j]; p < start[j + 1]; ++p)
+          v[row[p]] -= value[p] * vj;
+    }
+  }
+  template <class Traits>
+  static void backward(Traits& traits, Eigen::VectorXd& v, Eigen::Index columns)
+  {
+    const auto& L = traits.solver().matrixL().nestedExpression();
+    CGAL_precondition(L.isCompressed() && columns <= L.cols());
+    const int* start = L.outerIndexPtr();
+    const int* row = L.innerIndexPtr();
+    const double* value = L.valuePtr();
+    for(Eigen::Index j = columns - 1; j >= 0; --j) {
+      double vj = v[j];
+      for(int p = start[j]; p < start[j + 1]; ++p)
+        vj -= value[p] * v[row[p]];
+      v[j] = vj;
+    }
   }
 };
 
@@ -262,8 +299,10 @@ struct Factor_substitutions<CGAL::Eigen_solver_traits<Cholmod_supernodal_factori
           return false;
     return true;
   }
+  static constexpr bool leading_columns = false; // cholmod_solve runs through all columns
   template <class Traits>
   static void forward(Traits& traits, Eigen::VectorXd& v) { solve(traits, CHOLMOD_L, v); }
+
   template <class Traits>
   static void scale(Traits&, Eigen::VectorXd&) {} // L L^T: D = I
   template <class Traits>

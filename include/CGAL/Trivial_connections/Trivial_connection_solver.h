@@ -1117,10 +1117,8 @@ private:
                                  // about the work of a few back-substitutions, so that a re-solve stays cheap
                                  (std::max)(2e5, 10. * double(m_rows)));
       proven = proven && best.proven;
-      Eigen::VectorXd t(kc);
-      for(Eigen::Index a = 0; a < kc; ++a)
-        t[a] = y[c][a] + unit * double(rounded[a]);
-      rounding_part += (metric.inverse_factor.template triangularView<Eigen::Upper>() * t).squaredNorm();
+      // (y + unit m)^T S^-1 (y + unit m) = unit^2 q(m) with y = -unit center
+      rounding_part += unit * unit * best.candidate_values[0];
       for(Eigen::Index a = 0; a < kc; ++a)
         periods[free[a]] = best.m[a];
     }

@@ -35,6 +35,7 @@ struct Closest_vector_result
   std::vector<std::int64_t> m;
   double value = 0;    // q(m)
   bool proven = false;
+  std::vector<double> candidate_values; // q of each candidate given
 };
 
 // q(m) = |R (m - c)|^2 with G = R^T R: a triangular product, half the work of one with G
@@ -115,13 +116,11 @@ struct Enumeration
 
 // Greedy coordinate descent: shift one coordinate by its best integer step while q decreases.
 // The gradient of q is 2 G (m - c). Leaves `best` optimal against every single-coordinate change.
-inline void greedy_descent(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, Closest_vector_result& best)
+// On entry and exit r = best.m - c and Gr = G r.
+inline void greedy_descent(const Eigen::MatrixXd& G, Closest_vector_result& best, Eigen::VectorXd& r,
+                           Eigen::VectorXd& Gr)
 {
-  const Eigen::Index k = c.size();
-  Eigen::VectorXd r(k);
-  for(Eigen::Index i = 0; i < k; ++i)
-    r[i] = double(best.m[i]) - c[i];
-  Eigen::VectorXd Gr = G * r;
+  const Eigen::Index k = r.size();
   for(int sweep = 0; sweep < 1000; ++sweep) {
     bool improved = false;
     for(Eigen::Index i = 0; i < k; ++i) {
@@ -160,10 +159,15 @@ inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eige
   }
   for(const std::vector<std::int64_t>& m : candidates) {
     const double q = quadratic_distance(R, c, m);
+    best.candidate_values.push_back(q);
     if(q < best.value) { best.value = q; best.m = m; }
   }
 
-  greedy_descent(G, c, best);
+  Eigen::VectorXd r(k);
+  for(Eigen::Index i = 0; i < k; ++i)
+    r[i] = double(best.m[i]) - c[i];
+  Eigen::VectorXd Gr = G * r;
+  greedy_descent(G, best, r, Gr);
 
   // Schnorr-Euchner: q = sum_i R_ii^2 (m_i - center_i)^2 with G = R^T R, R upper triangular and
   // center_i = c_i - sum_{j>i} R_ij (m_j - c_j) / R_ii; levels are fixed from k-1 down to 0.
@@ -172,12 +176,25 @@ inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eige
   e.start();
   e.search(k - 1, 0.);
   if(e.improved) {
+    // G r follows the coordinates that changed (few, usually), and is recomputed when many did
+    std::vector<Eigen::Index> changed;
+    for(Eigen::Index i = 0; i < k; ++i)
+      if(e.best_m[i] != best.m[i])
+        changed.push_back(i);
+    for(Eigen::Index i : changed)
+      r[i] = double(e.best_m[i]) - c[i];
+    if(4 * Eigen::Index(changed.size()) > k) {
+      Gr.noalias() = G * r;
+    } else {
+      for(Eigen::Index i : changed)
+        Gr += double(e.best_m[i] - best.m[i]) * G.col(i);
+    }
     best.m = e.best_m;
-    best.value = quadratic_distance(R, c, best.m); // without the drift of the running sums
+    best.value = r.dot(Gr); // without the drift of the enumeration's running sums
   }
   best.proven = !e.out_of_budget;
   if(!best.proven)
-    greedy_descent(G, c, best); // the interrupted enumeration's point may not be locally optimal
+    greedy_descent(G, best, r, Gr); // the interrupted enumeration's point may not be locally optimal
   return best;
 }
 

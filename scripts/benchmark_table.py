@@ -187,7 +187,7 @@ def backend_table(backend, meshes, lines):
     lines.append("")
     head = ["mesh", "faces", "genus", "bnd loops", "sing.", "reference"] + [t for _, t in BUILD_PHASES] + \
         ["build", "solve", "re-solve", "field", "end-to-end / ref", "re-solve / ref",
-         "peak B/face", "ref peak B/face", "ref factor B/face", "reps"]
+         "peak B/face", "ref peak B/face", "ref factor B/face", "ref GFlop", "reps"]
     lines.append("| " + " | ".join(head) + " |")
     lines.append("|" + "|".join(["---"] + ["---:"] * (len(head) - 1)) + "|")
     for mesh, e in sorted(meshes.items(), key=mesh_order):
@@ -201,7 +201,8 @@ def backend_table(backend, meshes, lines):
         row += [fmt_time(c.get("t_build")), with_integers(c, "t_solve"), with_integers(c, "t_resolve"),
                 fmt_time(c.get("t_field")), fmt_num(c.get("r_end_to_end")), fmt_num(c.get("r_resolve")),
                 fmt_num(c.get("peak_bytes_per_face"), 4), fmt_num(c.get("ref_peak_bytes_per_face"), 4),
-                fmt_num(c.get("ref_factor_bytes_per_face"), 4), str(e["repetitions"])]
+                fmt_num(c.get("ref_factor_bytes_per_face"), 4), fmt_num(c.get("ref_factor_gflops"), 3),
+                str(e["repetitions"])]
         lines.append("| " + " | ".join(row) + " |")
     lines.append("")
 
@@ -270,7 +271,9 @@ def main():
     lines.append("- **Memory**: peak B/face = (VmHWM − resident size just before the build) / faces, over build, two "
                  "solves and the field (the peak is reset through `/proc/self/clear_refs` before each mesh); ref peak "
                  "B/face = the same for the reference (matrix + factorization); ref factor B/face = nnz(L) × 12 / faces "
-                 "(8-byte value + 4-byte index per nonzero of the reference factor; for CHOLMOD its `lnz`).")
+                 "(8-byte value + 4-byte index per nonzero of the reference factor; for CHOLMOD its `lnz`); ref GFlop = "
+                 "the work of the reference factorization, the sum over the columns of L of nnz(column)² (diagonal "
+                 "included, as CHOLMOD counts), in 10⁹.")
     lines.append("- A phase shown as – was not reported (phase times come from the solver's progress callback). "
                  "Build type Release (-O3); Google Benchmark's \"Library was built as DEBUG\" warning is about "
                  "Debian's libbenchmark itself, not the code measured.")

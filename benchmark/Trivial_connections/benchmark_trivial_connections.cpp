@@ -23,8 +23,10 @@
 // / reference, r_resolve = resolve / reference; peak_bytes (VmHWM above the resident size before the solver
 // was built, over build + two solves + field), peak_bytes_per_face, ref_peak_bytes_per_face (same for the
 // reference), ref_factor_nnz (nonzeros of the reference factor L, including the diagonal),
-// ref_factor_bytes_per_face (nnz x 12 / faces); for CHOLMOD ref_cholmod_ordering, the ordering its analysis
-// chose (0 natural, 1 given, 2 AMD, 3 METIS, 4 NESDIS, 5 COLAMD, 6 postordered).
+// ref_factor_bytes_per_face (nnz x 12 / faces), ref_factor_gflops (sum over the columns of L of nnz(column)^2,
+// diagonal included, in 1e9: the work of the reference factorization, which the time of a simplicial one
+// follows); for CHOLMOD ref_cholmod_ordering, the ordering its analysis chose (0 natural, 1 given, 2 AMD,
+// 3 METIS, 4 NESDIS, 5 COLAMD, 6 postordered).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -277,6 +279,7 @@ struct Reference_result
 {
   double seconds = 0;
   double factor_nnz = 0;
+  double factor_flops = 0; // sum over the columns of L of nnz(column)^2 (diagonal included), as CHOLMOD counts
   int ordering = -1; // CHOLMOD: the ordering its analysis chose (CHOLMOD_AMD, CHOLMOD_METIS, ...)
   double peak_bytes = 0;
   bool ok = true;
@@ -291,12 +294,32 @@ double factor_nonzeros(const EigenSolver& solver, Eigen::Index n)
   return double(solver.matrixL().nestedExpression().nonZeros()) + double(n); // strict L + diagonal D
 }
 
+template <class EigenSolver>
+double factor_flops(const EigenSolver& solver)
+{
+  const auto& L = solver.matrixL().nestedExpression();
+  double flops = 0;
+  for(Eigen::Index j = 0; j < L.outerSize(); ++j) {
+    double column = 1; // the diagonal
+    for(typename std::decay<decltype(L)>::type::InnerIterator it(L, j); it; ++it)
+      ++column;
+    flops += column * column;
+  }
+  return flops;
+}
+
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
 template <class MatrixType, int UpLo>
 double factor_nonzeros(const Eigen::CholmodSupernodalLLT<MatrixType, UpLo>& solver, Eigen::Index)
 {
   // nnz(L) from the analysis (excluding the zeros of supernodal amalgamation)
   return const_cast<Eigen::CholmodSupernodalLLT<MatrixType, UpLo>&>(solver).cholmod().lnz;
+}
+
+template <class MatrixType, int UpLo>
+double factor_flops(const Eigen::CholmodSupernodalLLT<MatrixType, UpLo>& solver)
+{
+  return const_cast<Eigen::CholmodSupernodalLLT<MatrixType, UpLo>&>(solver).cholmod().fl;
 }
 
 template <class MatrixType, int UpLo>
@@ -348,6 +371,7 @@ Reference_result reference_factorization(std::size_t nv, const std::vector<Weigh
   result.seconds = seconds_since(t0);
   result.ok = solver.info() == Eigen::Success;
   result.factor_nnz = factor_nonzeros(solver, n);
+  result.factor_flops = factor_flops(solver);
   result.ordering = chosen_ordering(solver);
   result.peak_bytes = base >= 0 ? status_bytes("VmHWM") - base : -1;
   return result;
@@ -445,6 +469,7 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
   k["peak_bytes_per_face"] = peak >= 0 ? peak / nf : -1;
   k["ref_peak_bytes_per_face"] = ref.peak_bytes >= 0 ? ref.peak_bytes / nf : -1;
   k["ref_factor_nnz"] = ref.factor_nnz;
+  k["ref_factor_gflops"] = ref.factor_flops * 1e-9;
   if(ref.ordering >= 0)
     k["ref_cholmod_ordering"] = double(ref.ordering);
   k["ref_factor_bytes_per_face"] = ref.factor_nnz * (8 + 4) / nf;

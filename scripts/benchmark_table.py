@@ -3,7 +3,8 @@
 
     python3 scripts/benchmark_table.py --out benchmark/RESULTS.md RESULT.json [RESULT.json ...]
 
-Standard library only. A benchmark is named BACKEND/MESH; with repetitions, every counter is the median of
+Standard library only. A benchmark is named BACKEND/MESH (BACKEND/program/MESH: the main program as a whole
+process); with repetitions, every counter is the median of
 the repetitions. When a mesh of a backend appears in several files, the newest file wins. One table per
 backend (times, ratios to the reference, memory), then the log-log slopes of every phase against the number
 of faces (least squares of log t over the meshes), and a header with the machine and the dates.
@@ -182,6 +183,43 @@ def mesh_order(item):
     return (entry["counters"].get("faces", 0), mesh)
 
 
+PROGRAM_PREFIX = "program/"
+
+
+def pipelines(meshes):
+    """the per-mesh pipeline entries of one backend (without the program's)"""
+    return {m: e for m, e in meshes.items() if not m.startswith(PROGRAM_PREFIX)}
+
+
+def program_table(results, lines):
+    rows = [(b, m[len(PROGRAM_PREFIX):], e) for b in sorted(results, key=backend_order)
+            for m, e in results[b].items() if m.startswith(PROGRAM_PREFIX)]
+    if not rows:
+        return
+    lines.append("### The main program as a whole process")
+    lines.append("")
+    lines.append("`trivial_connections MESH.off --singularities S --n 1 --connection C --field F` (read, solve, field, "
+                 "both files written), timed as a child process, against reading the same OFF file with CGAL "
+                 "(`read_polygon_mesh` into a `Surface_mesh`) plus one analysis + factorization of the mesh's "
+                 "Laplacian with the program's backend (CHOLMOD whenever it is installed). Target: ratio ≤ 2.")
+    lines.append("")
+    head = ["mesh", "backend", "faces", "program", "program peak", "CGAL read", "reference factorization",
+            "program / (read + reference)"]
+    lines.append("| " + " | ".join(head) + " |")
+    lines.append("|" + "|".join(["---", "---"] + ["---:"] * (len(head) - 2)) + "|")
+    for b, mesh, e in rows:
+        c = e["counters"]
+        if e["error"]:
+            lines.append(f"| {mesh} | {b} | " + " | ".join(["–"] * (len(head) - 3)) + f" | error: {e['error']} |")
+            continue
+        peak = c.get("program_peak_bytes")
+        lines.append("| " + " | ".join([mesh, b, fmt_faces(c.get("faces", 0)), fmt_time(c.get("t_program")),
+                                         f"{peak / 2**30:.2f} GiB" if peak and peak > 0 else "–",
+                                         fmt_time(c.get("t_read")), fmt_time(c.get("t_reference")),
+                                         fmt_num(c.get("r_program"))]) + " |")
+    lines.append("")
+
+
 def backend_table(backend, meshes, lines):
     lines.append(f"### {backend}: {BACKENDS.get(backend, backend)}")
     lines.append("")
@@ -190,7 +228,7 @@ def backend_table(backend, meshes, lines):
          "peak B/face", "ref peak B/face", "ref factor B/face", "ref GFlop", "reps"]
     lines.append("| " + " | ".join(head) + " |")
     lines.append("|" + "|".join(["---"] + ["---:"] * (len(head) - 1)) + "|")
-    for mesh, e in sorted(meshes.items(), key=mesh_order):
+    for mesh, e in sorted(pipelines(meshes).items(), key=mesh_order):
         c = e["counters"]
         if e["error"]:
             lines.append(f"| {mesh} | " + " | ".join(["–"] * (len(head) - 2)) + f" | error: {e['error']} |")
@@ -218,7 +256,7 @@ def slope_table(results, lines):
         row = [title]
         any_value = False
         for b in backends:
-            ok = [e for e in results[b].values() if not e["error"]]
+            ok = [e for e in pipelines(results[b]).values() if not e["error"]]
             for subset in (ok, [e for m, e in results[b].items() if m.startswith(SERIES_PREFIX) and not e["error"]]):
                 s, n = slope([(e["counters"].get("faces", 0), e["counters"].get(key)) for e in subset])
                 if s is None:
@@ -281,8 +319,9 @@ def main():
                  "(`CGAL::Subdivision_method_3`, made by the benchmark and cached outside the repository).")
     lines.append("")
     for backend in sorted(results, key=backend_order):
-        if results[backend]:
+        if pipelines(results[backend]):
             backend_table(backend, results[backend], lines)
+    program_table(results, lines)
     lines.append("### Scaling: log–log slopes")
     lines.append("")
     lines.append("Least-squares slope of log(time) (or log(peak memory)) against log(faces), over all meshes of "

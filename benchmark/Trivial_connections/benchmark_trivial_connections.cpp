@@ -61,6 +61,7 @@
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <utility>
@@ -475,6 +476,102 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
   k["ref_factor_bytes_per_face"] = ref.factor_nnz * (8 + 4) / nf;
 }
 
+// ---------------------------------------------------------------------------------------------------------
+// The main program as a whole process (read, solve, field, both files written), on a closed genus-0 mesh
+// written as OFF (a usual input): its wall time against reading the same file with CGAL
+// (read_polygon_mesh into a Surface_mesh) plus one analysis + factorization of the mesh's Laplacian with
+// the program's backend (the factorization's cost depends on the pattern only, so the weights are 1).
+// Counters: t_program, program_peak_bytes (the largest child's maximum resident size), t_read,
+// t_reference, r_program = t_program / (t_read + t_reference).
+
+#ifdef TC_PROGRAM_PATH
+template <class ReferenceSolver>
+void program_run(benchmark::State& state, const Mesh_spec& spec)
+{
+  Mesh mesh;
+  std::string error = load_mesh(spec, mesh);
+  if(error.empty() && (num_vertices(mesh) - num_edges(mesh) + num_faces(mesh) != 2 || !CGAL::is_closed(mesh)))
+    error = spec.name + " is not a closed genus-0 mesh";
+  if(!error.empty()) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  const std::string dir = mesh_cache_dir();
+  const std::string off = dir + "/" + spec.name + ".off";
+  if(!file_exists(off)) {
+    const std::string tmp = off + ".tmp." + std::to_string(::getpid());
+    {
+      std::ofstream out(tmp);
+      if(!out || !CGAL::IO::write_OFF(out, mesh, CGAL::parameters::stream_precision(17))) {
+        std::remove(tmp.c_str());
+        state.SkipWithError(("cannot write " + tmp).c_str());
+        return;
+      }
+    }
+    std::rename(tmp.c_str(), off.c_str());
+  }
+  // two +1 singularities (Poincare-Hopf on a sphere), far apart in the vertex order
+  const std::string singularities = dir + "/" + spec.name + ".program.sing";
+  {
+    std::ofstream out(singularities);
+    out << "0 1\n" << num_vertices(mesh) / 2 << " 1\n";
+  }
+  const std::string connection = dir + "/" + spec.name + ".program.connection.txt";
+  const std::string field = dir + "/" + spec.name + ".program.field.txt";
+  const std::string command = std::string(TC_PROGRAM_PATH) + " '" + off + "' --singularities '" + singularities +
+                              "' --n 1 --connection '" + connection + "' --field '" + field + "' > /dev/null";
+  mesh.clear();
+  mesh.collect_garbage();
+
+  double t_program = 0, t_read = 0, peak = -1;
+  Reference_result ref;
+  std::size_t faces = 0;
+  for(auto _ : state) {
+    auto t0 = Clock::now();
+    const int status = std::system(command.c_str());
+    t_program = seconds_since(t0);
+    if(status != 0) {
+      state.SkipWithError(("the program failed: " + command).c_str());
+      break;
+    }
+    struct rusage usage;
+    if(::getrusage(RUSAGE_CHILDREN, &usage) == 0)
+      peak = double(usage.ru_maxrss) * 1024;
+
+    Mesh read;
+    t0 = Clock::now();
+    const bool ok = CGAL::IO::read_polygon_mesh(off, read);
+    t_read = seconds_since(t0);
+    if(!ok) {
+      state.SkipWithError(("cannot read " + off).c_str());
+      break;
+    }
+    faces = num_faces(read);
+    const std::size_t nv = num_vertices(read);
+    std::vector<Weighted_edge> edges;
+    edges.reserve(num_edges(read));
+    for(auto e : CGAL::edges(read))
+      edges.push_back({int(source(halfedge(e, read), read)), int(target(halfedge(e, read), read)), 1.});
+    read.clear();
+    ref = reference_factorization<ReferenceSolver>(nv, edges);
+    if(!ref.ok) {
+      state.SkipWithError("the reference factorization failed");
+      break;
+    }
+    state.SetIterationTime(t_program);
+  }
+  std::remove(connection.c_str());
+  std::remove(field.c_str());
+  auto& k = state.counters;
+  k["faces"] = double(faces);
+  k["t_program"] = t_program;
+  k["program_peak_bytes"] = peak;
+  k["t_read"] = t_read;
+  k["t_reference"] = ref.seconds;
+  k["r_program"] = t_program / (t_read + ref.seconds);
+}
+#endif
+
 // TC_BENCH_SIZES: comma list of small, large, huge, all
 std::vector<bool> selected_sizes()
 {
@@ -494,7 +591,7 @@ std::vector<bool> selected_sizes()
 }
 
 template <class SolverTraits, class ReferenceSolver>
-void register_backend(const std::string& backend, const std::vector<bool>& sizes)
+void register_backend(const std::string& backend, const std::vector<bool>& sizes, bool program)
 {
   for(const Mesh_spec& spec : mesh_specs())
     if(sizes[std::size_t(spec.size)])
@@ -503,6 +600,18 @@ void register_backend(const std::string& backend, const std::vector<bool>& sizes
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);
+#ifdef TC_PROGRAM_PATH
+  // the program's target is stated for ~1.2M faces
+  for(const Mesh_spec& spec : mesh_specs())
+    if(program && sizes[std::size_t(spec.size)] && spec.name == "bunny00_loop2")
+      benchmark::RegisterBenchmark((backend + "/program/" + spec.name).c_str(),
+                                   [spec](benchmark::State& s) { program_run<ReferenceSolver>(s, spec); })
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
+#else
+  (void)program;
+#endif
 }
 
 } // namespace
@@ -510,10 +619,17 @@ void register_backend(const std::string& backend, const std::vector<bool>& sizes
 int main(int argc, char** argv)
 {
   const std::vector<bool> sizes = selected_sizes();
-  register_backend<TC::Default_solver_traits, Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>("ldlt", sizes);
+  // the program, with the backend it uses (CHOLMOD whenever it is installed)
+#ifdef TC_PROGRAM_USES_CHOLMOD
+  const bool program_uses_cholmod = true;
+#else
+  const bool program_uses_cholmod = false;
+#endif
+  register_backend<TC::Default_solver_traits, Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(
+    "ldlt", sizes, !program_uses_cholmod);
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-  register_backend<TC::Cholmod_solver_traits, Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>("cholmod",
-                                                                                                      sizes);
+  register_backend<TC::Cholmod_solver_traits, Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>(
+    "cholmod", sizes, program_uses_cholmod);
 #endif
   benchmark::AddCustomContext("mesh_cache", mesh_cache_dir());
   benchmark::Initialize(&argc, argv);

@@ -203,15 +203,16 @@ public:
       std::vector<int>().swap(node_rows);
       assemble_system(M, order); // ends the assembly phase
     }
-    // beside the factorization rather than the assembly, which is more sensitive to a shared cache
+    // beside the factorization rather than the assembly, which is more sensitive to a shared cache: the
+    // corner angles (for the holonomies and the field) and the nodes of every edge (for the solves)
     std::future<int> angles = internal::concurrently([this] {
       m_geometry.compute_angles(m_mesh);
+      m_edge_nodes.resize(std::size_t(m_geometry.number_of_interior_edges()));
+      for(int e = 0; e < m_geometry.number_of_interior_edges(); ++e)
+        m_edge_nodes[e] = nodes_of_edge(e);
       return 0;
     });
     factor();
-    m_edge_nodes.resize(std::size_t(m_geometry.number_of_interior_edges()));
-    for(int e = 0; e < m_geometry.number_of_interior_edges(); ++e)
-      m_edge_nodes[e] = nodes_of_edge(e);
     angles.get();
     compute_loop_holonomies();
     in_phase(Phase::loop_metric, [&] { compute_loop_metric(); return 0; });
@@ -813,6 +814,8 @@ private:
     if(!m_solver.factor(*m_system, d))
       throw Invalid_input(Error_code::solver_failure,
                           "the sparse factorization of the constraint system failed");
+    if(internal::Substitutions_need_only_the_factor<Solver_traits>::value)
+      Sparse().swap(m_system->eigen_object()); // released: the solves read the factor alone
     notify(Phase::factorization, 1);
   }
 
@@ -1213,14 +1216,15 @@ private:
   std::vector<Component_report> m_components;
 
   std::vector<int> m_row_of_node, m_row_of_loop, m_vertex_of_node, m_free_rows;
-  // per interior edge, the nodes of its canonical corner's source and target (made after the factorization,
-  // whose memory is the peak: the solves read it)
+  // per interior edge, the nodes of its canonical corner's source and target, for the solves (made during the
+  // factorization, on the other thread)
   std::vector<std::array<int, 2>> m_edge_nodes;
   std::vector<int> m_border_corners;           // corner halfedges on a border edge
   std::vector<int> m_loop_edge_start, m_loop_edges; // per loop (CSR): e for x_e, ~e for -x_e, per crossing
   std::vector<std::vector<int>> m_free_loops;  // per component: loops whose integer is free
   Eigen::Index m_rows = 0;                     // of the constraint system
-  std::unique_ptr<typename Solver_traits::Matrix> m_system;  // the solver keeps a pointer to it
+  // the solver keeps a pointer to it; empty after the factorization when the backend needs only its factor
+  std::unique_ptr<typename Solver_traits::Matrix> m_system;
   Solver_traits m_solver;
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> m_permutation; // row -> position in m_system
   struct Loop_metric

@@ -121,6 +121,29 @@ struct Stored_triangle<CGAL::Eigen_solver_traits<
 };
 
 /*
+  Whether the backend's substitutions read its factor alone, so that the solver can release the matrix after
+  the factorization (CGAL::Eigen_solver_traits keeps a pointer to it, which stays valid). False for backends
+  it does not know: an iterative solver, for one, reads the matrix at every solve.
+*/
+template <class SolverTraits>
+struct Substitutions_need_only_the_factor
+{
+  static constexpr bool value = false;
+};
+
+template <class Matrix, int UpLo, class Ordering>
+struct Substitutions_need_only_the_factor<CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Matrix, UpLo, Ordering>>>
+{
+  static constexpr bool value = true;
+};
+
+template <class Matrix, int UpLo, class Ordering>
+struct Substitutions_need_only_the_factor<CGAL::Eigen_solver_traits<Eigen::SimplicialLLT<Matrix, UpLo, Ordering>>>
+{
+  static constexpr bool value = true;
+};
+
+/*
   Reading the Schur complement S = M_LL - M_LN M_NN^-1 M_NL of the trailing rows L of a factored
   M = [M_NN M_NL; M_LN M_LL] from the factor: with M = L D L^T and the rows L last, S = L_LL D_L L_LL^T.
   `read` gives the lower triangular L_LL and the diagonal D_L (ones for an LL^T factorization).
@@ -242,6 +265,12 @@ template <>
 struct Stored_triangle<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
 {
   static constexpr int value = Eigen::Lower;
+};
+
+template <>
+struct Substitutions_need_only_the_factor<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
+{
+  static constexpr bool value = true;
 };
 
 template <>

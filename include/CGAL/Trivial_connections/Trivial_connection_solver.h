@@ -874,9 +874,7 @@ private:
     for(int node = 0; node < t.number_of_nodes; ++node)
       if(m_row_of_node[node] >= 0)
         multiplier[node] = lambda[m_row_of_node[node]];
-    xe.resize(ne);
-    for(int e = 0; e < ne; ++e)
-      xe[e] = multiplier[m_edge_nodes[e][1]] - multiplier[m_edge_nodes[e][0]];
+    xe.setZero(ne); // first the generators' part, then the stars' part and the sums in one pass
     for(std::size_t l = 0; l < t.loops.size(); ++l)
       if(t.loops[l].kind == Loop_kind::generator) {
         const double g = lambda[m_row_of_loop[l]];
@@ -885,14 +883,13 @@ private:
       }
 
     // x(i) enters target(i)'s star, -x(i) = x(opposite(i)) enters source(i)'s star
-    std::vector<double>& node_sum = multiplier; // read for the last time above
-    std::fill(node_sum.begin(), node_sum.end(), 0.);
+    std::vector<double> node_sum(std::size_t(t.number_of_nodes), 0.);
     double energy = 0;
     for(int e = 0; e < ne; ++e) {
-      const double w = m_geometry.weight[e], x = xe[e] / w;
+      const int a = m_edge_nodes[e][0], c = m_edge_nodes[e][1];
+      const double w = m_geometry.weight[e], x = (xe[e] + multiplier[c] - multiplier[a]) / w;
       xe[e] = x;
       energy += w * x * x;
-      const int a = m_edge_nodes[e][0], c = m_edge_nodes[e][1];
       if(a != c) {
         node_sum[c] += x;
         node_sum[a] -= x;

@@ -252,10 +252,19 @@ struct Factor_substitutions<CGAL::Eigen_solver_traits<
     const int* row = L.innerIndexPtr();
     const double* value = L.valuePtr();
     for(Eigen::Index j = columns - 1; j >= 0; --j) {
-      double vj = v[j];
-      for(int p = start[j]; p < start[j + 1]; ++p)
-        vj -= value[p] * v[row[p]];
-      v[j] = vj;
+      // four partial sums: one would wait for each product in turn
+      double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+      int p = start[j];
+      const int end = start[j + 1];
+      for(; p + 3 < end; p += 4) {
+        s0 += value[p] * v[row[p]];
+        s1 += value[p + 1] * v[row[p + 1]];
+        s2 += value[p + 2] * v[row[p + 2]];
+        s3 += value[p + 3] * v[row[p + 3]];
+      }
+      for(; p < end; ++p)
+        s0 += value[p] * v[row[p]];
+      v[j] -= (s0 + s1) + (s2 + s3);
     }
   }
 };

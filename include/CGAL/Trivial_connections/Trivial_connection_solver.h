@@ -368,7 +368,7 @@ public:
       } else {
         Substitutions::backward(m_solver, z);
       }
-      b = right_hand_side(k, periods, n);
+      add_loop_periods(periods, unit, b);
       lambda = m_permutation.transpose() * z;
     } else {
       if(choose_periods) {
@@ -388,7 +388,7 @@ public:
         notify(progress, Phase::loop_integers, 0);
         rounding_energy = b.dot(lambda) - loop_part + choose_loop_periods(y, unit, periods, report);
         notify(progress, Phase::loop_integers, 1);
-        b = right_hand_side(k, periods, n);
+        add_loop_periods(periods, unit, b);
       }
       lambda = unchecked_solve(b);
     }
@@ -1142,6 +1142,14 @@ private:
       if(m_row_of_loop[l] >= 0)
         b[m_row_of_loop[l]] = unit * double(periods[l]) - m_loop_holonomy[l];
     return b;
+  }
+
+  // b for the free loops' chosen integers, from b for the integers 0
+  void add_loop_periods(const std::vector<std::int64_t>& periods, double unit, Eigen::VectorXd& b) const
+  {
+    for(const std::vector<int>& free : m_free_loops)
+      for(int l : free)
+        b[m_row_of_loop[l]] += unit * double(periods[l]);
   }
 
   template <class HalfedgeAngleMap>

@@ -21,6 +21,7 @@
 #include <random>
 #include <string>
 #include <tuple>
+#include <optional>
 #include <vector>
 
 namespace {
@@ -749,3 +750,157 @@ TEST(Closest_vector, matches_exhaustive_search_on_random_lattices)
 }
 
 } // namespace
+
+// ---------------------------------------------------------------------------------------------------
+// Loop integers prescribed in part (std::optional entries of loop_periods): the prescribed ones are
+// kept, the others minimise the energy with them fixed (checked by brute force over the others), and
+// the boundary loops of a component are prescribed all or none.
+// ---------------------------------------------------------------------------------------------------
+
+namespace {
+
+// a torus with two triangular holes: genus 1, two boundary loops, chi = -2
+Soup holed_torus_soup()
+{
+  Soup s = torus_soup(2, 0.7, 16, 8);
+  s.faces.erase(s.faces.begin() + 120);
+  s.faces.erase(s.faces.begin());
+  return s;
+}
+
+std::vector<std::int64_t> periods_of(const TC::Solve_report& r)
+{
+  std::vector<std::int64_t> p;
+  for(const auto& l : r.loops) p.push_back(l.period);
+  return p;
+}
+
+// Every combination of the loops in `free` within +-radius of `chosen` (the others as in `chosen`),
+// prescribed in full, has an energy (recomputed by us) at least the one of `chosen`, and `chosen` itself
+// gives that energy.
+void expect_best_over(const Mesh_view<Surface_mesh>& view, Solver<Surface_mesh>& solver, const Singularities& sing,
+                      int n, const std::vector<std::int64_t>& chosen, double energy, const std::vector<int>& free,
+                      int radius)
+{
+  std::vector<int> offset(free.size(), -radius);
+  for(;;) {
+    std::vector<std::int64_t> periods = chosen;
+    for(std::size_t i = 0; i < free.size(); ++i) periods[free[i]] += offset[i];
+    std::vector<double> x;
+    const TC::Solve_report r = solver.solve(descriptors(view, sing), view.halfedge_map(x),
+                                            TC::parameters::loop_periods(periods, TC::parameters::symmetry_order(n)));
+    EXPECT_LT(r.max_vertex_residual, 1e-9);
+    EXPECT_LT(r.max_loop_residual, 1e-9);
+    const double E = tc_test::energy(view, x, solver.weighting());
+    const bool at_chosen = std::all_of(offset.begin(), offset.end(), [](int o) { return o == 0; });
+    if(at_chosen)
+      EXPECT_NEAR(E, energy, 1e-9 * std::max(1., energy));
+    else
+      EXPECT_GE(E, energy - 1e-9 * std::max(1., energy)) << "brute force found a lower energy";
+    std::size_t i = 0;
+    for(; i < offset.size(); ++i) {
+      if(++offset[i] <= radius) break;
+      offset[i] = -radius;
+    }
+    if(i == offset.size()) break;
+  }
+}
+
+} // namespace
+
+TEST(Partial_loop_periods, boundary_loops_prescribed_generators_chosen_optimally)
+{
+  const Surface_mesh sm = to_surface_mesh(holed_torus_soup());
+  const Mesh_view<Surface_mesh> view(sm);
+  Solver<Surface_mesh> solver(sm);
+  const auto& loops = solver.loops();
+  ASSERT_EQ(loops.size(), 4u); // two boundary loops, two generators
+  const int n = 4;
+  const Singularities none;
+  std::vector<double> x0;
+  const TC::Solve_report free_report = solver.solve(descriptors(view, none), view.halfedge_map(x0),
+                                                    TC::parameters::symmetry_order(n));
+  // move one unit of index from one hole to the other (Poincare-Hopf keeps the sum)
+  std::vector<std::optional<std::int64_t>> given(loops.size());
+  std::vector<int> boundary, generators;
+  for(std::size_t l = 0; l < loops.size(); ++l)
+    (loops[l].kind == TC::Loop_kind::boundary ? boundary : generators).push_back(int(l));
+  ASSERT_EQ(boundary.size(), 2u);
+  given[boundary[0]] = free_report.loops[boundary[0]].period + n;
+  given[boundary[1]] = free_report.loops[boundary[1]].period - n;
+  std::vector<double> x;
+  const TC::Solve_report r = solver.solve(descriptors(view, none), view.halfedge_map(x),
+                                          TC::parameters::loop_periods(given, TC::parameters::symmetry_order(n)));
+  EXPECT_LT(r.max_vertex_residual, 1e-9);
+  EXPECT_LT(r.max_loop_residual, 1e-9);
+  for(int l : boundary) {
+    EXPECT_EQ(r.loops[l].period, *given[l]);
+    EXPECT_TRUE(r.loops[l].prescribed);
+  }
+  for(int l : generators)
+    EXPECT_FALSE(r.loops[l].prescribed);
+  EXPECT_TRUE(r.integers_proven_optimal);
+  EXPECT_NEAR(r.energy, tc_test::energy(view, x, solver.weighting()), 1e-9 * std::max(1., r.energy));
+  EXPECT_GE(r.rounding_energy, r.energy - 1e-9 * std::max(1., r.energy));
+  expect_best_over(view, solver, none, n, periods_of(r), r.energy, generators, 2);
+}
+
+TEST(Partial_loop_periods, some_generators_prescribed_the_others_chosen_optimally)
+{
+  const Surface_mesh sm = to_surface_mesh(generated("genus2").soup);
+  const Mesh_view<Surface_mesh> view(sm);
+  Solver<Surface_mesh> solver(sm);
+  const int n = 1;
+  const Singularities sing = designed_singularities("genus2", view, n);
+  std::vector<double> x0;
+  const TC::Solve_report free_report = solver.solve(descriptors(view, sing), view.halfedge_map(x0),
+                                                    TC::parameters::symmetry_order(n));
+  const std::size_t loops = solver.loops().size();
+  ASSERT_EQ(loops, 4u);
+  std::vector<std::optional<std::int64_t>> given(loops);
+  given[0] = free_report.loops[0].period + 1;
+  std::vector<double> x;
+  const TC::Solve_report r = solver.solve(descriptors(view, sing), view.halfedge_map(x),
+                                          TC::parameters::loop_periods(given, TC::parameters::symmetry_order(n)));
+  EXPECT_LT(r.max_vertex_residual, 1e-9);
+  EXPECT_LT(r.max_loop_residual, 1e-9);
+  EXPECT_EQ(r.loops[0].period, *given[0]);
+  EXPECT_TRUE(r.loops[0].prescribed);
+  EXPECT_GT(r.energy, free_report.energy); // a generator forced away from its best integer
+  expect_best_over(view, solver, sing, n, periods_of(r), r.energy, {1, 2, 3}, 1);
+
+  // every entry given: the same as the plain vector
+  std::vector<std::optional<std::int64_t>> all(loops);
+  for(std::size_t l = 0; l < loops; ++l) all[l] = r.loops[l].period;
+  std::vector<double> x_all, x_plain;
+  const TC::Solve_report r_all = solver.solve(descriptors(view, sing), view.halfedge_map(x_all),
+                                              TC::parameters::loop_periods(all, TC::parameters::symmetry_order(n)));
+  const TC::Solve_report r_plain = solver.solve(
+    descriptors(view, sing), view.halfedge_map(x_plain),
+    TC::parameters::loop_periods(periods_of(r), TC::parameters::symmetry_order(n)));
+  EXPECT_EQ(x_all, x_plain);
+  EXPECT_NEAR(r_all.energy, r.energy, 1e-9 * std::max(1., r.energy));
+}
+
+TEST(Partial_loop_periods, boundary_loops_of_a_component_are_prescribed_all_or_none)
+{
+  const Surface_mesh sm = to_surface_mesh(holed_torus_soup());
+  const Mesh_view<Surface_mesh> view(sm);
+  Solver<Surface_mesh> solver(sm);
+  const auto& loops = solver.loops();
+  std::vector<std::optional<std::int64_t>> given(loops.size());
+  for(std::size_t l = 0; l < loops.size(); ++l)
+    if(loops[l].kind == TC::Loop_kind::boundary) {
+      given[l] = -4;
+      break;
+    }
+  std::vector<double> x;
+  try {
+    solver.solve(descriptors(view, Singularities()), view.halfedge_map(x),
+                 TC::parameters::loop_periods(given, TC::parameters::symmetry_order(4)));
+    ADD_FAILURE() << "one of two boundary loops prescribed was accepted";
+  } catch(const TC::Invalid_input& e) {
+    EXPECT_EQ(e.code(), TC::Error_code::invalid_loop_periods);
+    EXPECT_NE(std::string(e.what()).find("all of them or none"), std::string::npos) << e.what();
+  }
+}

@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <future>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -275,8 +276,10 @@ public:
   \cgalNamedParamsBegin
     \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd
     \cgalParamNBegin{loop_periods}
-      \cgalParamDescription{the integer of every loop of `loops()`: `period` with `H_L + sum_L x = 2 pi period / n`}
-      \cgalParamType{`std::vector<std::int64_t>`}
+      \cgalParamDescription{the integer of every loop of `loops()`: `period` with `H_L + sum_L x = 2 pi period / n`.
+        With `std::optional` entries, the empty ones are chosen by the solver (minimising the energy with the
+        others fixed); the boundary loops of a component are prescribed all or none}
+      \cgalParamType{`std::vector<std::int64_t>` or `std::vector<std::optional<std::int64_t>>`}
       \cgalParamDefault{the integers minimising the energy}
     \cgalParamNEnd
   \cgalNamedParamsEnd
@@ -303,12 +306,10 @@ public:
     std::vector<char> prescribed(m_loops.size(), 0);
     const bool user_periods =
       !CGAL::parameters::is_default_parameter<NamedParameters, tc_np::loop_periods_t>::value;
-    if(user_periods) {
-      periods = read_periods(CGAL::parameters::choose_parameter(
-                               CGAL::parameters::get_parameter(np, tc_np::loop_periods), std::vector<std::int64_t>()),
-                             k, n);
-      prescribed.assign(m_loops.size(), 1);
-    }
+    if(user_periods)
+      read_periods(optional_periods(CGAL::parameters::choose_parameter(
+                     CGAL::parameters::get_parameter(np, tc_np::loop_periods), std::vector<std::int64_t>())),
+                   k, n, periods, prescribed);
 
     const Progress_callback progress = progress_of(np);
     const double unit = 2 * CGAL_PI / n;
@@ -316,7 +317,11 @@ public:
     Eigen::VectorXd b = right_hand_side(k, periods, n);
     Eigen::VectorXd lambda;
     double rounding_energy = 0;
-    const bool choose_periods = !user_periods && !m_free_rows.empty();
+    // the loops with a row whose integer is not prescribed
+    bool choose_periods = false;
+    for(const std::vector<int>& free : m_free_loops)
+      for(int l : free)
+        choose_periods = choose_periods || !prescribed[l];
     if(choose_periods && m_loop_rows_in_factor) {
       // One forward and one backward substitution in all, the free loop rows F last. The forward
       // substitution through the node columns N leaves on the rows F y = b_F - M_FN M_NN^-1 b_N, the
@@ -340,13 +345,14 @@ public:
           y[c] = metric.schur_factor.template triangularView<Eigen::Lower>() * y[c];
       }
       notify(progress, Phase::loop_integers, 0);
-      const double loop_energy = choose_loop_periods(y, unit, periods, report);
+      const double loop_energy = choose_loop_periods(y, unit, prescribed, periods, report);
       notify(progress, Phase::loop_integers, 1);
       for(std::size_t c = 0; c < m_components.size(); ++c) {
         const Loop_metric& metric = m_loop_metric[c];
         Eigen::VectorXd& t = y[c];
         for(Eigen::Index a = 0; a < t.size(); ++a)
-          t[a] += unit * double(periods[m_free_loops[c][a]]);
+          if(!prescribed[m_free_loops[c][a]]) // the prescribed ones are in b already
+            t[a] += unit * double(periods[m_free_loops[c][a]]);
         metric.schur_factor.template triangularView<Eigen::Lower>().solveInPlace(t);
         for(Eigen::Index a = 0; a < t.size(); ++a)
           z[first + metric.block[a]] = t[a];
@@ -368,7 +374,7 @@ public:
       } else {
         Substitutions::backward(m_solver, z);
       }
-      add_loop_periods(periods, unit, b);
+      add_loop_periods(periods, prescribed, unit, b);
       lambda = m_permutation.transpose() * z;
     } else {
       if(choose_periods) {
@@ -386,9 +392,9 @@ public:
           loop_part += lf.dot(y[c]);
         }
         notify(progress, Phase::loop_integers, 0);
-        rounding_energy = b.dot(lambda) - loop_part + choose_loop_periods(y, unit, periods, report);
+        rounding_energy = b.dot(lambda) - loop_part + choose_loop_periods(y, unit, prescribed, periods, report);
         notify(progress, Phase::loop_integers, 1);
-        add_loop_periods(periods, unit, b);
+        add_loop_periods(periods, prescribed, unit, b);
       }
       lambda = unchecked_solve(b);
     }
@@ -400,7 +406,7 @@ public:
     write_connection(xe, x);
 
     fill_report(sums, k, periods, prescribed, n, report);
-    report.rounding_energy = user_periods ? report.energy : rounding_energy;
+    report.rounding_energy = choose_periods ? rounding_energy : report.energy;
     notify(progress, Phase::solve, 1);
     return report;
   }
@@ -1064,37 +1070,64 @@ private:
     return k;
   }
 
-  std::vector<std::int64_t> read_periods(const std::vector<std::int64_t>& given,
-                                         const std::vector<std::int64_t>& k, int n) const
+  static std::vector<std::optional<std::int64_t>> optional_periods(const std::vector<std::int64_t>& given)
+  {
+    return std::vector<std::optional<std::int64_t>>(given.begin(), given.end());
+  }
+  static const std::vector<std::optional<std::int64_t>>&
+  optional_periods(const std::vector<std::optional<std::int64_t>>& given)
+  {
+    return given;
+  }
+
+  // `loop_periods`: one entry per loop, empty where the solver chooses. The boundary loops of a component are
+  // prescribed all or none (Poincare-Hopf ties their sum to the vertex indices).
+  void read_periods(const std::vector<std::optional<std::int64_t>>& given, const std::vector<std::int64_t>& k, int n,
+                    std::vector<std::int64_t>& periods, std::vector<char>& prescribed) const
   {
     if(given.size() != m_loops.size())
       throw Invalid_input(Error_code::invalid_loop_periods,
                           "loop_periods has " + std::to_string(given.size()) + " values, the mesh has " +
                             std::to_string(m_loops.size()) + " loops");
+    std::vector<std::size_t> boundary_given(m_components.size(), 0);
+    for(std::size_t l = 0; l < m_loops.size(); ++l) {
+      prescribed[l] = given[l].has_value() ? 1 : 0;
+      periods[l] = given[l].value_or(0);
+      if(m_loops[l].kind == Loop_kind::boundary && given[l])
+        ++boundary_given[m_loops[l].component];
+    }
     std::vector<std::int64_t> total(m_components.size(), 0);
     for(int v = 0; v < m_mesh.nv; ++v)
       if(k[v] != 0)
         total[m_topology.component_of_node[m_topology.node_of_vertex[v]]] += k[v];
     for(std::size_t l = 0; l < m_loops.size(); ++l)
       if(m_loops[l].kind == Loop_kind::boundary)
-        total[m_loops[l].component] += given[l];
-    for(std::size_t c = 0; c < m_components.size(); ++c)
-      if(m_components[c].number_of_boundary_loops > 0 && total[c] != n * m_components[c].euler_characteristic)
+        total[m_loops[l].component] += periods[l];
+    for(std::size_t c = 0; c < m_components.size(); ++c) {
+      const std::size_t b = m_components[c].number_of_boundary_loops;
+      if(boundary_given[c] != 0 && boundary_given[c] != b)
+        throw Invalid_input(Error_code::invalid_loop_periods,
+                            "loop_periods prescribes " + std::to_string(boundary_given[c]) + " of the " +
+                              std::to_string(b) + " boundary loops of component " + std::to_string(c) +
+                              ": prescribe all of them or none (Poincare-Hopf ties their sum)",
+                            c);
+      if(b > 0 && boundary_given[c] == b && total[c] != n * m_components[c].euler_characteristic)
         throw Invalid_input(Error_code::invalid_loop_periods,
                             "Poincare-Hopf violated by the prescribed boundary loop indices of component " +
                               std::to_string(c) + ": vertex and boundary indices sum to " +
                               Singularity_index(total[c], n).to_string() + ", expected " +
                               std::to_string(m_components[c].euler_characteristic),
                             c);
-    return given;
+    }
   }
 
-  // The integers of the free loops minimising the energy, per component, written into `periods` (0 there on
-  // entry). `y[c]`: the right-hand side of the Schur complement S of component c's free loop rows for the
-  // integers 0, so that the loop part of the energy is (y + unit m)^T S^-1 (y + unit m). Returns that part
-  // for the integers rounded one by one (for Solve_report::rounding_energy).
-  double choose_loop_periods(const std::vector<Eigen::VectorXd>& y, double unit, std::vector<std::int64_t>& periods,
-                             Solve_report& report) const
+  // The integers of the free loops not prescribed, minimising the energy, per component, written into
+  // `periods` (0 there on entry). `y[c]`: the right-hand side of the Schur complement S of component c's
+  // free loop rows with those integers 0 (the prescribed ones are in it), so that the loop part of the
+  // energy is t^T S^-1 t with t = y + unit m. Returns that part for the integers rounded one by one (for
+  // Solve_report::rounding_energy).
+  double choose_loop_periods(const std::vector<Eigen::VectorXd>& y, double unit, const std::vector<char>& prescribed,
+                             std::vector<std::int64_t>& periods, Solve_report& report) const
   {
     bool proven = true;
     double rounding_part = 0;
@@ -1102,25 +1135,68 @@ private:
       const std::vector<int>& free = m_free_loops[c];
       if(free.empty())
         continue;
-      const Eigen::Index kc = Eigen::Index(free.size());
-      // the minimiser of (m - center)^T S^-1 (m - center) does not depend on unit
       const Loop_metric& metric = m_loop_metric[c];
-      const Eigen::VectorXd center = -y[c] / unit;
+      std::vector<Eigen::Index> chosen, fixed; // positions in the component's block
+      for(std::size_t a = 0; a < free.size(); ++a)
+        (prescribed[free[a]] ? fixed : chosen).push_back(Eigen::Index(a));
+      const Eigen::Index kc = Eigen::Index(chosen.size());
+      if(kc == 0) {
+        rounding_part += y[c].dot(metric.inverse * y[c]);
+        continue;
+      }
+      // With G = S^-1 and the prescribed part t_P = y_P fixed, t^T G t = (t_Q - t_Q*)^T G_QQ (t_Q - t_Q*) +
+      // const with t_Q* = -G_QQ^-1 G_QP y_P: the minimiser of (m - center)^T G_QQ (m - center), with
+      // center = (t_Q* - y_Q) / unit. Without prescribed loops G_QQ = G, whose factor is kept.
+      Eigen::VectorXd center(kc);
+      double constant = 0;
+      Eigen::MatrixXd G_QQ, R_Q;
+      const Eigen::MatrixXd* G = &metric.inverse;
+      const Eigen::MatrixXd* R = &metric.inverse_factor;
+      if(fixed.empty()) {
+        center = -y[c] / unit;
+      } else {
+        G_QQ.resize(kc, kc);
+        Eigen::MatrixXd G_QP(kc, Eigen::Index(fixed.size()));
+        Eigen::VectorXd y_P(Eigen::Index(fixed.size()));
+        for(Eigen::Index i = 0; i < kc; ++i) {
+          for(Eigen::Index j = 0; j < kc; ++j)
+            G_QQ(i, j) = metric.inverse(chosen[i], chosen[j]);
+          for(Eigen::Index j = 0; j < Eigen::Index(fixed.size()); ++j)
+            G_QP(i, j) = metric.inverse(chosen[i], fixed[j]);
+        }
+        for(Eigen::Index j = 0; j < Eigen::Index(fixed.size()); ++j)
+          y_P[j] = y[c][fixed[j]];
+        const Eigen::LLT<Eigen::MatrixXd> llt(G_QQ);
+        if(llt.info() != Eigen::Success)
+          throw Invalid_input(Error_code::solver_failure, "the metric of the loop integers is not positive definite");
+        R_Q = llt.matrixU();
+        const Eigen::VectorXd g = G_QP * y_P;
+        const Eigen::VectorXd t_star = -llt.solve(g);
+        for(Eigen::Index i = 0; i < kc; ++i)
+          center[i] = (t_star[i] - y[c][chosen[i]]) / unit;
+        double fixed_part = 0;
+        for(Eigen::Index i = 0; i < Eigen::Index(fixed.size()); ++i)
+          for(Eigen::Index j = 0; j < Eigen::Index(fixed.size()); ++j)
+            fixed_part += y_P[i] * metric.inverse(fixed[i], fixed[j]) * y_P[j];
+        constant = fixed_part + g.dot(t_star); // y_P^T (G_PP - G_PQ G_QQ^-1 G_QP) y_P
+        G = &G_QQ;
+        R = &R_Q;
+      }
       std::vector<std::int64_t> rounded(kc), own(kc);
       for(Eigen::Index a = 0; a < kc; ++a) {
         rounded[a] = std::int64_t(std::llround(center[a]));
         // each loop on its own: the integer making its own connection sum smallest
-        own[a] = std::int64_t(std::llround(m_loop_holonomy[free[a]] / unit));
+        own[a] = std::int64_t(std::llround(m_loop_holonomy[free[chosen[a]]] / unit));
       }
       const internal::Closest_vector_result best =
-        internal::closest_vector(metric.inverse, metric.inverse_factor, center, {rounded, own},
+        internal::closest_vector(*G, *R, center, {rounded, own},
                                  // about the work of a few back-substitutions, so that a re-solve stays cheap
                                  (std::max)(2e5, 10. * double(m_rows)));
       proven = proven && best.proven;
-      // (y + unit m)^T S^-1 (y + unit m) = unit^2 q(m) with y = -unit center
-      rounding_part += unit * unit * best.candidate_values[0];
+      // t^T S^-1 t = unit^2 q(m) + constant
+      rounding_part += unit * unit * best.candidate_values[0] + constant;
       for(Eigen::Index a = 0; a < kc; ++a)
-        periods[free[a]] = best.m[a];
+        periods[free[chosen[a]]] = best.m[a];
     }
     report.integers_proven_optimal = proven;
     return rounding_part;
@@ -1144,12 +1220,14 @@ private:
     return b;
   }
 
-  // b for the free loops' chosen integers, from b for the integers 0
-  void add_loop_periods(const std::vector<std::int64_t>& periods, double unit, Eigen::VectorXd& b) const
+  // b for the chosen integers of the free loops not prescribed, from b for the integers 0 there
+  void add_loop_periods(const std::vector<std::int64_t>& periods, const std::vector<char>& prescribed, double unit,
+                        Eigen::VectorXd& b) const
   {
     for(const std::vector<int>& free : m_free_loops)
       for(int l : free)
-        b[m_row_of_loop[l]] += unit * double(periods[l]);
+        if(!prescribed[l])
+          b[m_row_of_loop[l]] += unit * double(periods[l]);
   }
 
   template <class HalfedgeAngleMap>

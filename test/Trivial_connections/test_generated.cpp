@@ -904,3 +904,39 @@ TEST(Partial_loop_periods, boundary_loops_of_a_component_are_prescribed_all_or_n
     EXPECT_NE(std::string(e.what()).find("all of them or none"), std::string::npos) << e.what();
   }
 }
+
+// the same choice through the other solve paths: the metric by back-substitutions (a backend whose factor
+// the solver does not read) and CHOLMOD's whole-factor substitutions
+template <class Traits>
+void expect_same_partial_choice(const Surface_mesh& sm, const Mesh_view<Surface_mesh>& view,
+                                const std::vector<std::optional<std::int64_t>>& given, const TC::Solve_report& reference)
+{
+  TC::Trivial_connection_solver<Surface_mesh, CGAL::Default, Traits> solver(sm);
+  std::vector<double> x;
+  const TC::Solve_report r = solver.solve(descriptors(view, Singularities()), view.halfedge_map(x),
+                                          TC::parameters::loop_periods(given, TC::parameters::symmetry_order(4)));
+  EXPECT_NEAR(r.energy, reference.energy, 1e-9 * std::max(1., reference.energy));
+  EXPECT_NEAR(r.rounding_energy, reference.rounding_energy, 1e-9 * std::max(1., reference.rounding_energy));
+  EXPECT_EQ(periods_of(r), periods_of(reference));
+}
+
+TEST(Partial_loop_periods, same_choice_with_every_backend)
+{
+  const Surface_mesh sm = to_surface_mesh(holed_torus_soup());
+  const Mesh_view<Surface_mesh> view(sm);
+  Solver<Surface_mesh> solver(sm);
+  const auto& loops = solver.loops();
+  std::vector<std::optional<std::int64_t>> given(loops.size());
+  std::vector<std::int64_t> holes = {-12, 4}; // indices -3 and 1 for n = 4: sum -2 = chi
+  for(std::size_t l = 0, b = 0; l < loops.size(); ++l)
+    if(loops[l].kind == TC::Loop_kind::boundary) given[l] = holes[b++];
+  std::vector<double> x;
+  const TC::Solve_report reference = solver.solve(descriptors(view, Singularities()), view.halfedge_map(x),
+                                                  TC::parameters::loop_periods(given, TC::parameters::symmetry_order(4)));
+  EXPECT_LT(reference.max_loop_residual, 1e-9);
+  expect_same_partial_choice<CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>>(
+    sm, view, given, reference);
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  expect_same_partial_choice<TC::Cholmod_solver_traits>(sm, view, given, reference);
+#endif
+}

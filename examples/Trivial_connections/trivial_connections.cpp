@@ -6,7 +6,7 @@
 // The command-line program: computes the trivial connection closest to Levi-Civita with prescribed
 // singularities on a triangle mesh, and the n-direction field it defines, and writes both to files.
 //
-//   trivial_connections MESH [--singularities FILE] [--n N] [--weights hodge|unit]
+//   trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--n N] [--weights hodge|unit]
 //                            [--connection OUT] [--field OUT] [--progress] [--help]
 //
 // Exit status: 0 on success, 1 on an input error (mesh, singularities, solver, output files), 2 on a usage
@@ -27,7 +27,9 @@
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -37,6 +39,7 @@
 #include <limits>
 #include <map>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -59,7 +62,8 @@ namespace {
 const char* const program = "trivial_connections";
 
 const char* const usage_text =
-  "Usage: trivial_connections MESH [--singularities FILE] [--n N] [--weights hodge|unit]\n"
+  "Usage: trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--n N]\n"
+  "                           [--weights hodge|unit]\n"
   "                           [--connection OUT] [--field OUT] [--progress] [--help]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
@@ -70,6 +74,10 @@ const char* const usage_text =
   "                        an integer or a fraction p/q that is a multiple of 1/N; '#' starts a comment.\n"
   "                        Default: no singularity (then every closed component must have genus 1).\n"
   "                        On each closed component the indices must sum to its Euler characteristic.\n"
+  "  --boundary-indices FILE  the index of every boundary loop, one line 'v k' per loop: any vertex v of\n"
+  "                        the loop (0-based, file order) and its index k (as for --singularities). Every\n"
+  "                        boundary loop of a component listed, or none; vertex and boundary indices then\n"
+  "                        sum to the Euler characteristic. Default: chosen to minimise the energy.\n"
   "  --n N                 symmetry order: 1 vector field, 2 line field, 4 cross field, ... (default 1)\n"
   "  --weights W           energy weights: hodge (|e|/|e*|, default) or unit\n"
   "  --connection OUT      connection file, one line 'i j x w' per interior edge\n"
@@ -96,6 +104,7 @@ struct Options
   bool progress = false;
   std::string mesh;
   std::string singularities;
+  std::string boundary_indices;
   int n = 1;
   TC::Weighting weighting = TC::Weighting::hodge_star;
   std::string weights_name = "hodge";
@@ -130,7 +139,8 @@ Options parse_arguments(int argc, char** argv)
       o.help = true;
       return o;
     }
-  bool seen_singularities = false, seen_n = false, seen_weights = false, seen_connection = false, seen_field = false;
+  bool seen_singularities = false, seen_boundary = false, seen_n = false, seen_weights = false, seen_connection = false,
+       seen_field = false;
   for(std::size_t i = 0; i < args.size(); ++i) {
     std::string a = args[i];
     if(a == "--progress") {
@@ -148,6 +158,7 @@ Options parse_arguments(int argc, char** argv)
       }
       bool* seen = nullptr;
       if(name == "--singularities") seen = &seen_singularities;
+      else if(name == "--boundary-indices") seen = &seen_boundary;
       else if(name == "--n") seen = &seen_n;
       else if(name == "--weights") seen = &seen_weights;
       else if(name == "--connection") seen = &seen_connection;
@@ -165,6 +176,7 @@ Options parse_arguments(int argc, char** argv)
       if(value.empty())
         throw Usage_error("option " + name + " needs a non-empty value");
       if(name == "--singularities") o.singularities = value;
+      else if(name == "--boundary-indices") o.boundary_indices = value;
       else if(name == "--connection") o.connection = value;
       else if(name == "--field") o.field = value;
       else if(name == "--n") o.n = parse_symmetry_order(value);
@@ -204,6 +216,8 @@ Options parse_arguments(int argc, char** argv)
       throw Usage_error("the output '" + *out + "' would overwrite the input mesh");
     if(!o.singularities.empty() && same_file(*out, o.singularities))
       throw Usage_error("the output '" + *out + "' would overwrite the singularity file");
+    if(!o.boundary_indices.empty() && same_file(*out, o.boundary_indices))
+      throw Usage_error("the output '" + *out + "' would overwrite the boundary index file");
   }
   return o;
 }
@@ -343,9 +357,56 @@ int run(const Options& o, Progress_printer& progress)
       singularities.emplace_back(order.vertices[s.first], s.second);
   }
 
+  std::vector<std::pair<std::size_t, TC::Singularity_index>> boundary_indices;
+  if(!o.boundary_indices.empty())
+    boundary_indices = TC::read_singularities(o.boundary_indices, order.vertices.size());
+
   auto t = clock::now();
   Solver solver(mesh, TC::parameters::progress(solver_progress, TC::parameters::weighting(o.weighting)));
   const double t_setup = seconds_since(t);
+
+  // the boundary loops named by one of their vertices; the generators are left to the solver
+  std::vector<std::optional<std::int64_t>> loop_periods(solver.loops().size());
+  std::vector<std::size_t> named_by(solver.loops().size());
+  for(const auto& [v, index] : boundary_indices) {
+    const std::optional<std::size_t> l = solver.boundary_loop_of(order.vertices[v]);
+    if(!l)
+      throw TC::Invalid_input(TC::Error_code::invalid_loop_periods,
+                              o.boundary_indices + ": vertex " + std::to_string(v) + " is not on a boundary", v);
+    if(loop_periods[*l])
+      throw TC::Invalid_input(TC::Error_code::invalid_loop_periods,
+                              o.boundary_indices + ": vertices " + std::to_string(named_by[*l]) + " and " +
+                                std::to_string(v) + " are on the same boundary loop",
+                              v);
+    if(!index.is_multiple_of_one_over(o.n))
+      throw TC::Invalid_input(TC::Error_code::index_not_multiple,
+                              o.boundary_indices + ": the index " + index.to_string() + " of the boundary loop of vertex " +
+                                std::to_string(v) + " is not a multiple of 1/" + std::to_string(o.n),
+                              v);
+    // bounded like the vertex indices, so that the sums stay far from overflow
+    if(std::abs(index.numerator()) > (std::int64_t(1) << 30) / (o.n / index.denominator()))
+      throw TC::Invalid_input(TC::Error_code::invalid_index,
+                              o.boundary_indices + ": the index " + index.to_string() + " of the boundary loop of vertex " +
+                                std::to_string(v) + " is too large",
+                              v);
+    loop_periods[*l] = index.times(o.n);
+    named_by[*l] = v;
+  }
+  if(!boundary_indices.empty()) {
+    std::vector<std::size_t> named(solver.components().size(), 0);
+    for(std::size_t l = 0; l < loop_periods.size(); ++l)
+      if(loop_periods[l])
+        ++named[solver.loops()[l].component];
+    for(std::size_t c = 0; c < named.size(); ++c) {
+      const std::size_t all = solver.components()[c].number_of_boundary_loops;
+      if(named[c] != 0 && named[c] != all)
+        throw TC::Invalid_input(TC::Error_code::invalid_loop_periods,
+                                o.boundary_indices + ": names " + std::to_string(named[c]) + " of the " +
+                                  std::to_string(all) + " boundary loops of component " + std::to_string(c) +
+                                  ": list every boundary loop of a component, or none",
+                                c);
+    }
+  }
 
   t = clock::now();
   Mesh::Property_map<halfedge_descriptor, double> x =
@@ -353,7 +414,12 @@ int run(const Options& o, Progress_printer& progress)
   Mesh::Property_map<face_descriptor, Kernel::Vector_3> field =
     mesh.add_property_map<face_descriptor, Kernel::Vector_3>("f:tc_field", CGAL::NULL_VECTOR).first;
   const TC::Solve_report report =
-    solver.solve(singularities, x, TC::parameters::progress(solver_progress, TC::parameters::symmetry_order(o.n)));
+    boundary_indices.empty()
+      ? solver.solve(singularities, x, TC::parameters::progress(solver_progress, TC::parameters::symmetry_order(o.n)))
+      : solver.solve(singularities, x,
+                     TC::parameters::progress(solver_progress,
+                                              TC::parameters::loop_periods(loop_periods,
+                                                                           TC::parameters::symmetry_order(o.n))));
   solver.compute_field(x, field, TC::parameters::progress(solver_progress));
   const double t_solve = seconds_since(t);
 
@@ -398,7 +464,8 @@ int run(const Options& o, Progress_printer& progress)
   if(report.components.size() > max_lines)
     out << "  ... and " << report.components.size() - max_lines << " more components\n";
   out << "singularities: " << singularities.size()
-      << (o.singularities.empty() ? std::string() : " (from " + o.singularities + ")") << "; n = " << o.n
+      << (o.singularities.empty() ? std::string() : " (from " + o.singularities + ")")
+      << (o.boundary_indices.empty() ? std::string() : "; boundary indices from " + o.boundary_indices) << "; n = " << o.n
       << "; weights " << o.weights_name << "\n";
   out << "energy: " << std::setprecision(10) << report.energy;
   if(!report.loops.empty())

@@ -3,8 +3,9 @@
 # Fails (non-zero) when either fails or an output file is missing. Used by ctest (CMakeLists.txt).
 # Usage: cli_check.sh --cli PROGRAM --checker check_connection.py --out DIR --mesh MESH
 #                     [--python PY] [--singularities FILE|none] [--n N] [--weights hodge|unit]
+#                     [--boundary-indices FILE]  (then every loop of the file must be reported prescribed)
 set -euo pipefail
-cli="" checker="" python="" out="" mesh="" sing="none" n=1 weights=hodge
+cli="" checker="" python="" out="" mesh="" sing="none" n=1 weights=hodge boundary=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --cli) cli="$2"; shift 2 ;;
@@ -15,6 +16,7 @@ while [ $# -gt 0 ]; do
     --singularities) sing="$2"; shift 2 ;;
     --n) n="$2"; shift 2 ;;
     --weights) weights="$2"; shift 2 ;;
+    --boundary-indices) boundary="$2"; shift 2 ;;
     *) echo "cli_check.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -41,8 +43,20 @@ rm -f "$conn" "$field"
 sing_args=()
 if [ "$sing" != "none" ] && [ -n "$sing" ]; then sing_args=(--singularities "$sing"); fi
 
-echo "+ $cli $mesh ${sing_args[*]} --n $n --weights $weights --connection $conn --field $field"
-"$cli" "$mesh" "${sing_args[@]}" --n "$n" --weights "$weights" --connection "$conn" --field "$field"
+boundary_args=()
+if [ -n "$boundary" ]; then boundary_args=(--boundary-indices "$boundary"); fi
+
+echo "+ $cli $mesh ${sing_args[*]} ${boundary_args[*]} --n $n --weights $weights --connection $conn --field $field"
+"$cli" "$mesh" "${sing_args[@]}" "${boundary_args[@]}" --n "$n" --weights "$weights" --connection "$conn" \
+  --field "$field" | tee "$out/report.txt"
+
+if [ -n "$boundary" ]; then
+  given=$(grep -cvE '^[[:space:]]*(#|$)' "$boundary")
+  reported=$(grep -cE 'boundary, index .* \(prescribed\)' "$out/report.txt" || true)
+  if [ "$given" != "$reported" ]; then
+    echo "cli_check.sh: $given boundary loops given, $reported reported prescribed" >&2; exit 1
+  fi
+fi
 
 for f in "$conn" "$field"; do
   if [ ! -s "$f" ]; then echo "cli_check.sh: the program exited 0 but did not write $f" >&2; exit 1; fi

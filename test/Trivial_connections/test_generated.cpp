@@ -940,3 +940,34 @@ TEST(Partial_loop_periods, same_choice_with_every_backend)
   expect_same_partial_choice<TC::Cholmod_solver_traits>(sm, view, given, reference);
 #endif
 }
+
+// boundary_loop_of: a boundary vertex names the loop whose crossings include its fan, an interior one none
+TEST(Partial_loop_periods, boundary_loop_of_names_the_loop_around_the_vertex)
+{
+  for(const Soup& soup : {holed_torus_soup(), generated("annulus").soup}) {
+    const Surface_mesh sm = to_surface_mesh(soup);
+    Solver<Surface_mesh> solver(sm);
+    std::set<std::size_t> named;
+    for(auto v : vertices(sm)) {
+      const std::optional<std::size_t> l = solver.boundary_loop_of(v);
+      if(!sm.is_border(v, /*check_all_incident_halfedges=*/true)) {
+        EXPECT_FALSE(l);
+        continue;
+      }
+      ASSERT_TRUE(l);
+      const auto& loop = solver.loops()[*l];
+      EXPECT_EQ(loop.kind, TC::Loop_kind::boundary);
+      // the loop crosses every interior edge at v (its open fan)
+      std::set<Surface_mesh::Edge_index> crossed;
+      for(auto h : loop.halfedges) crossed.insert(edge(h, sm));
+      for(auto h : halfedges_around_target(halfedge(v, sm), sm))
+        if(!is_border(edge(h, sm), sm))
+          EXPECT_TRUE(crossed.count(edge(h, sm))) << "an interior edge at boundary vertex " << v << " is not crossed";
+      named.insert(*l);
+    }
+    std::size_t boundary_loops = 0;
+    for(const auto& loop : solver.loops())
+      boundary_loops += loop.kind == TC::Loop_kind::boundary ? 1 : 0;
+    EXPECT_EQ(named.size(), boundary_loops);
+  }
+}

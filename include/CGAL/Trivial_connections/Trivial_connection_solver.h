@@ -260,6 +260,21 @@ public:
     CGAL_precondition(i >= 0 && m_mesh.opposite_corner[i] >= 0);
     return m_geometry.transport_angle(i);
   }
+  /// the position in `loops()` of the boundary loop through `v`; empty when `v` is not a boundary vertex of
+  /// the mesh (an interior vertex, an isolated one, or not a vertex of the mesh)
+  std::optional<std::size_t> boundary_loop_of(vertex_descriptor v) const
+  {
+    const std::size_t i = std::size_t(get(m_mesh.vertex_index, v));
+    if(i >= std::size_t(m_mesh.nv) || m_mesh.vertex_descriptors[i] != v)
+      return std::nullopt;
+    const int node = m_topology.node_of_vertex[i];
+    if(node < m_topology.number_of_interior_nodes)
+      return std::nullopt;
+    for(std::size_t l = 0; l < m_topology.loops.size(); ++l)
+      if(m_topology.loops[l].kind == Loop_kind::boundary && m_topology.loops[l].node == node)
+        return l;
+    return std::nullopt;
+  }
   /// Levi-Civita holonomy `H_L` of `loops()[l]`: the exact geodesic curvature of a boundary loop, the
   /// holonomy wrapped to `(-pi, pi]` for a generator
   double levi_civita_holonomy(std::size_t l) const { return m_loop_holonomy[l]; }

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The program's errors on bad --boundary-indices files: exit status 1, a one-line message that names the
+# problem, and no output file left behind. Used by ctest (CMakeLists.txt).
+# Usage: cli_errors.sh PROGRAM OUT_DIR PIG_OFF SPHERE_OFF
+set -uo pipefail
+cli="$1" out="$2" pig="$3" sphere="$4"
+mkdir -p "$out"
+failures=0
+
+# expect MESH FILE_CONTENT N MESSAGE_PART
+expect() {
+  local mesh="$1" content="$2" n="$3" part="$4"
+  local file="$out/boundary.idx" conn="$out/c.txt" field="$out/f.txt"
+  printf '%b' "$content" > "$file"
+  rm -f "$conn" "$field"
+  local message status
+  message=$("$cli" "$mesh" --boundary-indices "$file" --n "$n" --connection "$conn" --field "$field" 2>&1 >/dev/null)
+  status=$?
+  if [ "$status" != 1 ]; then
+    echo "FAIL ($part): exit status $status, expected 1"; failures=$((failures + 1))
+  elif [[ "$message" != *"$part"* ]]; then
+    echo "FAIL ($part): message was: $message"; failures=$((failures + 1))
+  elif [ -e "$conn" ] || [ -e "$field" ]; then
+    echo "FAIL ($part): an output file was left behind"; failures=$((failures + 1))
+  else
+    echo "ok: $message"
+  fi
+}
+
+# pig.off: genus 0, 7 boundary loops (through vertices 4, 314, 408, 291, 463, 429, 352; vertex 1 is interior),
+# chi = -5
+expect "$pig" '1 1\n' 4 "is not on a boundary"                       # an interior vertex
+expect "$pig" '4 -1\n0 -1\n' 4 "are on the same boundary loop"       # 0 and 4 are on the same (3-vertex) hole
+expect "$pig" '4 1/8\n' 4 "is not a multiple of 1/4"
+expect "$pig" '4 -1\n314 -1\n' 4 "names 2 of the 7 boundary loops"
+expect "$pig" '4 -1\n314 -1\n408 -1\n291 -1\n463 -1\n429 -1\n352 -1\n' 1 "Poincare-Hopf"   # sum -7, chi = -5
+expect "$pig" '4 -1\n4 -1\n' 1 "twice"
+expect "$pig" '99999 1\n' 1 "99999"                                   # out of range
+expect "$pig" 'garbage\n' 1 "boundary.idx"
+expect "$sphere" '0 1\n' 1 "is not on a boundary"                     # a closed mesh has no boundary loop
+if [ "$failures" != 0 ]; then echo "$failures failure(s)"; exit 1; fi

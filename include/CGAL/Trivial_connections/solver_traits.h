@@ -184,7 +184,7 @@ struct Trailing_schur_complement<CGAL::Eigen_solver_traits<
   own): forward (v <- L^-1 v), scale (v <- D^-1 v), backward (v <- L^-T v). With the loop rows last, a solve
   that must choose the loop integers first needs one forward and one backward substitution instead of two
   solves. `available` is false for backends that do not expose them.
-  With `leading_columns`, the substitutions also run through the first `columns` columns of L only:
+  Backends with `leading_columns` substitute through the first `columns` columns of L only instead:
   forward(v, columns) leaves on the trailing rows their right-hand side for the trailing block of L, and
   backward(v, columns) expects the trailing rows solved already. The solver does the trailing block with
   its dense copy (the Schur complement of the loop rows), faster than a sparse substitution.
@@ -211,21 +211,9 @@ struct Factor_substitutions<CGAL::Eigen_solver_traits<
     return traits.solver().info() == Eigen::Success && traits.solver().permutationP().size() == 0;
   }
   template <class Traits>
-  static void forward(Traits& traits, Eigen::VectorXd& v)
-  {
-    if(traits.solver().matrixL().nestedExpression().nonZeros() > 0)
-      traits.solver().matrixL().solveInPlace(v);
-  }
-  template <class Traits>
   static void scale(Traits& traits, Eigen::VectorXd& v)
   {
     v = v.cwiseQuotient(traits.solver().vectorD());
-  }
-  template <class Traits>
-  static void backward(Traits& traits, Eigen::VectorXd& v)
-  {
-    if(traits.solver().matrixL().nestedExpression().nonZeros() > 0)
-      traits.solver().matrixU().solveInPlace(v);
   }
   // L is stored strictly lower (unit diagonal), column major
   template <class Traits>

@@ -392,34 +392,29 @@ int run(const Options& o, Progress_printer& progress)
     loop_periods[*l] = index.times(o.n);
     named_by[*l] = v;
   }
-  if(!boundary_indices.empty()) {
-    std::vector<std::size_t> named(solver.components().size(), 0);
-    for(std::size_t l = 0; l < loop_periods.size(); ++l)
-      if(loop_periods[l])
-        ++named[solver.loops()[l].component];
-    for(std::size_t c = 0; c < named.size(); ++c) {
-      const std::size_t all = solver.components()[c].number_of_boundary_loops;
-      if(named[c] != 0 && named[c] != all)
-        throw TC::Invalid_input(TC::Error_code::invalid_loop_periods,
-                                o.boundary_indices + ": names " + std::to_string(named[c]) + " of the " +
-                                  std::to_string(all) + " boundary loops of component " + std::to_string(c) +
-                                  ": list every boundary loop of a component, or none",
-                                c);
-    }
-  }
 
   t = clock::now();
   Mesh::Property_map<halfedge_descriptor, double> x =
     mesh.add_property_map<halfedge_descriptor, double>("h:tc_connection", 0.).first;
   Mesh::Property_map<face_descriptor, Kernel::Vector_3> field =
     mesh.add_property_map<face_descriptor, Kernel::Vector_3>("f:tc_field", CGAL::NULL_VECTOR).first;
-  const TC::Solve_report report =
-    boundary_indices.empty()
-      ? solver.solve(singularities, x, TC::parameters::progress(solver_progress, TC::parameters::symmetry_order(o.n)))
-      : solver.solve(singularities, x,
-                     TC::parameters::progress(solver_progress,
-                                              TC::parameters::loop_periods(loop_periods,
-                                                                           TC::parameters::symmetry_order(o.n))));
+  auto solve = [&] {
+    if(boundary_indices.empty())
+      return solver.solve(singularities, x,
+                          TC::parameters::progress(solver_progress, TC::parameters::symmetry_order(o.n)));
+    // the solver checks the loops (every hole of a component or none, Poincare-Hopf): name the file
+    try {
+      return solver.solve(singularities, x,
+                          TC::parameters::progress(solver_progress,
+                                                   TC::parameters::loop_periods(loop_periods,
+                                                                                TC::parameters::symmetry_order(o.n))));
+    } catch(const TC::Invalid_input& e) {
+      if(e.code() != TC::Error_code::invalid_loop_periods)
+        throw;
+      throw TC::Invalid_input(e.code(), o.boundary_indices + ": " + e.what(), e.where());
+    }
+  };
+  const TC::Solve_report report = solve();
   solver.compute_field(x, field, TC::parameters::progress(solver_progress));
   const double t_solve = seconds_since(t);
 

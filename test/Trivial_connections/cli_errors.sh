@@ -32,8 +32,8 @@ expect() {
 expect "$pig" '1 1\n' 4 "is not on a boundary"                       # an interior vertex
 expect "$pig" '4 -1\n0 -1\n' 4 "are on the same boundary loop"       # 0 and 4 are on the same (3-vertex) hole
 expect "$pig" '4 1/8\n' 4 "is not a multiple of 1/4"
-expect "$pig" '4 -1\n314 -1\n' 4 "names 2 of the 7 boundary loops"
-expect "$pig" '4 -1\n314 -1\n408 -1\n291 -1\n463 -1\n429 -1\n352 -1\n' 1 "Poincare-Hopf"   # sum -7, chi = -5
+expect "$pig" '4 -1\n314 -1\n' 4 "boundary.idx: 2 of the 7 boundary loops of component 0 are prescribed"
+expect "$pig" '4 -1\n314 -1\n408 -1\n291 -1\n463 -1\n429 -1\n352 -1\n' 1 "boundary.idx: Poincare-Hopf"   # sum -7, chi = -5
 expect "$pig" '4 -1\n4 -1\n' 1 "twice"
 expect "$pig" '99999 1\n' 1 "99999"                                   # out of range
 expect "$pig" 'garbage\n' 1 "boundary.idx"

@@ -1122,9 +1122,9 @@ private:
       const std::size_t b = m_components[c].number_of_boundary_loops;
       if(boundary_given[c] != 0 && boundary_given[c] != b)
         throw Invalid_input(Error_code::invalid_loop_periods,
-                            "loop_periods prescribes " + std::to_string(boundary_given[c]) + " of the " +
-                              std::to_string(b) + " boundary loops of component " + std::to_string(c) +
-                              ": prescribe all of them or none (Poincare-Hopf ties their sum)",
+                            std::to_string(boundary_given[c]) + " of the " + std::to_string(b) +
+                              " boundary loops of component " + std::to_string(c) +
+                              " are prescribed: prescribe all of them or none (Poincare-Hopf ties their sum)",
                             c);
       if(b > 0 && boundary_given[c] == b && total[c] != n * m_components[c].euler_characteristic)
         throw Invalid_input(Error_code::invalid_loop_periods,

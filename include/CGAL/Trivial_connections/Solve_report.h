@@ -43,6 +43,22 @@ struct Loop_report
 
 /*!
 \ingroup PkgTrivialConnectionsRef
+What a solve did on one row of the directional constraints: a dual path from the constrained face
+`from_face` to `to_face` (face indices). With `theta_f` the target angle in face f and `T` the Levi-Civita
+transport along the path, the connection satisfies `T + theta_from - theta_to + X = 2 pi period / n`
+(`T + theta_from - theta_to` wrapped to `(-pi, pi]`), which is what makes the field meet both targets.
+*/
+struct Constraint_report
+{
+  std::size_t component = 0;
+  std::size_t from_face = 0, to_face = 0;
+  std::size_t length = 0;   ///< number of edges the path crosses
+  std::int64_t period = 0;  ///< chosen by the solver, minimising the energy with the loop integers
+  double residual = 0;      ///< `|T + theta_from - theta_to + X - 2 pi period / n|`
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
 Topology of one connected component (faces connected through edges).
 */
 struct Component_report
@@ -69,6 +85,9 @@ struct Solve_report
   /// `true` when the integer choice was proven optimal by exhaustive enumeration (or prescribed, or empty)
   bool integers_proven_optimal = true;
   std::vector<Loop_report> loops;       ///< in the order of `Trivial_connection_solver::loops()`
+  /// one per path joining two constrained faces (empty without directional constraints)
+  std::vector<Constraint_report> constraints;
+  double max_constraint_residual = 0;   ///< max of the `Constraint_report::residual`
   std::vector<Component_report> components;
 };
 

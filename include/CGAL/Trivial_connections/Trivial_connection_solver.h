@@ -132,8 +132,24 @@ public:
     \cgalParamNBegin{geom_traits} \cgalParamDefault{a default-constructed `Geom_traits`} \cgalParamNEnd
     \cgalParamNBegin{weighting} \cgalParamType{`Weighting`} \cgalParamDefault{`Weighting::hodge_star`} \cgalParamNEnd
     \cgalParamNBegin{progress} \cgalParamType{`Progress_callback`} \cgalParamDefault{none} \cgalParamNEnd
+    \cgalParamNBegin{constrained_faces}
+      \cgalParamDescription{faces on which the field must point in a direction given to each `solve()`
+        (`face_directions`). Per component, the constrained faces are linked by dual paths, one row each with a
+        free integer chosen with the loop integers (see the user manual). Changing the directions costs
+        back-substitutions only; changing the set of faces needs a new solver}
+      \cgalParamType{a range of `face_descriptor`} \cgalParamDefault{none}
+    \cgalParamNEnd
+    \cgalParamNBegin{align_with_boundary}
+      \cgalParamDescription{every boundary face gets the direction of its border edge as its target (of its
+        longer border edge when it has two): vectors along the boundary for n = 1, tangent lines for n = 2,
+        crosses tangent and normal to it for n = 4. The targets of a boundary loop are linked through the fans of
+        its vertices, so the turn the field makes at each boundary vertex is one of the free integers}
+      \cgalParamType{`bool`} \cgalParamDefault{`false`}
+    \cgalParamNEnd
   \cgalNamedParamsEnd
-  \throws Invalid_input `empty_mesh`, `not_triangle_mesh`, `non_manifold`, `degenerate_face`, `solver_failure`
+  \throws Invalid_input `empty_mesh`, `not_triangle_mesh`, `non_manifold`, `degenerate_face`,
+          `invalid_constraint` (a constrained face not of the mesh, listed twice, or on an aligned boundary),
+          `solver_failure`
   */
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Trivial_connection_solver(const TriangleMesh& tm,
@@ -151,6 +167,9 @@ public:
       m_geometry(),
       m_topology()
   {
+    const std::vector<int> user_faces = constrained_face_indices(np);
+    const bool align = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, tc_np::align_with_boundary), false);
     // The fill-reducing order of the node rows needs only the connectivity: it runs on a second thread
     // while the rest of the set-up (points, degenerate faces), the geometry and the trees are computed, and
     // the corner angles (not needed by the system) run beside the factorization. The other thread never
@@ -187,6 +206,7 @@ public:
     notify(Phase::trees, 0);
     m_topology.build_trees(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner);
     build_loops();
+    build_constraint_paths(user_faces, align);
     notify(Phase::trees, 1);
     notify(Phase::assembly, 0);
     build_constraints();
@@ -297,9 +317,15 @@ public:
       \cgalParamType{`std::vector<std::int64_t>` or `std::vector<std::optional<std::int64_t>>`}
       \cgalParamDefault{the integers minimising the energy}
     \cgalParamNEnd
+    \cgalParamNBegin{face_directions}
+      \cgalParamDescription{a readable property map `face_descriptor -> Vector_3`, read at the faces given as
+        `constrained_faces`: the direction the field must have there (one of its n directions), projected onto
+        the face. Required when the solver has such faces}
+    \cgalParamNEnd
   \cgalNamedParamsEnd
   \throws Invalid_input `invalid_symmetry_order`, `invalid_vertex`, `singularity_on_boundary`,
           `duplicate_singularity`, `index_not_multiple`, `poincare_hopf_violated`, `invalid_loop_periods`,
+          `invalid_constraint` (directions missing, or zero, not finite or normal to their face),
           `solver_failure`
   */
   template <class SingularityRange, class HalfedgeAngleMap,
@@ -316,9 +342,11 @@ public:
     report.components = m_components;
 
     const std::vector<std::int64_t> k = vertex_indices(singularities, n, report);
+    // per slot (loops, then constraint paths): H with H + sum x = 2 pi period / n
+    const std::vector<double> holonomy = slot_holonomies(constraint_angles(np));
 
-    std::vector<std::int64_t> periods(m_loops.size(), 0);
-    std::vector<char> prescribed(m_loops.size(), 0);
+    std::vector<std::int64_t> periods(holonomy.size(), 0);
+    std::vector<char> prescribed(holonomy.size(), 0);
     const bool user_periods =
       !CGAL::parameters::is_default_parameter<NamedParameters, tc_np::loop_periods_t>::value;
     if(user_periods)
@@ -329,7 +357,7 @@ public:
     const Progress_callback progress = progress_of(np);
     const double unit = 2 * CGAL_PI / n;
     notify(progress, Phase::solve, 0);
-    Eigen::VectorXd b = right_hand_side(k, periods, n);
+    Eigen::VectorXd b = right_hand_side(k, periods, holonomy, n);
     Eigen::VectorXd lambda;
     double rounding_energy = 0;
     // the loops with a row whose integer is not prescribed
@@ -360,7 +388,7 @@ public:
           y[c] = metric.schur_factor.template triangularView<Eigen::Lower>() * y[c];
       }
       notify(progress, Phase::loop_integers, 0);
-      const double loop_energy = choose_loop_periods(y, unit, prescribed, periods, report);
+      const double loop_energy = choose_loop_periods(y, unit, prescribed, holonomy, periods, report);
       notify(progress, Phase::loop_integers, 1);
       for(std::size_t c = 0; c < m_components.size(); ++c) {
         const Loop_metric& metric = m_loop_metric[c];
@@ -407,7 +435,7 @@ public:
           loop_part += lf.dot(y[c]);
         }
         notify(progress, Phase::loop_integers, 0);
-        rounding_energy = b.dot(lambda) - loop_part + choose_loop_periods(y, unit, prescribed, periods, report);
+        rounding_energy = b.dot(lambda) - loop_part + choose_loop_periods(y, unit, prescribed, holonomy, periods, report);
         notify(progress, Phase::loop_integers, 1);
         add_loop_periods(periods, prescribed, unit, b);
       }
@@ -420,7 +448,7 @@ public:
       rounding_energy = b.dot(lambda);
     write_connection(xe, x);
 
-    fill_report(sums, k, periods, prescribed, n, report);
+    fill_report(sums, k, periods, prescribed, holonomy, n, report);
     report.rounding_energy = choose_periods ? rounding_energy : report.energy;
     notify(progress, Phase::solve, 1);
     return report;
@@ -438,8 +466,14 @@ public:
       \cgalParamDescription{angle of the field in the seed face, counter-clockwise from the direction of `halfedge(seed_face)`}
       \cgalParamType{`double`} \cgalParamDefault{0}
     \cgalParamNEnd
+    \cgalParamNBegin{face_directions}
+      \cgalParamDescription{as for `solve()`: required when the solver has constrained faces. A component with
+        constrained faces starts from the target of one of them, so that the field meets every target}
+    \cgalParamNEnd
   \cgalNamedParamsEnd
   Other components start with angle 0 in their first face (in face-index order).
+  \throws Invalid_input `invalid_argument` (a seed face not of the mesh, or in a component with constrained
+          faces), `invalid_constraint` (as `solve()`)
   */
   template <class HalfedgeAngleMap, class FaceVectorMap,
             class NamedParameters = parameters::Default_named_parameters>
@@ -468,13 +502,30 @@ public:
         angle[f] = internal::wrap_angle(angle[Mesh::face_of(i)] + m_geometry.transport_angle(i) +
                                         get(x, m_mesh.halfedges[i]));
     }
+    // per component, the rotation that puts the field on its seed's angle, or on the target of its first
+    // constrained face (the connection carries it to the others)
+    std::vector<double> shift(m_components.size(), 0.);
+    std::vector<char> shifted(m_components.size(), 0);
+    if(!m_constrained.empty()) {
+      const std::vector<double> target = constraint_angles(np);
+      for(std::size_t c = 0; c < m_components.size(); ++c)
+        if(m_seed_constraint[c] >= 0) {
+          shift[c] = target[m_seed_constraint[c]] - angle[m_constrained[m_seed_constraint[c]].face];
+          shifted[c] = 1;
+        }
+    }
     if(seed >= 0) {
       const int c = m_topology.component_of_face[seed];
-      const double shift = seed_angle - angle[seed];
-      for(int f = 0; f < m_mesh.nf; ++f)
-        if(m_topology.component_of_face[f] == c)
-          angle[f] = internal::wrap_angle(angle[f] + shift);
+      if(shifted[c])
+        throw Invalid_input(Error_code::invalid_argument,
+                            "the seed face is in a component with constrained faces, which set the field there",
+                            std::size_t(seed));
+      shift[c] = seed_angle - angle[seed];
+      shifted[c] = 1;
     }
+    for(int f = 0; f < m_mesh.nf; ++f)
+      if(shifted[m_topology.component_of_face[f]])
+        angle[f] = internal::wrap_angle(angle[f] + shift[m_topology.component_of_face[f]]);
     typename Geom_traits::Construct_vector_3 vector = m_traits.construct_vector_3_object();
     for(int f = 0; f < m_mesh.nf; ++f) {
       const double c = std::cos(angle[f]), s = std::sin(angle[f]);
@@ -533,6 +584,156 @@ private:
     }
   }
 
+  // The constrained faces given to the constructor, as face indices (checked: faces of the mesh, once each)
+  template <class NamedParameters>
+  std::vector<int> constrained_face_indices(const NamedParameters& np) const
+  {
+    std::vector<int> faces;
+    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::constrained_faces_t>::value) {
+      std::vector<char> listed(std::size_t(m_mesh.nf), 0);
+      for(const face_descriptor f : CGAL::parameters::get_parameter(np, tc_np::constrained_faces)) {
+        const std::size_t i = f == Graph_traits::null_face() ? std::size_t(m_mesh.nf) : std::size_t(get(m_mesh.face_index, f));
+        if(i >= std::size_t(m_mesh.nf) || m_mesh.face_descriptors[i] != f)
+          throw Invalid_input(Error_code::invalid_constraint, "a constrained face is not a face of the mesh");
+        if(listed[i])
+          throw Invalid_input(Error_code::invalid_constraint,
+                              "face " + std::to_string(i) + " is constrained twice", i);
+        listed[i] = 1;
+        faces.push_back(int(i));
+      }
+    }
+    return faces;
+  }
+
+  // The rows of the directional constraints: per component, the constrained faces are chained and each link
+  // is a dual path, whose row says that the connection carries the target of one end to the target of the
+  // other, up to a free multiple of 2 pi / n. With the boundary aligned, the boundary faces of each loop are
+  // chained along the loop, each link being the open fan of the boundary vertex between them; the chains
+  // and the faces the user constrains are then linked in the order of a depth-first traversal of the dual
+  // spanning tree, by their paths in that tree (the tree paths between consecutive faces of a depth-first
+  // order cross each tree edge at most twice in all). The links of a component form a tree on its
+  // constrained faces, so the rows are independent of each other and of the cycle rows.
+  void build_constraint_paths(const std::vector<int>& user_faces, bool align)
+  {
+    const internal::Mesh_topology& t = m_topology;
+    const int nf = m_mesh.nf;
+    std::vector<int> constraint_of_face(std::size_t(nf), -1);
+    std::vector<std::vector<int>> units(t.components.size()); // per component: a constrained face of each chain
+    auto add_face = [&](int f, int border_corner) {
+      CGAL_assertion(constraint_of_face[f] < 0);
+      constraint_of_face[f] = int(m_constrained.size());
+      m_constrained.push_back({f, border_corner});
+      return int(m_constrained.size()) - 1;
+    };
+    auto border_length = [&](int i) { return internal::norm(internal::sub(m_mesh.points[m_mesh.target_of(i)],
+                                                                          m_mesh.points[m_mesh.source_of(i)])); };
+    if(align) {
+      for(const internal::Mesh_topology::Loop& loop : t.loops) {
+        if(loop.kind != Loop_kind::boundary)
+          continue;
+        const std::vector<int>& corners = loop.border_corners;
+        const int m = int(corners.size());
+        // start where the face changes, so that a face with two border edges is one link of the chain
+        int start = 0;
+        while(start < m && Mesh::face_of(corners[start]) == Mesh::face_of(corners[(start + m - 1) % m]))
+          ++start;
+        start %= m;
+        int previous = -1;
+        for(int a = 0; a < m; ++a) {
+          const int i = (start + a) % m, corner = corners[i], f = Mesh::face_of(corner);
+          if(previous >= 0 && m_constrained[previous].face == f) {
+            // the same face again (two border edges): it follows the longer one
+            if(border_length(corner) > border_length(m_constrained[previous].border_corner))
+              m_constrained[previous].border_corner = corner;
+          } else {
+            const int current = add_face(f, corner);
+            if(previous >= 0) {
+              // the fan of the vertex between them: from the previous border corner's face to this one
+              const int j = (i + m - 1) % m;
+              const int end = j + 1 < m ? loop.fan_start[j + 1] : int(loop.crossings.size());
+              m_paths.push_back({previous, current, loop.component,
+                                 std::vector<int>(loop.crossings.begin() + loop.fan_start[j],
+                                                  loop.crossings.begin() + end)});
+            } else {
+              units[loop.component].push_back(current);
+            }
+            previous = current;
+          }
+        }
+      }
+    }
+    for(int f : user_faces) {
+      if(constraint_of_face[f] >= 0)
+        throw Invalid_input(Error_code::invalid_constraint,
+                            "face " + std::to_string(f) +
+                              " is on the boundary, which the field is aligned with: it cannot have a target too",
+                            std::size_t(f));
+      units[t.component_of_face[f]].push_back(add_face(f, -1));
+    }
+    m_has_user_constraints = !user_faces.empty();
+    m_seed_constraint.assign(t.components.size(), -1);
+    if(m_constrained.empty())
+      return;
+
+    // depth-first preorder of the dual spanning tree, and depths, for the tree paths
+    std::vector<int> child_start(std::size_t(nf) + 1, 0), children(std::size_t(nf), 0), depth(std::size_t(nf), 0);
+    for(int f = 0; f < nf; ++f)
+      if(t.parent_corner[f] >= 0)
+        ++child_start[std::size_t(Mesh::face_of(t.parent_corner[f])) + 1];
+    for(int f = 0; f < nf; ++f)
+      child_start[f + 1] += child_start[f];
+    {
+      std::vector<int> next(child_start.begin(), child_start.end() - 1);
+      for(int f : t.face_order) // parents first
+        if(t.parent_corner[f] >= 0) {
+          const int p = Mesh::face_of(t.parent_corner[f]);
+          children[next[p]++] = f;
+          depth[f] = depth[p] + 1;
+        }
+    }
+    std::vector<int> preorder(std::size_t(nf), 0);
+    {
+      int count = 0;
+      std::vector<int> stack;
+      for(int f : t.face_order)
+        if(t.parent_corner[f] < 0) {
+          stack.push_back(f);
+          while(!stack.empty()) {
+            const int g = stack.back();
+            stack.pop_back();
+            preorder[g] = count++;
+            for(int p = child_start[g + 1]; p-- > child_start[g];)
+              stack.push_back(children[p]);
+          }
+        }
+    }
+    for(std::size_t c = 0; c < units.size(); ++c) {
+      std::vector<int>& u = units[c];
+      if(u.empty())
+        continue;
+      std::sort(u.begin(), u.end(), [&](int a, int b) {
+        return preorder[m_constrained[a].face] < preorder[m_constrained[b].face];
+      });
+      m_seed_constraint[c] = u.front();
+      for(std::size_t k = 1; k < u.size(); ++k) {
+        // up from a to the common ancestor, then down to b
+        int a = m_constrained[u[k - 1]].face, b = m_constrained[u[k]].face;
+        std::vector<int> crossings, down;
+        while(a != b) {
+          if(depth[a] >= depth[b]) {
+            crossings.push_back(m_mesh.opposite_corner[t.parent_corner[a]]);
+            a = Mesh::face_of(t.parent_corner[a]);
+          } else {
+            down.push_back(t.parent_corner[b]);
+            b = Mesh::face_of(t.parent_corner[b]);
+          }
+        }
+        crossings.insert(crossings.end(), down.rbegin(), down.rend());
+        m_paths.push_back({u[k - 1], u[k], int(c), std::move(crossings)});
+      }
+    }
+  }
+
   // needs the corner angles
   void compute_loop_holonomies()
   {
@@ -568,13 +769,14 @@ private:
     for(int node = 0; node < t.number_of_nodes; ++node)
       if(!pinned[node])
         m_row_of_node[node] = rows++;
-    m_row_of_loop.assign(t.loops.size(), -1);
+    const std::size_t nl = t.loops.size(), slots = nl + m_paths.size();
+    m_row_of_loop.assign(slots, -1);
     m_free_loops.assign(t.components.size(), {});
-    for(std::size_t l = 0; l < t.loops.size(); ++l) {
-      const auto& loop = t.loops[l];
-      m_row_of_loop[l] = loop.kind == Loop_kind::boundary ? m_row_of_node[loop.node] : rows++;
+    for(std::size_t l = 0; l < slots; ++l) {
+      const int component = l < nl ? t.loops[l].component : m_paths[l - nl].component;
+      m_row_of_loop[l] = l < nl && t.loops[l].kind == Loop_kind::boundary ? m_row_of_node[t.loops[l].node] : rows++;
       if(m_row_of_loop[l] >= 0) {
-        m_free_loops[loop.component].push_back(int(l));
+        m_free_loops[component].push_back(int(l));
         m_free_rows.push_back(m_row_of_loop[l]);
       }
     }
@@ -588,17 +790,24 @@ private:
         m_vertex_of_node[node] = v;
     }
 
-    // per loop, its crossings as oriented interior edges (e: x_e, ~e: -x_e), for the solves
-    m_loop_edge_start.assign(t.loops.size() + 1, 0);
-    for(std::size_t l = 0; l < t.loops.size(); ++l)
-      m_loop_edge_start[l + 1] = m_loop_edge_start[l] + int(t.loops[l].crossings.size());
+    // per slot, its crossings as oriented interior edges (e: x_e, ~e: -x_e), for the solves
+    auto crossings_of = [&](std::size_t l) -> const std::vector<int>& {
+      return l < nl ? t.loops[l].crossings : m_paths[l - nl].crossings;
+    };
+    m_loop_edge_start.assign(slots + 1, 0);
+    for(std::size_t l = 0; l < slots; ++l)
+      m_loop_edge_start[l + 1] = m_loop_edge_start[l] + int(crossings_of(l).size());
     m_loop_edges.resize(std::size_t(m_loop_edge_start.back()));
-    for(std::size_t l = 0; l < t.loops.size(); ++l) {
+    for(std::size_t l = 0; l < slots; ++l) {
       int* out = m_loop_edges.data() + m_loop_edge_start[l];
-      for(int i : t.loops[l].crossings) {
+      for(int i : crossings_of(l)) {
         const int e = m_geometry.edge_of_corner[i];
         *out++ = m_geometry.edge_corner[e] == i ? e : ~e;
       }
+    }
+    for(Constraint_path& path : m_paths) {
+      path.length = path.crossings.size();
+      std::vector<int>().swap(path.crossings);
     }
 
     m_rows = rows;
@@ -619,10 +828,11 @@ private:
       if(m_row_of_node[node] >= 0)
         ++node_row_count;
 
-    // generator crossings per edge (CSR): (generator row, +-1)
+    // generator (and constraint path) crossings per edge (CSR): (its row, +-1)
+    const std::size_t slots = m_row_of_loop.size();
     std::vector<int> crossing_start(std::size_t(ne) + 1, 0);
-    for(std::size_t l = 0; l < t.loops.size(); ++l)
-      if(t.loops[l].kind == Loop_kind::generator)
+    for(std::size_t l = 0; l < slots; ++l)
+      if(is_crossing_slot(l))
         for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p)
           ++crossing_start[std::size_t(edge_of_code(m_loop_edges[p])) + 1];
     for(int e = 0; e < ne; ++e)
@@ -630,8 +840,8 @@ private:
     std::vector<std::pair<int, double>> crossings(std::size_t(crossing_start[ne]));
     {
       std::vector<int> next(crossing_start.begin(), crossing_start.end() - 1);
-      for(std::size_t l = 0; l < t.loops.size(); ++l)
-        if(t.loops[l].kind == Loop_kind::generator)
+      for(std::size_t l = 0; l < slots; ++l)
+        if(is_crossing_slot(l))
           for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p) {
             const int code = m_loop_edges[p];
             crossings[next[edge_of_code(code)]++] = {m_row_of_loop[l], sign_of_code(code)};
@@ -652,8 +862,8 @@ private:
         }
         sum[r] += v;
       };
-      for(std::size_t l = 0; l < t.loops.size(); ++l) {
-        if(t.loops[l].kind != Loop_kind::generator)
+      for(std::size_t l = 0; l < slots; ++l) {
+        if(!is_crossing_slot(l))
           continue;
         const int g = m_row_of_loop[l];
         pattern.clear();
@@ -895,9 +1105,10 @@ private:
     for(int node = 0; node < t.number_of_nodes; ++node)
       if(m_row_of_node[node] >= 0)
         multiplier[node] = lambda[m_row_of_node[node]];
-    xe.setZero(ne); // first the generators' part, then the stars' part and the sums in one pass
-    for(std::size_t l = 0; l < t.loops.size(); ++l)
-      if(t.loops[l].kind == Loop_kind::generator) {
+    const std::size_t slots = m_row_of_loop.size();
+    xe.setZero(ne); // first the generators' (and paths') part, then the stars' part and the sums in one pass
+    for(std::size_t l = 0; l < slots; ++l)
+      if(is_crossing_slot(l)) {
         const double g = lambda[m_row_of_loop[l]];
         for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p)
           xe[edge_of_code(m_loop_edges[p])] += sign_of_code(m_loop_edges[p]) * g;
@@ -917,9 +1128,9 @@ private:
       }
     }
     sums.energy = energy;
-    sums.loop.assign(t.loops.size(), 0.);
-    for(std::size_t l = 0; l < t.loops.size(); ++l) {
-      if(t.loops[l].kind == Loop_kind::boundary) {
+    sums.loop.assign(slots, 0.);
+    for(std::size_t l = 0; l < slots; ++l) {
+      if(!is_crossing_slot(l)) {
         sums.loop[l] = node_sum[t.loops[l].node];
         continue;
       }
@@ -929,6 +1140,12 @@ private:
       sums.loop[l] = sum;
     }
     sums.node.swap(node_sum);
+  }
+
+  // a generator or a constraint path: a row made of its crossings (a boundary loop's row is its node's)
+  bool is_crossing_slot(std::size_t l) const
+  {
+    return l >= m_topology.loops.size() || m_topology.loops[l].kind == Loop_kind::generator;
   }
 
   // A crossing of a loop is coded e (x_e) or ~e (-x_e); decoded without branches, whose sign pattern is
@@ -1142,7 +1359,8 @@ private:
   // energy is t^T S^-1 t with t = y + unit m. Returns that part for the integers rounded one by one (for
   // Solve_report::rounding_energy).
   double choose_loop_periods(const std::vector<Eigen::VectorXd>& y, double unit, const std::vector<char>& prescribed,
-                             std::vector<std::int64_t>& periods, Solve_report& report) const
+                             const std::vector<double>& holonomy, std::vector<std::int64_t>& periods,
+                             Solve_report& report) const
   {
     bool proven = true;
     double rounding_part = 0;
@@ -1201,7 +1419,7 @@ private:
       for(Eigen::Index a = 0; a < kc; ++a) {
         rounded[a] = std::int64_t(std::llround(center[a]));
         // each loop on its own: the integer making its own connection sum smallest
-        own[a] = std::int64_t(std::llround(m_loop_holonomy[free[chosen[a]]] / unit));
+        own[a] = std::int64_t(std::llround(holonomy[free[chosen[a]]] / unit));
       }
       const internal::Closest_vector_result best =
         internal::closest_vector(*G, *R, center, {rounded, own},
@@ -1217,8 +1435,76 @@ private:
     return rounding_part;
   }
 
+  // angle of a vector in the frame of face f (counter-clockwise from the direction of its corner halfedge 3f)
+  double angle_in_frame(int f, const internal::Vec3& v) const
+  {
+    internal::Vec3 ex, ey;
+    internal::Mesh_geometry::frame(m_mesh, f, ex, ey);
+    return std::atan2(internal::dot(v, ey), internal::dot(v, ex));
+  }
+
+  // per constrained face, its target angle in its frame: the direction of its border halfedge when the boundary
+  // is aligned, otherwise the user's vector (`face_directions`) projected onto the face
+  template <class NamedParameters>
+  std::vector<double> constraint_angles(const NamedParameters& np) const
+  {
+    std::vector<double> angle(m_constrained.size(), 0.);
+    for(std::size_t a = 0; a < m_constrained.size(); ++a) {
+      const int i = m_constrained[a].border_corner;
+      if(i >= 0)
+        angle[a] = angle_in_frame(Mesh::face_of(i), internal::sub(m_mesh.points[m_mesh.target_of(i)],
+                                                                  m_mesh.points[m_mesh.source_of(i)]));
+    }
+    if(!m_has_user_constraints)
+      return angle;
+    if constexpr(CGAL::parameters::is_default_parameter<NamedParameters, tc_np::face_directions_t>::value) {
+      throw Invalid_input(Error_code::invalid_constraint,
+                          "the solver has constrained faces: their directions (face_directions) are missing");
+    } else {
+      const auto directions = CGAL::parameters::get_parameter(np, tc_np::face_directions);
+      typename Geom_traits::Compute_x_3 x = m_traits.compute_x_3_object();
+      typename Geom_traits::Compute_y_3 y = m_traits.compute_y_3_object();
+      typename Geom_traits::Compute_z_3 z = m_traits.compute_z_3_object();
+      for(std::size_t a = 0; a < m_constrained.size(); ++a) {
+        if(m_constrained[a].border_corner >= 0)
+          continue;
+        const int f = m_constrained[a].face;
+        const Vector_3 d = get(directions, m_mesh.face_descriptors[f]);
+        const internal::Vec3 v = {{CGAL::to_double(x(d)), CGAL::to_double(y(d)), CGAL::to_double(z(d))}};
+        internal::Vec3 ex, ey;
+        internal::Mesh_geometry::frame(m_mesh, f, ex, ey);
+        const double along_x = internal::dot(v, ex), along_y = internal::dot(v, ey), length = internal::norm(v);
+        // a vector within 1e-9 rad of the normal has no meaningful tangent direction
+        if(!std::isfinite(length) || !(std::hypot(along_x, along_y) > 1e-9 * length))
+          throw Invalid_input(Error_code::invalid_constraint,
+                              "the direction given for face " + std::to_string(f) +
+                                (std::isfinite(length) && length > 0 ? " is normal to the face"
+                                                                     : " is zero or not finite"),
+                              std::size_t(f));
+        angle[a] = std::atan2(along_y, along_x);
+      }
+      return angle;
+    }
+  }
+
+  // per slot, H with H + sum x = 2 pi period / n: the loops' Levi-Civita holonomy, and for a constraint path
+  // the transport along it plus the target angle it leaves minus the one it reaches (wrapped)
+  std::vector<double> slot_holonomies(const std::vector<double>& target) const
+  {
+    std::vector<double> holonomy(m_loop_holonomy);
+    holonomy.resize(m_row_of_loop.size(), 0.);
+    for(std::size_t j = 0; j < m_paths.size(); ++j) {
+      const std::size_t l = m_loops.size() + j;
+      double h = target[m_paths[j].from] - target[m_paths[j].to];
+      for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p)
+        h += sign_of_code(m_loop_edges[p]) * m_geometry.transport[edge_of_code(m_loop_edges[p])];
+      holonomy[l] = internal::wrap_angle(h);
+    }
+    return holonomy;
+  }
+
   Eigen::VectorXd right_hand_side(const std::vector<std::int64_t>& k, const std::vector<std::int64_t>& periods,
-                                  int n) const
+                                  const std::vector<double>& holonomy, int n) const
   {
     const double unit = 2 * CGAL_PI / n;
     Eigen::VectorXd b(m_rows);
@@ -1229,9 +1515,9 @@ private:
         b[r] = unit * double(k[v]) - m_geometry.angle_defect(v);
       }
     }
-    for(std::size_t l = 0; l < m_loops.size(); ++l)
+    for(std::size_t l = 0; l < holonomy.size(); ++l)
       if(m_row_of_loop[l] >= 0)
-        b[m_row_of_loop[l]] = unit * double(periods[l]) - m_loop_holonomy[l];
+        b[m_row_of_loop[l]] = unit * double(periods[l]) - holonomy[l];
     return b;
   }
 
@@ -1261,8 +1547,8 @@ private:
   }
 
   void fill_report(const Constraint_sums& sums, const std::vector<std::int64_t>& k,
-                   std::vector<std::int64_t>& periods, const std::vector<char>& prescribed, int n,
-                   Solve_report& report) const
+                   std::vector<std::int64_t>& periods, const std::vector<char>& prescribed,
+                   const std::vector<double>& holonomy, int n, Solve_report& report) const
   {
     const double unit = 2 * CGAL_PI / n;
     report.energy = sums.energy;
@@ -1300,6 +1586,19 @@ private:
       r.residual = std::abs(m_loop_holonomy[l] + sum - unit * double(periods[l]));
       report.max_loop_residual = (std::max)(report.max_loop_residual, r.residual);
     }
+    report.max_constraint_residual = 0;
+    report.constraints.resize(m_paths.size());
+    for(std::size_t j = 0; j < m_paths.size(); ++j) {
+      const std::size_t l = m_loops.size() + j;
+      Constraint_report& r = report.constraints[j];
+      r.component = std::size_t(m_paths[j].component);
+      r.from_face = std::size_t(m_constrained[m_paths[j].from].face);
+      r.to_face = std::size_t(m_constrained[m_paths[j].to].face);
+      r.length = m_paths[j].length;
+      r.period = periods[l];
+      r.residual = std::abs(holonomy[l] + sums.loop[l] - unit * double(periods[l]));
+      report.max_constraint_residual = (std::max)(report.max_constraint_residual, r.residual);
+    }
   }
 
   const TriangleMesh& m_tm;
@@ -1313,13 +1612,32 @@ private:
   std::vector<double> m_loop_holonomy;
   std::vector<Component_report> m_components;
 
-  std::vector<int> m_row_of_node, m_row_of_loop, m_vertex_of_node, m_free_rows;
+  // Directional constraints: the constrained faces and the paths linking them (see build_constraint_paths())
+  struct Constrained_face
+  {
+    int face;
+    int border_corner; // the border corner halfedge it follows with the boundary aligned; -1: a user target
+  };
+  struct Constraint_path
+  {
+    int from, to;      // in m_constrained
+    int component;
+    std::vector<int> crossings; // corner halfedges, as a loop's (released once coded in m_loop_edges)
+    std::size_t length = 0;
+  };
+  std::vector<Constrained_face> m_constrained;
+  std::vector<Constraint_path> m_paths;
+  std::vector<int> m_seed_constraint; // per component: the constrained face the field starts from, or -1
+  bool m_has_user_constraints = false;
+
+  // Rows with an integer are numbered by "slots": the loops of loops(), then the constraint paths.
+  std::vector<int> m_row_of_node, m_row_of_loop /* per slot */, m_vertex_of_node, m_free_rows;
   // per interior edge, the nodes of its canonical corner's source and target, for the solves (made during the
   // factorization, on the other thread)
   std::vector<std::array<int, 2>> m_edge_nodes;
   std::vector<int> m_border_corners;           // corner halfedges on a border edge
-  std::vector<int> m_loop_edge_start, m_loop_edges; // per loop (CSR): e for x_e, ~e for -x_e, per crossing
-  std::vector<std::vector<int>> m_free_loops;  // per component: loops whose integer is free
+  std::vector<int> m_loop_edge_start, m_loop_edges; // per slot (CSR): e for x_e, ~e for -x_e, per crossing
+  std::vector<std::vector<int>> m_free_loops;  // per component: slots whose integer is free (loops, then paths)
   Eigen::Index m_rows = 0;                     // of the constraint system
   // the solver keeps a pointer to it; empty after the factorization when the backend needs only its factor
   std::unique_ptr<typename Solver_traits::Matrix> m_system;

@@ -33,6 +33,8 @@ enum class Error_code {
   invalid_symmetry_order,     ///< n < 1
   invalid_loop_periods,       ///< prescribed loop integers of the wrong size or violating Poincare-Hopf
   invalid_index,              ///< a malformed index (zero denominator, overflow)
+  invalid_constraint,         ///< a constrained face listed twice, a zero or normal target direction, a target
+                              ///< missing, a constrained face on an aligned boundary
   invalid_argument,           ///< any other malformed argument (seed face, face out of range, ...)
   io_error,                   ///< a file could not be read or written
   parse_error,                ///< a file could not be parsed
@@ -59,6 +61,7 @@ inline const char* error_code_name(Error_code c)
     case Error_code::invalid_symmetry_order: return "invalid_symmetry_order";
     case Error_code::invalid_loop_periods: return "invalid_loop_periods";
     case Error_code::invalid_index: return "invalid_index";
+    case Error_code::invalid_constraint: return "invalid_constraint";
     case Error_code::invalid_argument: return "invalid_argument";
     case Error_code::io_error: return "io_error";
     case Error_code::parse_error: return "parse_error";

@@ -28,6 +28,9 @@ enum loop_periods_t { loop_periods };
 enum seed_face_t { seed_face };
 enum seed_angle_t { seed_angle };
 enum progress_t { progress };
+enum constrained_faces_t { constrained_faces };
+enum align_with_boundary_t { align_with_boundary };
+enum face_directions_t { face_directions };
 } // namespace tc_np
 
 /*!
@@ -69,6 +72,14 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(seed_angle)
 /// a `Progress_callback` (or any callable `void(Phase, double)`); read by the constructor, `solve()` and
 /// `compute_field()`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(progress)
+
+/// faces whose field direction is prescribed (a range of `face_descriptor`); read by the solver's constructor
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(constrained_faces)
+/// `bool`, default `false`: the field follows the boundary on every boundary face; read by the constructor
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(align_with_boundary)
+/// a readable property map `face_descriptor -> Vector_3`: the target direction of every constrained face;
+/// read by `solve()` and `compute_field()`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(face_directions)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
 } // namespace parameters

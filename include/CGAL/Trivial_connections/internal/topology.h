@@ -39,6 +39,10 @@ struct Mesh_topology
     int component;
     int node;                 // boundary loop: its node; generator: -1
     std::vector<int> crossings; // corner halfedges crossed from their face to the opposite one, in order
+    // boundary loop: its border corner halfedges in the order visited, and where the open fan of the source
+    // of each starts in `crossings` (that fan goes from the face of border_corners[i] to the face of
+    // border_corners[i + 1], cyclically)
+    std::vector<int> border_corners, fan_start;
   };
 
   struct Component
@@ -75,10 +79,12 @@ struct Mesh_topology
     for(int start = 0; start < nc; ++start) {
       if(m.opposite_corner[start] >= 0 || visited[start])
         continue;
-      Loop loop{Loop_kind::boundary, -1, -1, {}};
+      Loop loop{Loop_kind::boundary, -1, -1, {}, {}, {}};
       int cur = start;
       do {
         visited[cur] = 1;
+        loop.border_corners.push_back(cur);
+        loop.fan_start.push_back(int(loop.crossings.size()));
         node_of_vertex[m.source_of(cur)] = -2 - int(m_boundary.size()); // provisional: boundary loop id
         // the open fan at source(cur), counter-clockwise, starting at the face of cur
         int j = MA::prev_corner(cur);
@@ -231,7 +237,7 @@ struct Mesh_topology
       if(in_dual_tree[e] || in_primal_tree[e])
         continue;
       const int i = edge_corner[e];
-      Loop loop{Loop_kind::generator, component_of_face[MA::face_of(i)], -1, {}};
+      Loop loop{Loop_kind::generator, component_of_face[MA::face_of(i)], -1, {}, {}, {}};
       // from the face across i up to the common ancestor, down to face(i), then across i
       int a = MA::face_of(m.opposite_corner[i]), b = MA::face_of(i);
       std::vector<int> down;

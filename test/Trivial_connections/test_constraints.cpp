@@ -1,0 +1,635 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+// Directional constraints and boundary alignment, checked from first principles: every target met by the
+// extracted field (mod 2 pi / n), the field parallel for the connection, the singularities exactly the
+// prescribed ones, optimality (the weighted divergence of x vanishes on every face that is not constrained),
+// and the free integers against a brute-force enumeration over constraint rows built here independently
+// (our own dual tree, our own transport), not the package's.
+
+#include "test_support.h"
+
+using namespace tc_test;
+
+namespace {
+
+/// targets on faces (our face numbers); a direction need not be tangent: the package projects it
+struct Targets
+{
+  std::vector<int> faces;
+  std::vector<V3> directions;
+};
+
+template <class Mesh>
+V3 tangent_part(const Mesh_view<Mesh>& view, int f, const V3& v)
+{
+  return v - dot(v, view.N[f]) * view.N[f];
+}
+
+template <class Mesh>
+V3 field_at(const Mesh_view<Mesh>& view, const std::vector<Vector>& field, int f)
+{
+  (void)view;
+  return {{field[f].x(), field[f].y(), field[f].z()}};
+}
+
+/// the direction of the border edges of a boundary face (empty for an interior face), longest first
+template <class Mesh>
+std::vector<V3> border_directions(const Mesh_view<Mesh>& view, int f)
+{
+  std::vector<std::pair<double, V3>> d;
+  for(int h : view.face_he[f])
+    if(view.hface[view.opp[h]] < 0) {
+      const V3 e = view.P[view.tgt[h]] - view.P[view.src[h]];
+      d.push_back({norm(e), e});
+    }
+  std::stable_sort(d.begin(), d.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<V3> out;
+  for(const auto& p : d) out.push_back(p.second);
+  return out;
+}
+
+template <class Mesh>
+struct Constrained_solution
+{
+  std::vector<double> x;
+  std::vector<Vector> field;
+  std::vector<Vector> directions; // per face (zero where not constrained)
+  TC::Solve_report report;
+};
+
+template <class Mesh, class Solver>
+Constrained_solution<Mesh> solve_constrained(const Mesh_view<Mesh>& view, Solver& solver, const Singularities& sing,
+                                             int n, const Targets& targets)
+{
+  Constrained_solution<Mesh> s;
+  s.directions.assign(view.nf(), Vector(0, 0, 0));
+  for(std::size_t i = 0; i < targets.faces.size(); ++i) {
+    const V3& d = targets.directions[i];
+    s.directions[targets.faces[i]] = Vector(d[0], d[1], d[2]);
+  }
+  Indexed_map<typename Mesh_view<Mesh>::face_descriptor, Vector> directions{&view.fid, &s.directions};
+  s.report = solver.solve(descriptors(view, sing), view.halfedge_map(s.x),
+                          TC::parameters::face_directions(directions, TC::parameters::symmetry_order(n)));
+  solver.compute_field(view.halfedge_map_const(s.x), view.face_map(s.field),
+                       TC::parameters::face_directions(directions));
+  return s;
+}
+
+template <class Mesh>
+std::vector<typename Mesh_view<Mesh>::face_descriptor> face_descriptors(const Mesh_view<Mesh>& view,
+                                                                       const std::vector<int>& faces)
+{
+  std::vector<typename Mesh_view<Mesh>::face_descriptor> out;
+  for(int f : faces) out.push_back(view.faces[f]);
+  return out;
+}
+
+/*
+  Everything a constrained solve promises: the connection's holonomy (vertices, loops, Poincare-Hopf), the
+  field parallel across every interior edge, every target met mod 2 pi / n (user targets, and with the
+  boundary aligned the direction of a border edge of every boundary face), optimality on every face that is
+  not constrained, and the report's constraint rows.
+*/
+template <class Mesh, class Solver>
+void check_constrained(const Mesh_view<Mesh>& view, const Solver& solver, const Singularities& sing, int n,
+                       const Targets& targets, bool aligned, const Constrained_solution<Mesh>& s)
+{
+  const double unit_angle = two_pi / n;
+  check_connection(view, solver, sing, n, s.x, s.report, /*all_cycles_constrained=*/false);
+  check_field(view, s.x, s.field, n);
+
+  std::vector<char> constrained(view.nf(), 0);
+  double worst = 0;
+  int worst_f = -1;
+  for(std::size_t i = 0; i < targets.faces.size(); ++i) {
+    const int f = targets.faces[i];
+    constrained[f] = 1;
+    const double d = std::abs(wrap(signed_angle(field_at(view, s.field, f), tangent_part(view, f, targets.directions[i]),
+                                                view.N[f]), unit_angle));
+    if(!(d <= worst)) { worst = d; worst_f = f; }
+  }
+  EXPECT_LT(worst, 1e-9) << "the field misses the target of face " << worst_f << " by " << worst << " rad (mod 2pi/"
+                         << n << ")";
+  if(aligned) {
+    double worst_b = 0;
+    int worst_bf = -1, boundary_faces = 0, ears = 0;
+    for(int f = 0; f < view.nf(); ++f) {
+      const std::vector<V3> border = border_directions(view, f);
+      if(border.empty()) continue;
+      constrained[f] = 1;
+      ++boundary_faces;
+      ears += border.size() > 1;
+      // along its border edge (the longer one when it has two)
+      const double d =
+        std::abs(wrap(signed_angle(field_at(view, s.field, f), border[0], view.N[f]), unit_angle));
+      if(!(d <= worst_b)) { worst_b = d; worst_bf = f; }
+    }
+    EXPECT_GT(boundary_faces, 0);
+    EXPECT_LT(worst_b, 1e-9) << "the field is not along the boundary at face " << worst_bf << " (off by " << worst_b
+                             << " rad mod 2pi/" << n << ")";
+  }
+
+  // one row per constrained face but one, per component with constrained faces
+  std::set<int> components;
+  int count = 0;
+  for(int f = 0; f < view.nf(); ++f)
+    if(constrained[f]) { ++count; components.insert(view.comp_of_face[f]); }
+  EXPECT_EQ(s.report.constraints.size(), std::size_t(count) - components.size());
+  EXPECT_LT(s.report.max_constraint_residual, 1e-9);
+  for(const TC::Constraint_report& r : s.report.constraints) {
+    EXPECT_TRUE(constrained[r.from_face] && constrained[r.to_face]) << r.from_face << " -> " << r.to_face;
+    EXPECT_NE(r.from_face, r.to_face);
+    EXPECT_GT(r.length, 0u);
+  }
+
+  // optimality: W x is orthogonal to every exact dual 1-form d u with u constant on the constrained faces of
+  // each component, that is the weighted divergence of x vanishes on every face that is not constrained
+  double worst_div = 0, scale = 0;
+  int worst_df = -1;
+  for(int f = 0; f < view.nf(); ++f) {
+    double div = 0, sum = 0;
+    for(int h : view.face_he[f])
+      if(view.interior_halfedge(h)) {
+        const double t = view.weight(h, solver.weighting()) * s.x[h];
+        div += t;
+        sum += std::abs(t);
+      }
+    scale = std::max(scale, sum);
+    if(!constrained[f] && !(std::abs(div) <= worst_div)) { worst_div = std::abs(div); worst_df = f; }
+  }
+  EXPECT_LE(worst_div, 1e-8 * scale) << "not optimal: weighted divergence " << worst_div << " at unconstrained face "
+                                     << worst_df << " (largest face sum of |w x|: " << scale << ")";
+}
+
+/*
+  The lowest energy over every choice of the free integers, computed densely from rows built here: interior
+  vertex stars, boundary loops (one per bordered component left out: Poincare-Hopf fixes it), the solver's
+  generators (checked elsewhere), and a path in OUR breadth-first dual tree between consecutive constrained
+  faces with right-hand side the signed angle from the target carried along the path by our transport to
+  the target at its end, plus a free multiple of 2 pi / n. Any such choice of paths describes the same
+  connections (two paths between the same faces differ by a cycle whose holonomy is already a multiple of
+  2 pi / n), so this is independent of the package's own chain and paths. Enumerates the integers within
+  `radius` of the rounded continuous minimiser.
+*/
+template <class Mesh, class Solver>
+double brute_force_minimum(const Mesh_view<Mesh>& view, const Solver& solver, const Singularities& sing, int n,
+                           const std::vector<int>& faces, const std::vector<V3>& targets, int radius,
+                           int* dimension = nullptr)
+{
+  const double unit_angle = two_pi / n;
+  const std::vector<int>& E = view.interior_edges;
+  std::map<int, int> column; // halfedge -> (edge column, sign)
+  for(std::size_t j = 0; j < E.size(); ++j) {
+    column[E[j]] = int(j) + 1;
+    column[view.opp[E[j]]] = -int(j) - 1;
+  }
+  std::vector<Eigen::RowVectorXd> rows;
+  std::vector<double> constant; // rhs = constant + unit * m (integer rows) or constant
+  std::vector<char> integer;
+  auto row_of_halfedges = [&](const std::vector<int>& hs) {
+    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(Eigen::Index(E.size()));
+    for(int h : hs) {
+      const int c = column.at(h);
+      r[std::abs(c) - 1] += c > 0 ? 1 : -1;
+    }
+    return r;
+  };
+  const std::vector<long long> k = scaled_indices(view.nv(), sing, n);
+  // vertex stars: the halfedges entering v
+  std::vector<std::vector<int>> entering(view.nv());
+  for(int h : view.interior_halfedges) entering[view.tgt[h]].push_back(h);
+  std::vector<char> dropped_component(view.ncomp, 0);
+  for(int v = 0; v < view.nv(); ++v) {
+    if(!view.interior_vertex(v)) continue;
+    const int c = view.comp_of_vertex[v];
+    if(view.boundary_count[c] == 0 && !dropped_component[c]) { dropped_component[c] = 1; continue; }
+    rows.push_back(row_of_halfedges(entering[v]));
+    constant.push_back(unit_angle * double(k[v]) - view.defect(v));
+    integer.push_back(0);
+  }
+  for(std::size_t b = 0; b < view.boundary_loops.size(); ++b) {
+    const int c = view.boundary_loops[b].component;
+    if(!dropped_component[c]) { dropped_component[c] = 1; continue; }
+    std::vector<int> hs;
+    for(int v : view.boundary_loops[b].vertices) hs.insert(hs.end(), entering[v].begin(), entering[v].end());
+    rows.push_back(row_of_halfedges(hs));
+    constant.push_back(-view.boundary_loops[b].kappa);
+    integer.push_back(1);
+  }
+  const auto loops = loops_as_numbers(view, solver);
+  for(std::size_t l = 0; l < loops.size(); ++l) {
+    if(solver.loops()[l].kind != TC::Loop_kind::generator) continue;
+    bool closed = false;
+    rows.push_back(row_of_halfedges(loops[l]));
+    constant.push_back(-loop_rotation(view, loops[l], nullptr, closed));
+    integer.push_back(1);
+  }
+  // our dual tree: breadth-first from the lowest face of each component
+  std::vector<int> parent_he(view.nf(), -1), depth(view.nf(), -1);
+  for(int r = 0; r < view.nf(); ++r) {
+    if(depth[r] >= 0) continue;
+    depth[r] = 0;
+    std::vector<int> queue{r};
+    for(std::size_t q = 0; q < queue.size(); ++q)
+      for(int h : view.face_he[queue[q]]) {
+        if(!view.interior_halfedge(h)) continue;
+        const int g = view.hface[view.opp[h]];
+        if(depth[g] >= 0) continue;
+        depth[g] = depth[queue[q]] + 1;
+        parent_he[g] = h; // crossed from the parent to g
+        queue.push_back(g);
+      }
+  }
+  auto tree_path = [&](int a, int b) {
+    std::vector<int> up, down;
+    while(a != b) {
+      if(depth[a] >= depth[b]) { up.push_back(view.opp[parent_he[a]]); a = view.hface[parent_he[a]]; }
+      else { down.push_back(parent_he[b]); b = view.hface[parent_he[b]]; }
+    }
+    up.insert(up.end(), down.rbegin(), down.rend());
+    return up;
+  };
+  std::map<int, int> last_of_component;
+  for(std::size_t i = 0; i < faces.size(); ++i) {
+    const int f = faces[i], c = view.comp_of_face[f];
+    auto it = last_of_component.find(c);
+    if(it != last_of_component.end()) {
+      const int from = faces[std::size_t(it->second)];
+      const std::vector<int> path = tree_path(from, f);
+      V3 u = unit(tangent_part(view, from, targets[std::size_t(it->second)]));
+      for(int h : path) u = unit(view.transport(h, u));
+      rows.push_back(row_of_halfedges(path));
+      constant.push_back(signed_angle(u, unit(tangent_part(view, f, targets[i])), view.N[f]));
+      integer.push_back(1);
+    }
+    last_of_component[c] = int(i);
+  }
+
+  const Eigen::Index R = Eigen::Index(rows.size());
+  Eigen::MatrixXd A(R, Eigen::Index(E.size()));
+  for(Eigen::Index r = 0; r < R; ++r) A.row(r) = rows[std::size_t(r)];
+  Eigen::VectorXd winv(Eigen::Index(E.size()));
+  for(std::size_t j = 0; j < E.size(); ++j) winv[Eigen::Index(j)] = 1 / view.weight(E[j], solver.weighting());
+  const Eigen::MatrixXd M = A * winv.asDiagonal() * A.transpose();
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(M);
+  EXPECT_EQ(ldlt.info(), Eigen::Success);
+  const Eigen::MatrixXd G = ldlt.solve(Eigen::MatrixXd::Identity(R, R)); // energy = b^T G b
+  std::vector<Eigen::Index> I;
+  for(Eigen::Index r = 0; r < R; ++r)
+    if(integer[std::size_t(r)]) I.push_back(r);
+  const Eigen::Index d = Eigen::Index(I.size());
+  if(dimension) *dimension = int(d);
+  Eigen::VectorXd c0(R);
+  for(Eigen::Index r = 0; r < R; ++r) c0[r] = constant[std::size_t(r)];
+  // continuous minimiser over the integer rows: G_II (c0_I + u m) = -G_I. c0 restricted...
+  Eigen::MatrixXd G_II(d, d);
+  Eigen::VectorXd g(d);
+  const Eigen::VectorXd Gc = G * c0;
+  for(Eigen::Index a = 0; a < d; ++a) {
+    g[a] = Gc[I[a]];
+    for(Eigen::Index b = 0; b < d; ++b) G_II(a, b) = G(I[a], I[b]);
+  }
+  const Eigen::VectorXd center = -G_II.ldlt().solve(g) / unit_angle;
+  std::vector<long long> base(static_cast<std::size_t>(d)), offset(static_cast<std::size_t>(d), -radius);
+  for(Eigen::Index a = 0; a < d; ++a) base[std::size_t(a)] = std::llround(center[a]);
+  double lowest = std::numeric_limits<double>::infinity();
+  for(;;) {
+    Eigen::VectorXd b = c0;
+    for(Eigen::Index a = 0; a < d; ++a) b[I[a]] += unit_angle * double(base[std::size_t(a)] + offset[std::size_t(a)]);
+    lowest = std::min(lowest, b.dot(G * b));
+    std::size_t i = 0;
+    for(; i < offset.size(); ++i) {
+      if(++offset[i] <= radius) break;
+      offset[i] = -radius;
+    }
+    if(i == offset.size()) break;
+  }
+  return lowest;
+}
+
+/// every boundary face of the mesh, with its border direction (the longer border edge), in face order
+template <class Mesh>
+void boundary_targets(const Mesh_view<Mesh>& view, std::vector<int>& faces, std::vector<V3>& directions)
+{
+  for(int f = 0; f < view.nf(); ++f) {
+    const std::vector<V3> border = border_directions(view, f);
+    if(border.empty()) continue;
+    faces.push_back(f);
+    directions.push_back(border[0]);
+  }
+}
+
+/// `count` faces spread over the mesh (every nf/count-th), with directions that are not tangent (the package
+/// must project them) and vary from face to face
+template <class Mesh>
+Targets spread_targets(const Mesh_view<Mesh>& view, int count, bool interior_only = false)
+{
+  Targets t;
+  const int step = std::max(1, view.nf() / count);
+  for(int f = step / 3; f < view.nf() && int(t.faces.size()) < count; f += step) {
+    int g = f;
+    if(interior_only)
+      while(g < view.nf() && !border_directions(view, g).empty()) ++g;
+    if(g >= view.nf()) break;
+    const double a = 0.7 * double(t.faces.size()) + 0.2;
+    const V3 e = view.frame(g), e2 = cross(view.N[g], e);
+    t.faces.push_back(g);
+    t.directions.push_back(std::cos(a) * e + std::sin(a) * e2 + 0.3 * view.N[g]);
+  }
+  return t;
+}
+
+template <class Mesh>
+void expect_brute_force(const Mesh_view<Mesh>& view, const TC::Trivial_connection_solver<Mesh>& solver,
+                        const Singularities& sing, int n, const Targets& t, bool aligned,
+                        const TC::Solve_report& report, int radius, int min_dimension)
+{
+  std::vector<int> faces = t.faces;
+  std::vector<V3> directions = t.directions;
+  if(aligned) boundary_targets(view, faces, directions);
+  int dimension = 0;
+  const double lowest = brute_force_minimum(view, solver, sing, n, faces, directions, radius, &dimension);
+  EXPECT_GE(dimension, min_dimension);
+  EXPECT_NEAR(report.energy, lowest, 1e-9 * std::max(1., lowest))
+    << "the solver's integers (energy " << report.energy << ") vs the best of the enumeration over " << dimension
+    << " integers (" << lowest << ")";
+}
+
+} // namespace
+
+// -----------------------------------------------------------------------------------------------------
+// Generated meshes: closed (genus 0, 1, 2), bordered (disk, annulus), n = 1 and 4, brute force
+// -----------------------------------------------------------------------------------------------------
+
+TEST(Directional_constraints, torus_targets_met_and_integers_optimal)
+{
+  const Surface_mesh m = torus(2, 0.7, 12, 8);
+  const Mesh_view<Surface_mesh> view(m);
+  const Targets t = spread_targets(view, 3);
+  TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+  const Singularities none;
+  for(int n : {1, 4}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    const auto s = solve_constrained(view, solver, none, n, t);
+    check_constrained(view, solver, none, n, t, false, s);
+    expect_brute_force(view, solver, none, n, t, false, s.report, 2, 4); // 2 generators, 2 paths
+  }
+}
+
+TEST(Directional_constraints, sphere_and_genus_2_with_singularities)
+{
+  {
+    const Surface_mesh m = icosphere(2);
+    const Mesh_view<Surface_mesh> view(m);
+    const Targets t = spread_targets(view, 4);
+    TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+    for(int n : {1, 4}) {
+      SCOPED_TRACE("sphere, n = " + std::to_string(n));
+      const Singularities sing = plan_singularities(view, n);
+      const auto s = solve_constrained(view, solver, sing, n, t);
+      check_constrained(view, solver, sing, n, t, false, s);
+      expect_brute_force(view, solver, sing, n, t, false, s.report, 2, 3);
+    }
+  }
+  {
+    const Surface_mesh m = genus2(1);
+    const Mesh_view<Surface_mesh> view(m);
+    const Targets t = spread_targets(view, 2);
+    TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+    for(int n : {1, 4}) {
+      SCOPED_TRACE("genus 2, n = " + std::to_string(n));
+      const Singularities sing = plan_singularities(view, n);
+      const auto s = solve_constrained(view, solver, sing, n, t);
+      check_constrained(view, solver, sing, n, t, false, s);
+      expect_brute_force(view, solver, sing, n, t, false, s.report, 2, 5); // 4 generators, 1 path
+    }
+  }
+}
+
+TEST(Directional_constraints, bordered_disk_and_annulus)
+{
+  for(int which : {0, 1}) {
+    const Surface_mesh m = which == 0 ? to_surface_mesh(warped(disk_soup(4, 10))) : annulus(0.5, 1.5, 3, 14);
+    const Mesh_view<Surface_mesh> view(m);
+    const Targets t = spread_targets(view, 3);
+    TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+    for(int n : {1, 4}) {
+      SCOPED_TRACE(std::string(which == 0 ? "disk" : "annulus") + ", n = " + std::to_string(n));
+      const Singularities none;
+      const auto s = solve_constrained(view, solver, none, n, t);
+      check_constrained(view, solver, none, n, t, false, s);
+      expect_brute_force(view, solver, none, n, t, false, s.report, 2, which == 0 ? 2 : 3);
+    }
+  }
+}
+
+TEST(Directional_constraints, new_targets_on_the_same_solver_match_a_fresh_solver)
+{
+  const Surface_mesh m = torus(2, 0.7, 12, 8);
+  const Mesh_view<Surface_mesh> view(m);
+  Targets t = spread_targets(view, 4);
+  TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+  const Singularities none;
+  solve_constrained(view, solver, none, 4, t);
+  for(V3& d : t.directions) d = V3{{d[1], -d[0] + 0.5, d[2]}};
+  const auto again = solve_constrained(view, solver, none, 4, t);
+  check_constrained(view, solver, none, 4, t, false, again);
+  TC::Trivial_connection_solver<Surface_mesh> fresh(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+  const auto once = solve_constrained(view, fresh, none, 4, t);
+  EXPECT_NEAR(again.report.energy, once.report.energy, 1e-12 * std::max(1., once.report.energy));
+  for(std::size_t j = 0; j < once.report.constraints.size(); ++j)
+    EXPECT_EQ(again.report.constraints[j].period, once.report.constraints[j].period);
+}
+
+TEST(Directional_constraints, independent_of_vertex_and_face_numbering)
+{
+  const Soup soup = warped(icosphere_soup(2));
+  const Surface_mesh a = to_surface_mesh(soup);
+  std::vector<int> perm;
+  const Soup shuffled = renumbered(soup, 7, &perm, /*shuffle_faces=*/true);
+  const Surface_mesh b = to_surface_mesh(shuffled);
+  const Mesh_view<Surface_mesh> va(a), vb(b);
+  const Targets ta = spread_targets(va, 5);
+  // the same faces of b: matched by their barycentres
+  Targets tb;
+  for(std::size_t i = 0; i < ta.faces.size(); ++i)
+    for(int g = 0; g < vb.nf(); ++g)
+      if(norm(vb.bary[g] - va.bary[ta.faces[i]]) < 1e-12) { tb.faces.push_back(g); tb.directions.push_back(ta.directions[i]); }
+  ASSERT_EQ(tb.faces.size(), ta.faces.size());
+  const Singularities sa = plan_singularities(va, 4);
+  Singularities sb;
+  for(const auto& p : sa)
+    for(int v = 0; v < vb.nv(); ++v)
+      if(norm(vb.P[v] - va.P[p.first]) < 1e-12) sb.push_back({v, p.second});
+  ASSERT_EQ(sb.size(), sa.size());
+  TC::Trivial_connection_solver<Surface_mesh> solver_a(a, TC::parameters::constrained_faces(face_descriptors(va, ta.faces)));
+  TC::Trivial_connection_solver<Surface_mesh> solver_b(b, TC::parameters::constrained_faces(face_descriptors(vb, tb.faces)));
+  const auto ra = solve_constrained(va, solver_a, sa, 4, ta);
+  const auto rb = solve_constrained(vb, solver_b, sb, 4, tb);
+  check_constrained(vb, solver_b, sb, 4, tb, false, rb);
+  EXPECT_NEAR(ra.report.energy, rb.report.energy, 1e-9 * std::max(1., ra.report.energy));
+  // the same field (mod 2 pi / 4) face by face
+  double worst = 0;
+  for(int f = 0; f < va.nf(); ++f)
+    for(int g = 0; g < vb.nf(); ++g)
+      if(norm(vb.bary[g] - va.bary[f]) < 1e-12)
+        worst = std::max(worst, std::abs(wrap(signed_angle(field_at(va, ra.field, f), field_at(vb, rb.field, g), va.N[f]),
+                                              two_pi / 4)));
+  EXPECT_LT(worst, 1e-8);
+}
+
+TEST(Boundary_alignment, small_disk_every_boundary_face_aligned_integers_optimal)
+{
+  // one ring of 7 faces: every face is a boundary face, the 6 fan rows between them carry free integers
+  const Surface_mesh m = to_surface_mesh(warped(disk_soup(1, 7)));
+  const Mesh_view<Surface_mesh> view(m);
+  TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::align_with_boundary(true));
+  const Targets none_t;
+  for(int n : {1, 2, 4}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    for(const Singularities& sing : {Singularities{}, Singularities{{0, Index(1, n)}}}) {
+      const auto s = solve_constrained(view, solver, sing, n, none_t);
+      check_constrained(view, solver, sing, n, none_t, true, s);
+      expect_brute_force(view, solver, sing, n, none_t, true, s.report, 2, 6);
+    }
+  }
+}
+
+TEST(Boundary_alignment, annulus_with_targets_and_prescribed_boundary_indices)
+{
+  const Surface_mesh m = annulus(0.6, 1.4, 2, 9);
+  const Mesh_view<Surface_mesh> view(m);
+  const Targets t = spread_targets(view, 2, /*interior_only=*/true);
+  ASSERT_EQ(t.faces.size(), 2u);
+  TC::Trivial_connection_solver<Surface_mesh> solver(
+    m, TC::parameters::align_with_boundary(true, TC::parameters::constrained_faces(face_descriptors(view, t.faces))));
+  const Singularities none;
+  const auto s = solve_constrained(view, solver, none, 4, t);
+  check_constrained(view, solver, none, 4, t, true, s);
+  // the boundary indices prescribed (+1 and -1: tangent to both circles), the fans still free
+  std::vector<std::optional<std::int64_t>> periods(solver.loops().size());
+  for(std::size_t l = 0; l < periods.size(); ++l)
+    if(solver.loops()[l].kind == TC::Loop_kind::boundary) {
+      // the outer loop (larger geodesic curvature) gets +1, the inner one -1, in units of 1/4
+      periods[l] = solver.levi_civita_holonomy(l) > 0 ? 4 : -4;
+    }
+  std::vector<double> x;
+  std::vector<Vector> directions(view.nf(), Vector(0, 0, 0)), field;
+  for(std::size_t i = 0; i < t.faces.size(); ++i)
+    directions[t.faces[i]] = Vector(t.directions[i][0], t.directions[i][1], t.directions[i][2]);
+  Indexed_map<Surface_mesh::Face_index, Vector> dmap{&view.fid, &directions};
+  Constrained_solution<Surface_mesh> p;
+  p.report = solver.solve(descriptors(view, none), view.halfedge_map(p.x),
+                          TC::parameters::loop_periods(periods, TC::parameters::face_directions(dmap, TC::parameters::symmetry_order(4))));
+  solver.compute_field(view.halfedge_map_const(p.x), view.face_map(p.field), TC::parameters::face_directions(dmap));
+  check_constrained(view, solver, none, 4, t, true, p);
+  for(std::size_t l = 0; l < periods.size(); ++l)
+    if(periods[l]) {
+      EXPECT_EQ(p.report.loops[l].period, *periods[l]);
+      EXPECT_TRUE(p.report.loops[l].prescribed);
+    }
+}
+
+// -----------------------------------------------------------------------------------------------------
+// Real meshes: closed genus 0, genus >= 1, bordered with many holes
+// -----------------------------------------------------------------------------------------------------
+
+TEST(Directional_constraints, real_meshes)
+{
+  for(const char* name : {"cow.off", "elk.off", "helmet.off", "pig.off"}) {
+    Surface_mesh m;
+    std::string why;
+    if(!read_cgal_mesh(name, m, why)) GTEST_SKIP() << why;
+    SCOPED_TRACE(name);
+    const Mesh_view<Surface_mesh> view(m);
+    const bool bordered = !view.boundary_loops.empty();
+    const Targets t = spread_targets(view, 6, bordered);
+    for(bool align : bordered ? std::vector<bool>{false, true} : std::vector<bool>{false}) {
+      TC::Trivial_connection_solver<Surface_mesh> solver(
+        m, TC::parameters::align_with_boundary(align, TC::parameters::constrained_faces(face_descriptors(view, t.faces))));
+      for(int n : {1, 4}) {
+        SCOPED_TRACE("n = " + std::to_string(n) + (align ? ", boundary aligned" : ""));
+        const Singularities sing = plan_singularities(view, n);
+        const auto s = solve_constrained(view, solver, sing, n, t);
+        check_constrained(view, solver, sing, n, t, align, s);
+      }
+    }
+  }
+}
+
+// -----------------------------------------------------------------------------------------------------
+// Bad input
+// -----------------------------------------------------------------------------------------------------
+
+namespace {
+template <class F>
+void expect_error(F&& f, TC::Error_code code, const std::string& fragment)
+{
+  try {
+    f();
+    ADD_FAILURE() << "no exception; expected " << TC::error_code_name(code);
+  } catch(const TC::Invalid_input& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+} // namespace
+
+TEST(Directional_constraints, bad_input_is_rejected_with_a_clear_message)
+{
+  using Solver = TC::Trivial_connection_solver<Surface_mesh>;
+  const Surface_mesh m = to_surface_mesh(warped(disk_soup(3, 8)));
+  const Mesh_view<Surface_mesh> view(m);
+  const Targets t = spread_targets(view, 3, true);
+  const auto faces = face_descriptors(view, t.faces);
+
+  // faces not of the mesh, or twice
+  expect_error([&] { Solver s(m, TC::parameters::constrained_faces(std::vector<Surface_mesh::Face_index>{Surface_mesh::Face_index(100000)})); },
+               TC::Error_code::invalid_constraint, "not a face of the mesh");
+  expect_error([&] { Solver s(m, TC::parameters::constrained_faces(std::vector<Surface_mesh::Face_index>{Surface_mesh::null_face()})); },
+               TC::Error_code::invalid_constraint, "not a face of the mesh");
+  expect_error([&] { Solver s(m, TC::parameters::constrained_faces(std::vector<Surface_mesh::Face_index>{faces[0], faces[1], faces[0]})); },
+               TC::Error_code::invalid_constraint, "constrained twice");
+  // a target on a face of the aligned boundary: the boundary already decides its direction
+  int boundary_face = -1;
+  for(int f = 0; f < view.nf() && boundary_face < 0; ++f)
+    if(!border_directions(view, f).empty()) boundary_face = f;
+  expect_error([&] { Solver s(m, TC::parameters::align_with_boundary(true, TC::parameters::constrained_faces(
+                                    std::vector<Surface_mesh::Face_index>{view.faces[boundary_face]}))); },
+               TC::Error_code::invalid_constraint, "aligned");
+
+  Solver solver(m, TC::parameters::constrained_faces(faces));
+  std::vector<double> x;
+  const Singularities none;
+  // directions missing
+  expect_error([&] { solver.solve(descriptors(view, none), view.halfedge_map(x)); }, TC::Error_code::invalid_constraint,
+               "face_directions");
+  std::vector<Vector> field;
+  expect_error([&] { solver.compute_field(view.halfedge_map_const(x), view.face_map(field)); },
+               TC::Error_code::invalid_constraint, "face_directions");
+  // zero, not finite, normal to the face
+  for(int which = 0; which < 3; ++which) {
+    std::vector<Vector> directions(view.nf(), Vector(1, 0, 0));
+    const int f = t.faces[1];
+    const double inf = std::numeric_limits<double>::infinity();
+    directions[f] = which == 0 ? Vector(0, 0, 0) : which == 1 ? Vector(inf, 0, 0) : Vector(view.N[f][0], view.N[f][1], view.N[f][2]);
+    Indexed_map<Surface_mesh::Face_index, Vector> dmap{&view.fid, &directions};
+    expect_error([&] { solver.solve(descriptors(view, none), view.halfedge_map(x), TC::parameters::face_directions(dmap)); },
+                 TC::Error_code::invalid_constraint, which == 2 ? "normal to the face" : "zero or not finite");
+    try {
+      solver.solve(descriptors(view, none), view.halfedge_map(x), TC::parameters::face_directions(dmap));
+    } catch(const TC::Invalid_input& e) {
+      EXPECT_EQ(e.where(), std::size_t(f));
+    }
+  }
+  // a seed face where the constraints decide the field
+  std::vector<Vector> directions(view.nf(), Vector(1, 0, 0));
+  Indexed_map<Surface_mesh::Face_index, Vector> dmap{&view.fid, &directions};
+  solver.solve(descriptors(view, none), view.halfedge_map(x), TC::parameters::face_directions(dmap));
+  expect_error([&] { solver.compute_field(view.halfedge_map_const(x), view.face_map(field),
+                                          TC::parameters::seed_face(view.faces[0], TC::parameters::face_directions(dmap))); },
+               TC::Error_code::invalid_argument, "constrained faces");
+}

@@ -533,6 +533,55 @@ TEST(Boundary_alignment, annulus_with_targets_and_prescribed_boundary_indices)
     }
 }
 
+namespace {
+// the same constrained solve through another backend: the loop metric by back-substitutions (a backend
+// the solver does not read) or CHOLMOD's substitutions
+template <class Traits>
+void expect_same_constrained_solve(const Surface_mesh& m, const Mesh_view<Surface_mesh>& view, const Targets& t,
+                                   const Singularities& sing, const Constrained_solution<Surface_mesh>& reference)
+{
+  TC::Trivial_connection_solver<Surface_mesh, CGAL::Default, Traits> solver(
+    m, TC::parameters::align_with_boundary(true, TC::parameters::constrained_faces(face_descriptors(view, t.faces))));
+  const auto s = solve_constrained(view, solver, sing, 4, t);
+  check_constrained(view, solver, sing, 4, t, true, s);
+  EXPECT_NEAR(s.report.energy, reference.report.energy, 1e-9 * std::max(1., reference.report.energy));
+  ASSERT_EQ(s.report.constraints.size(), reference.report.constraints.size());
+  for(std::size_t j = 0; j < s.report.constraints.size(); ++j)
+    EXPECT_EQ(s.report.constraints[j].period, reference.report.constraints[j].period) << "row " << j;
+}
+} // namespace
+
+TEST(Directional_constraints, same_answer_with_every_backend_and_on_Polyhedron_3)
+{
+  const Soup soup = annulus_soup(0.5, 1.5, 3, 12);
+  const Surface_mesh m = to_surface_mesh(soup);
+  const Mesh_view<Surface_mesh> view(m);
+  const Targets t = spread_targets(view, 3, true);
+  TC::Trivial_connection_solver<Surface_mesh> solver(
+    m, TC::parameters::align_with_boundary(true, TC::parameters::constrained_faces(face_descriptors(view, t.faces))));
+  const Singularities none;
+  const auto reference = solve_constrained(view, solver, none, 4, t);
+  check_constrained(view, solver, none, 4, t, true, reference);
+  expect_same_constrained_solve<CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>>(
+    m, view, t, none, reference);
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  expect_same_constrained_solve<TC::Cholmod_solver_traits>(m, view, t, none, reference);
+#endif
+  // Polyhedron_3: the same faces (same soup, same order)
+  const Polyhedron p = to_polyhedron(soup);
+  const Mesh_view<Polyhedron> pview(p);
+  Targets pt;
+  for(std::size_t i = 0; i < t.faces.size(); ++i)
+    for(int g = 0; g < pview.nf(); ++g)
+      if(norm(pview.bary[g] - view.bary[t.faces[i]]) < 1e-12) { pt.faces.push_back(g); pt.directions.push_back(t.directions[i]); }
+  ASSERT_EQ(pt.faces.size(), t.faces.size());
+  TC::Trivial_connection_solver<Polyhedron> psolver(
+    p, TC::parameters::align_with_boundary(true, TC::parameters::constrained_faces(face_descriptors(pview, pt.faces))));
+  const auto ps = solve_constrained(pview, psolver, none, 4, pt);
+  check_constrained(pview, psolver, none, 4, pt, true, ps);
+  EXPECT_NEAR(ps.report.energy, reference.report.energy, 1e-9 * std::max(1., reference.report.energy));
+}
+
 // -----------------------------------------------------------------------------------------------------
 // Real meshes: closed genus 0, genus >= 1, bordered with many holes
 // -----------------------------------------------------------------------------------------------------

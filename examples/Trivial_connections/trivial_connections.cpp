@@ -6,7 +6,8 @@
 // The command-line program: computes the trivial connection closest to Levi-Civita with prescribed
 // singularities on a triangle mesh, and the n-direction field it defines, and writes both to files.
 //
-//   trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--n N] [--weights hodge|unit]
+//   trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--constraints FILE]
+//                            [--align-boundary] [--n N] [--weights hodge|unit]
 //                            [--connection OUT] [--field OUT] [--progress] [--help]
 //
 // Exit status: 0 on success, 1 on an input error (mesh, singularities, solver, output files), 2 on a usage
@@ -20,6 +21,7 @@
 
 #include <CGAL/Trivial_connections/IO/atomic_file.h>
 #include <CGAL/Trivial_connections/IO/connection_file.h>
+#include <CGAL/Trivial_connections/IO/face_directions.h>
 #include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
@@ -62,8 +64,8 @@ namespace {
 const char* const program = "trivial_connections";
 
 const char* const usage_text =
-  "Usage: trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--n N]\n"
-  "                           [--weights hodge|unit]\n"
+  "Usage: trivial_connections MESH [--singularities FILE] [--boundary-indices FILE]\n"
+  "                           [--constraints FILE] [--align-boundary] [--n N] [--weights hodge|unit]\n"
   "                           [--connection OUT] [--field OUT] [--progress] [--help]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
@@ -78,6 +80,12 @@ const char* const usage_text =
   "                        the loop (0-based, file order) and its index k (as for --singularities). Every\n"
   "                        boundary loop of a component listed, or none; vertex and boundary indices then\n"
   "                        sum to the Euler characteristic. Default: chosen to minimise the energy.\n"
+  "  --constraints FILE    directional constraints, one line 'f x y z' per face: 0-based face index (file\n"
+  "                        order) and a direction (projected onto the face) that the field must have\n"
+  "                        there, as one of its N directions. Each extra constrained face of a component\n"
+  "                        adds one free integer, chosen with the loop integers.\n"
+  "  --align-boundary      the field follows the boundary on every boundary face: along its border edge\n"
+  "                        (the longer one when it has two); for N = 4, tangent and normal to it.\n"
   "  --n N                 symmetry order: 1 vector field, 2 line field, 4 cross field, ... (default 1)\n"
   "  --weights W           energy weights: hodge (|e|/|e*|, default) or unit\n"
   "  --connection OUT      connection file, one line 'i j x w' per interior edge\n"
@@ -105,6 +113,8 @@ struct Options
   std::string mesh;
   std::string singularities;
   std::string boundary_indices;
+  std::string constraints;
+  bool align_boundary = false;
   int n = 1;
   TC::Weighting weighting = TC::Weighting::hodge_star;
   std::string weights_name = "hodge";
@@ -139,12 +149,18 @@ Options parse_arguments(int argc, char** argv)
       o.help = true;
       return o;
     }
-  bool seen_singularities = false, seen_boundary = false, seen_n = false, seen_weights = false, seen_connection = false,
-       seen_field = false;
+  bool seen_singularities = false, seen_boundary = false, seen_constraints = false, seen_n = false,
+       seen_weights = false, seen_connection = false, seen_field = false;
   for(std::size_t i = 0; i < args.size(); ++i) {
     std::string a = args[i];
     if(a == "--progress") {
       o.progress = true;
+      continue;
+    }
+    if(a == "--align-boundary") {
+      if(o.align_boundary)
+        throw Usage_error("option --align-boundary given twice");
+      o.align_boundary = true;
       continue;
     }
     if(a.size() > 1 && a[0] == '-' && a != "-") {
@@ -159,6 +175,7 @@ Options parse_arguments(int argc, char** argv)
       bool* seen = nullptr;
       if(name == "--singularities") seen = &seen_singularities;
       else if(name == "--boundary-indices") seen = &seen_boundary;
+      else if(name == "--constraints") seen = &seen_constraints;
       else if(name == "--n") seen = &seen_n;
       else if(name == "--weights") seen = &seen_weights;
       else if(name == "--connection") seen = &seen_connection;
@@ -177,6 +194,7 @@ Options parse_arguments(int argc, char** argv)
         throw Usage_error("option " + name + " needs a non-empty value");
       if(name == "--singularities") o.singularities = value;
       else if(name == "--boundary-indices") o.boundary_indices = value;
+      else if(name == "--constraints") o.constraints = value;
       else if(name == "--connection") o.connection = value;
       else if(name == "--field") o.field = value;
       else if(name == "--n") o.n = parse_symmetry_order(value);
@@ -218,6 +236,8 @@ Options parse_arguments(int argc, char** argv)
       throw Usage_error("the output '" + *out + "' would overwrite the singularity file");
     if(!o.boundary_indices.empty() && same_file(*out, o.boundary_indices))
       throw Usage_error("the output '" + *out + "' would overwrite the boundary index file");
+    if(!o.constraints.empty() && same_file(*out, o.constraints))
+      throw Usage_error("the output '" + *out + "' would overwrite the constraint file");
   }
   return o;
 }
@@ -361,8 +381,35 @@ int run(const Options& o, Progress_printer& progress)
   if(!o.boundary_indices.empty())
     boundary_indices = TC::read_singularities(o.boundary_indices, order.vertices.size());
 
+  std::vector<TC::Face_direction> constraints;
+  if(!o.constraints.empty())
+    constraints = TC::read_face_directions(o.constraints, order.faces.size());
+  std::vector<face_descriptor> constrained_faces;
+  Mesh::Property_map<face_descriptor, Kernel::Vector_3> directions =
+    mesh.add_property_map<face_descriptor, Kernel::Vector_3>("f:tc_directions", CGAL::NULL_VECTOR).first;
+  for(const TC::Face_direction& d : constraints) {
+    constrained_faces.push_back(order.faces[d.face]);
+    directions[order.faces[d.face]] = Kernel::Vector_3(d.direction[0], d.direction[1], d.direction[2]);
+  }
+  // the solver's errors about the constraints name faces: name the file too
+  auto naming_the_constraint_file = [&](auto&& call) {
+    try {
+      return call();
+    } catch(const TC::Invalid_input& e) {
+      if(e.code() != TC::Error_code::invalid_constraint || o.constraints.empty())
+        throw;
+      throw TC::Invalid_input(e.code(), o.constraints + ": " + e.what(), e.where());
+    }
+  };
+
   auto t = clock::now();
-  Solver solver(mesh, TC::parameters::progress(solver_progress, TC::parameters::weighting(o.weighting)));
+  Solver solver = naming_the_constraint_file([&] {
+    return Solver(mesh, TC::parameters::progress(
+                          solver_progress,
+                          TC::parameters::weighting(
+                            o.weighting, TC::parameters::constrained_faces(
+                                           constrained_faces, TC::parameters::align_with_boundary(o.align_boundary)))));
+  });
   const double t_setup = seconds_since(t);
 
   // the boundary loops named by one of their vertices; the generators are left to the solver
@@ -398,16 +445,15 @@ int run(const Options& o, Progress_printer& progress)
     mesh.add_property_map<halfedge_descriptor, double>("h:tc_connection", 0.).first;
   Mesh::Property_map<face_descriptor, Kernel::Vector_3> field =
     mesh.add_property_map<face_descriptor, Kernel::Vector_3>("f:tc_field", CGAL::NULL_VECTOR).first;
+  const auto np = TC::parameters::progress(solver_progress, TC::parameters::face_directions(
+                                                              directions, TC::parameters::symmetry_order(o.n)));
   auto solve = [&] {
     if(boundary_indices.empty())
-      return solver.solve(singularities, x,
-                          TC::parameters::progress(solver_progress, TC::parameters::symmetry_order(o.n)));
+      return naming_the_constraint_file([&] { return solver.solve(singularities, x, np); });
     // the solver checks the loops (every hole of a component or none, Poincare-Hopf): name the file
     try {
-      return solver.solve(singularities, x,
-                          TC::parameters::progress(solver_progress,
-                                                   TC::parameters::loop_periods(loop_periods,
-                                                                                TC::parameters::symmetry_order(o.n))));
+      return naming_the_constraint_file(
+        [&] { return solver.solve(singularities, x, TC::parameters::loop_periods(loop_periods, np)); });
     } catch(const TC::Invalid_input& e) {
       if(e.code() != TC::Error_code::invalid_loop_periods)
         throw;
@@ -415,7 +461,7 @@ int run(const Options& o, Progress_printer& progress)
     }
   };
   const TC::Solve_report report = solve();
-  solver.compute_field(x, field, TC::parameters::progress(solver_progress));
+  solver.compute_field(x, field, TC::parameters::progress(solver_progress, TC::parameters::face_directions(directions)));
   const double t_solve = seconds_since(t);
 
   std::size_t interior_edges = 0;
@@ -428,6 +474,8 @@ int run(const Options& o, Progress_printer& progress)
   const std::string provenance = "# computed by trivial_connections from '" + o.mesh + "'" +
                                  (o.singularities.empty() ? std::string(", no singularity")
                                                           : ", singularities '" + o.singularities + "'") +
+                                 (o.constraints.empty() ? std::string() : ", constraints '" + o.constraints + "'") +
+                                 (o.align_boundary ? ", aligned with the boundary" : "") +
                                  ", n = " + std::to_string(o.n) + ", weights " + o.weights_name + "\n";
   const auto vertex_index = get(boost::vertex_index, mesh);
   TC::write_files_atomically(
@@ -467,7 +515,19 @@ int run(const Options& o, Progress_printer& progress)
     out << " (with the loop integers rounded one by one: " << report.rounding_energy << ")";
   out << "\n";
   out << "max residual: vertices " << scientific(report.max_vertex_residual) << ", loops "
-      << scientific(report.max_loop_residual) << "\n";
+      << scientific(report.max_loop_residual);
+  if(!report.constraints.empty())
+    out << ", constraints " << scientific(report.max_constraint_residual);
+  out << "\n";
+  if(!constraints.empty() || o.align_boundary) {
+    out << "constraints: ";
+    if(!constraints.empty())
+      out << constraints.size() << " face" << (constraints.size() == 1 ? "" : "s") << " from " << o.constraints;
+    if(o.align_boundary)
+      out << (constraints.empty() ? "" : "; ") << "aligned with the boundary";
+    out << "; " << report.constraints.size() << " path" << (report.constraints.size() == 1 ? "" : "s")
+        << " between constrained faces, their integers chosen with the loops'\n";
+  }
   if(report.loops.empty()) {
     out << "loops: none (no generator, no boundary loop)\n";
   } else {

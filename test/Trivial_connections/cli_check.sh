@@ -4,8 +4,10 @@
 # Usage: cli_check.sh --cli PROGRAM --checker check_connection.py --out DIR --mesh MESH
 #                     [--python PY] [--singularities FILE|none] [--n N] [--weights hodge|unit]
 #                     [--boundary-indices FILE]  (then every loop of the file must be reported prescribed)
+#                     [--constraints FILE] [--align-boundary]  (then check_constraints.py checks the targets and
+#                     the optimality off the constrained faces; the checker runs with --no-optimality)
 set -euo pipefail
-cli="" checker="" python="" out="" mesh="" sing="none" n=1 weights=hodge boundary=""
+cli="" checker="" python="" out="" mesh="" sing="none" n=1 weights=hodge boundary="" constraints="" align=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --cli) cli="$2"; shift 2 ;;
@@ -17,6 +19,8 @@ while [ $# -gt 0 ]; do
     --n) n="$2"; shift 2 ;;
     --weights) weights="$2"; shift 2 ;;
     --boundary-indices) boundary="$2"; shift 2 ;;
+    --constraints) constraints="$2"; shift 2 ;;
+    --align-boundary) align="--align-boundary"; shift ;;
     *) echo "cli_check.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -46,9 +50,13 @@ if [ "$sing" != "none" ] && [ -n "$sing" ]; then sing_args=(--singularities "$si
 boundary_args=()
 if [ -n "$boundary" ]; then boundary_args=(--boundary-indices "$boundary"); fi
 
-echo "+ $cli $mesh ${sing_args[*]} ${boundary_args[*]} --n $n --weights $weights --connection $conn --field $field"
-"$cli" "$mesh" "${sing_args[@]}" "${boundary_args[@]}" --n "$n" --weights "$weights" --connection "$conn" \
-  --field "$field" | tee "$out/report.txt"
+constraint_args=()
+if [ -n "$constraints" ]; then constraint_args=(--constraints "$constraints"); fi
+if [ -n "$align" ]; then constraint_args+=("$align"); fi
+
+echo "+ $cli $mesh ${sing_args[*]} ${boundary_args[*]} ${constraint_args[*]} --n $n --weights $weights --connection $conn --field $field"
+"$cli" "$mesh" "${sing_args[@]}" "${boundary_args[@]}" "${constraint_args[@]}" --n "$n" --weights "$weights" \
+  --connection "$conn" --field "$field" | tee "$out/report.txt"
 
 if [ -n "$boundary" ]; then
   given=$(grep -cvE '^[[:space:]]*(#|$)' "$boundary")
@@ -62,5 +70,12 @@ for f in "$conn" "$field"; do
   if [ ! -s "$f" ]; then echo "cli_check.sh: the program exited 0 but did not write $f" >&2; exit 1; fi
 done
 
-echo "+ $python $checker $mesh --connection $conn --field $field ${sing_args[*]} --n $n"
-"$python" "$checker" "$mesh" --connection "$conn" --field "$field" "${sing_args[@]}" --n "$n"
+optimality_args=()
+if [ ${#constraint_args[@]} -gt 0 ]; then optimality_args=(--no-optimality); fi
+echo "+ $python $checker $mesh --connection $conn --field $field ${sing_args[*]} --n $n ${optimality_args[*]}"
+"$python" "$checker" "$mesh" --connection "$conn" --field "$field" "${sing_args[@]}" --n "$n" "${optimality_args[@]}"
+if [ ${#constraint_args[@]} -gt 0 ]; then
+  here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+  echo "+ $python $here/check_constraints.py $mesh --connection $conn --field $field ${constraint_args[*]} --n $n"
+  "$python" "$here/check_constraints.py" "$mesh" --connection "$conn" --field "$field" "${constraint_args[@]}" --n "$n"
+fi

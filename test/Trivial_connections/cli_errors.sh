@@ -1,20 +1,21 @@
 #!/usr/bin/env bash
-# The program's errors on bad --boundary-indices files: exit status 1, a one-line message that names the
-# problem, and no output file left behind. Used by ctest (CMakeLists.txt).
+# The program's errors on bad --boundary-indices and --constraints files: exit status 1, a one-line message
+# that names the problem, and no output file left behind. Used by ctest (CMakeLists.txt).
 # Usage: cli_errors.sh PROGRAM OUT_DIR PIG_OFF SPHERE_OFF
 set -uo pipefail
 cli="$1" out="$2" pig="$3" sphere="$4"
 mkdir -p "$out"
 failures=0
 
-# expect MESH FILE_CONTENT N MESSAGE_PART
-expect() {
-  local mesh="$1" content="$2" n="$3" part="$4"
-  local file="$out/boundary.idx" conn="$out/c.txt" field="$out/f.txt"
+# expect_with OPTION FILE_NAME MESH FILE_CONTENT N MESSAGE_PART [MORE OPTIONS...]
+expect_with() {
+  local option="$1" name="$2" mesh="$3" content="$4" n="$5" part="$6"
+  shift 6
+  local file="$out/$name" conn="$out/c.txt" field="$out/f.txt"
   printf '%b' "$content" > "$file"
   rm -f "$conn" "$field"
   local message status
-  message=$("$cli" "$mesh" --boundary-indices "$file" --n "$n" --connection "$conn" --field "$field" 2>&1 >/dev/null)
+  message=$("$cli" "$mesh" "$option" "$file" --n "$n" --connection "$conn" --field "$field" "$@" 2>&1 >/dev/null)
   status=$?
   if [ "$status" != 1 ]; then
     echo "FAIL ($part): exit status $status, expected 1"; failures=$((failures + 1))
@@ -26,6 +27,10 @@ expect() {
     echo "ok: $message"
   fi
 }
+# expect MESH FILE_CONTENT N MESSAGE_PART: a --boundary-indices file
+expect() { expect_with --boundary-indices boundary.idx "$@"; }
+# expect_constraints MESH FILE_CONTENT N MESSAGE_PART [MORE OPTIONS...]: a --constraints file
+expect_constraints() { expect_with --constraints constraints.txt "$@"; }
 
 # pig.off: genus 0, 7 boundary loops (through vertices 4, 314, 408, 291, 463, 429, 352; vertex 1 is interior),
 # chi = -5
@@ -38,4 +43,24 @@ expect "$pig" '4 -1\n4 -1\n' 1 "twice"
 expect "$pig" '99999 1\n' 1 "99999"                                   # out of range
 expect "$pig" 'garbage\n' 1 "boundary.idx"
 expect "$sphere" '0 1\n' 1 "is not on a boundary"                     # a closed mesh has no boundary loop
+
+# --constraints (pig.off has 891 faces; face 0 is a boundary face, face 2 an interior one)
+expect_constraints "$pig" '99999 1 0 0\n' 1 "constraints.txt:1: face 99999 does not exist"
+expect_constraints "$pig" '-1 1 0 0\n' 1 "not a non-negative integer"
+expect_constraints "$pig" '2 0 0 0\n' 1 "constraints.txt:1: face 2: the direction is the zero vector"
+expect_constraints "$pig" '2 1 0\n' 1 "four fields"
+expect_constraints "$pig" '2 nan 0 0\n' 1 "not a finite number"
+expect_constraints "$pig" '2 1e999 0 0\n' 1 "not a finite number"
+expect_constraints "$pig" '2 1 0 0\n# comment\n2 0 1 0\n' 1 "listed twice (lines 1 and 3)"
+expect_constraints "$pig" '0 1 0 0\n' 4 "constraints.txt: face 0 is on the boundary" --align-boundary
+expect_constraints "$out/missing.off" '2 1 0 0\n' 1 "missing.off"
+# a constraint file that cannot be read
+rm -f "$out/c.txt" "$out/f.txt"
+message=$("$cli" "$pig" --constraints "$out/no_such_file.txt" --connection "$out/c.txt" --field "$out/f.txt" 2>&1 >/dev/null)
+status=$?
+if [ "$status" != 1 ] || [[ "$message" != *"cannot read constraint file"* ]] || [ -e "$out/c.txt" ]; then
+  echo "FAIL (unreadable constraint file): status $status, message: $message"; failures=$((failures + 1))
+else
+  echo "ok: $message"
+fi
 if [ "$failures" != 0 ]; then echo "$failures failure(s)"; exit 1; fi

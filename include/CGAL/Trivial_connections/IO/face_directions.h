@@ -1,0 +1,129 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_IO_FACE_DIRECTIONS_H
+#define CGAL_TRIVIAL_CONNECTIONS_IO_FACE_DIRECTIONS_H
+
+#include <CGAL/Trivial_connections/IO/singularities.h>
+#include <CGAL/Trivial_connections/exceptions.h>
+
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <istream>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+
+/*!
+\ingroup PkgTrivialConnectionsIO
+One line of a directional constraint file: a face (0-based, input order) and the direction the field must
+have there (not necessarily tangent: the solver projects it onto the face).
+*/
+struct Face_direction
+{
+  std::size_t face = 0;
+  std::array<double, 3> direction = {{0, 0, 0}};
+};
+
+/*!
+\ingroup PkgTrivialConnectionsIO
+Reads a directional constraint file: one line `f x y z` per constrained face, `f` a 0-based face index
+(input order) and `(x, y, z)` a direction. Everything from a `#` to the end of a line is a comment; blank
+lines are ignored. Returned in file order.
+
+\param is the stream to read
+\param source_name the name used in error messages (e.g. the file name)
+\param number_of_faces when given, a face index `>= number_of_faces` is rejected
+
+\throws Invalid_input with a message `source_name:line: ...`:
+  - `parse_error`: a line without exactly four fields, a face index that is not a non-negative integer, a
+    coordinate that is not a finite number;
+  - `invalid_constraint`: a face out of range, a face listed twice (both lines named), a zero vector
+    (`where()` is the face);
+  - `io_error`: the stream could not be read.
+*/
+inline std::vector<Face_direction> read_face_directions(std::istream& is, const std::string& source_name,
+                                                        std::size_t number_of_faces = unchecked_vertex_count)
+{
+  std::vector<Face_direction> result;
+  std::unordered_map<std::size_t, std::size_t> line_of_face;
+  internal::io::for_each_record(is, source_name, [&](const std::string& where, const std::vector<std::string>& f,
+                                                     std::size_t line_number) {
+    if(f.size() != 4)
+      throw Invalid_input(Error_code::parse_error,
+                          where + "expected 'face x y z' (four fields), found " + std::to_string(f.size()) +
+                            (f.size() == 1 ? " field" : " fields"));
+    Face_direction d;
+    try {
+      d.face = internal::io::parse_vertex_index(f[0], where);
+    } catch(const Invalid_input&) {
+      throw Invalid_input(Error_code::parse_error,
+                          where + "the face index '" + f[0] + "' is not a non-negative integer that fits");
+    }
+    for(int c = 0; c < 3; ++c) {
+      const std::string& text = f[std::size_t(c) + 1];
+      char* end = nullptr;
+      errno = 0;
+      const double value = std::strtod(text.c_str(), &end);
+      if(end != text.c_str() + text.size() || !std::isfinite(value)) // an overflow gives infinity
+        throw Invalid_input(Error_code::parse_error, where + "face " + std::to_string(d.face) + ": the coordinate '" +
+                                                       text + "' is not a finite number");
+      d.direction[std::size_t(c)] = value;
+    }
+    if(number_of_faces != unchecked_vertex_count && d.face >= number_of_faces)
+      throw Invalid_input(Error_code::invalid_constraint,
+                          where + "face " + std::to_string(d.face) + " does not exist: the mesh has " +
+                            std::to_string(number_of_faces) + " faces (0 to " +
+                            (number_of_faces == 0 ? std::string("none") : std::to_string(number_of_faces - 1)) + ")",
+                          d.face);
+    if(d.direction[0] == 0 && d.direction[1] == 0 && d.direction[2] == 0)
+      throw Invalid_input(Error_code::invalid_constraint,
+                          where + "face " + std::to_string(d.face) + ": the direction is the zero vector", d.face);
+    const auto inserted = line_of_face.emplace(d.face, line_number);
+    if(!inserted.second)
+      throw Invalid_input(Error_code::invalid_constraint,
+                          where + "face " + std::to_string(d.face) + " is listed twice (lines " +
+                            std::to_string(inserted.first->second) + " and " + std::to_string(line_number) + ")",
+                          d.face);
+    result.push_back(d);
+  });
+  return result;
+}
+
+/*!
+\ingroup PkgTrivialConnectionsIO
+Reads the directional constraint file `path` (see the stream overload; messages start with `path:line:`).
+\throws Invalid_input `io_error` if the file cannot be opened or read, and the errors of the stream overload
+*/
+inline std::vector<Face_direction> read_face_directions(const std::string& path,
+                                                        std::size_t number_of_faces = unchecked_vertex_count)
+{
+  std::error_code ec;
+  if(std::filesystem::is_directory(path, ec))
+    throw Invalid_input(Error_code::io_error, "cannot read constraint file '" + path + "': it is a directory");
+  errno = 0;
+  std::ifstream is(path);
+  if(!is) {
+    const int err = errno;
+    throw Invalid_input(Error_code::io_error, "cannot read constraint file '" + path + "'" +
+                                                (err != 0 ? std::string(": ") + std::strerror(err) : std::string()));
+  }
+  return read_face_directions(is, path, number_of_faces);
+}
+
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_IO_FACE_DIRECTIONS_H

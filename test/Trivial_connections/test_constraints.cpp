@@ -15,6 +15,18 @@ using namespace tc_test;
 
 namespace {
 
+template <class F>
+void expect_error(F&& f, TC::Error_code code, const std::string& fragment)
+{
+  try {
+    f();
+    ADD_FAILURE() << "no exception; expected " << TC::error_code_name(code);
+  } catch(const TC::Invalid_input& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << "message: " << e.what();
+  }
+}
+
 /// targets on faces (our face numbers); a direction need not be tangent: the package projects it
 struct Targets
 {
@@ -177,10 +189,17 @@ void check_constrained(const Mesh_view<Mesh>& view, const Solver& solver, const 
 template <class Mesh, class Solver>
 double brute_force_minimum(const Mesh_view<Mesh>& view, const Solver& solver, const Singularities& sing, int n,
                            const std::vector<int>& faces, const std::vector<V3>& targets, int radius,
-                           int* dimension = nullptr)
+                           int* dimension = nullptr, const std::vector<char>& soft = {}, double mu = 1)
 {
+  // with soft (guided) faces, each has one more unknown, its mismatch s_g with weight mu, and a link f -> g
+  // reads sum x + s_f - s_g
   const double unit_angle = two_pi / n;
   const std::vector<int>& E = view.interior_edges;
+  std::vector<int> slack_of(faces.size(), -1);
+  int slacks = 0;
+  for(std::size_t i = 0; i < soft.size(); ++i)
+    if(soft[i]) slack_of[i] = slacks++;
+  const Eigen::Index columns = Eigen::Index(E.size()) + slacks;
   std::map<int, int> column; // halfedge -> (edge column, sign)
   for(std::size_t j = 0; j < E.size(); ++j) {
     column[E[j]] = int(j) + 1;
@@ -190,7 +209,7 @@ double brute_force_minimum(const Mesh_view<Mesh>& view, const Solver& solver, co
   std::vector<double> constant; // rhs = constant + unit * m (integer rows) or constant
   std::vector<char> integer;
   auto row_of_halfedges = [&](const std::vector<int>& hs) {
-    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(Eigen::Index(E.size()));
+    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(columns);
     for(int h : hs) {
       const int c = column.at(h);
       r[std::abs(c) - 1] += c > 0 ? 1 : -1;
@@ -262,6 +281,9 @@ double brute_force_minimum(const Mesh_view<Mesh>& view, const Solver& solver, co
       V3 u = unit(tangent_part(view, from, targets[std::size_t(it->second)]));
       for(int h : path) u = unit(view.transport(h, u));
       rows.push_back(row_of_halfedges(path));
+      const std::size_t from_i = std::size_t(it->second);
+      if(slack_of[from_i] >= 0) rows.back()[Eigen::Index(E.size()) + slack_of[from_i]] += 1;
+      if(slack_of[i] >= 0) rows.back()[Eigen::Index(E.size()) + slack_of[i]] -= 1;
       constant.push_back(signed_angle(u, unit(tangent_part(view, f, targets[i])), view.N[f]));
       integer.push_back(1);
     }
@@ -269,10 +291,11 @@ double brute_force_minimum(const Mesh_view<Mesh>& view, const Solver& solver, co
   }
 
   const Eigen::Index R = Eigen::Index(rows.size());
-  Eigen::MatrixXd A(R, Eigen::Index(E.size()));
+  Eigen::MatrixXd A(R, columns);
   for(Eigen::Index r = 0; r < R; ++r) A.row(r) = rows[std::size_t(r)];
-  Eigen::VectorXd winv(Eigen::Index(E.size()));
+  Eigen::VectorXd winv(columns);
   for(std::size_t j = 0; j < E.size(); ++j) winv[Eigen::Index(j)] = 1 / view.weight(E[j], solver.weighting());
+  for(Eigen::Index j = Eigen::Index(E.size()); j < columns; ++j) winv[j] = 1 / mu;
   const Eigen::MatrixXd M = A * winv.asDiagonal() * A.transpose();
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(M);
   EXPECT_EQ(ldlt.info(), Eigen::Success);
@@ -583,6 +606,205 @@ TEST(Directional_constraints, same_answer_with_every_backend_and_on_Polyhedron_3
 }
 
 // -----------------------------------------------------------------------------------------------------
+// Soft guidance
+// -----------------------------------------------------------------------------------------------------
+
+namespace {
+/*
+  A solve with guided faces (and possibly constrained ones), checked from first principles: the connection's
+  holonomy and the field's parallelism; constrained targets met; on each guided face the mismatch d_g (the
+  angle from the guide to the field, reduced modulo 2 pi / n) equals the report's, and the optimality
+  conditions of sum w x^2 + mu sum d_g^2 hold: the weighted divergence of x is 0 on every face that is neither
+  constrained nor guided, and mu d_g on a guided face (the multipliers of the links at g are mu times its
+  slack); the reported energies are ours.
+*/
+template <class Mesh, class Solver>
+void check_guided(const Mesh_view<Mesh>& view, const Solver& solver, const Singularities& sing, int n,
+                  const Targets& hard, const Targets& guides, double mu, const Constrained_solution<Mesh>& s)
+{
+  const double unit_angle = two_pi / n;
+  check_connection(view, solver, sing, n, s.x, s.report, /*all_cycles_constrained=*/false);
+  check_field(view, s.x, s.field, n);
+  std::vector<int> role(view.nf(), 0); // 1 constrained, 2 guided
+  for(std::size_t i = 0; i < hard.faces.size(); ++i) {
+    const int f = hard.faces[i];
+    role[f] = 1;
+    EXPECT_LT(std::abs(wrap(signed_angle(field_at(view, s.field, f), tangent_part(view, f, hard.directions[i]), view.N[f]),
+                            unit_angle)), 1e-9) << "target of face " << f;
+  }
+  ASSERT_EQ(s.report.guidance.size(), guides.faces.size());
+  double guidance_energy = 0, scale = 0;
+  std::vector<double> d(view.nf(), 0.);
+  for(std::size_t i = 0; i < guides.faces.size(); ++i) {
+    const int g = guides.faces[i];
+    role[g] = 2;
+    EXPECT_EQ(s.report.guidance[i].face, std::size_t(g));
+    d[g] = wrap(signed_angle(tangent_part(view, g, guides.directions[i]), field_at(view, s.field, g), view.N[g]),
+                unit_angle);
+    EXPECT_NEAR(s.report.guidance[i].mismatch, d[g], 1e-9) << "mismatch of guided face " << g;
+    guidance_energy += mu * d[g] * d[g];
+  }
+  EXPECT_NEAR(s.report.guidance_energy, guidance_energy, 1e-9 * std::max(1., guidance_energy));
+  double worst = 0;
+  int worst_f = -1;
+  std::vector<double> div(view.nf(), 0.);
+  for(int f = 0; f < view.nf(); ++f) {
+    double sum = 0;
+    for(int h : view.face_he[f])
+      if(view.interior_halfedge(h)) {
+        const double t = view.weight(h, solver.weighting()) * s.x[h];
+        div[f] += t;
+        sum += std::abs(t);
+      }
+    scale = std::max(scale, sum);
+  }
+  for(int f = 0; f < view.nf(); ++f) {
+    if(role[f] == 1) continue;
+    const double r = std::abs(div[f] - (role[f] == 2 ? mu * d[f] : 0.));
+    if(!(r <= worst)) { worst = r; worst_f = f; }
+  }
+  EXPECT_LE(worst, 1e-8 * std::max(scale, 1e-3)) << "optimality: weighted divergence minus mu d_g at face " << worst_f
+                                                << " (role " << (worst_f >= 0 ? role[worst_f] : -1) << ")";
+}
+
+template <class Mesh>
+Constrained_solution<Mesh> solve_guided(const Mesh_view<Mesh>& view, TC::Trivial_connection_solver<Mesh>& solver,
+                                        const Singularities& sing, int n, const Targets& hard, const Targets& guides)
+{
+  Targets all = hard;
+  all.faces.insert(all.faces.end(), guides.faces.begin(), guides.faces.end());
+  all.directions.insert(all.directions.end(), guides.directions.begin(), guides.directions.end());
+  Constrained_solution<Mesh> s;
+  s.directions.assign(view.nf(), Vector(0, 0, 0));
+  for(std::size_t i = 0; i < all.faces.size(); ++i)
+    s.directions[all.faces[i]] = Vector(all.directions[i][0], all.directions[i][1], all.directions[i][2]);
+  Indexed_map<typename Mesh_view<Mesh>::face_descriptor, Vector> directions{&view.fid, &s.directions};
+  s.report = solver.solve(descriptors(view, sing), view.halfedge_map(s.x),
+                          TC::parameters::face_directions(directions, TC::parameters::symmetry_order(n)));
+  solver.compute_field(view.halfedge_map_const(s.x), view.face_map(s.field),
+                       TC::parameters::face_directions(directions, TC::parameters::symmetry_order(n)));
+  return s;
+}
+
+/// brute force over our own rows, guided faces with their slack
+template <class Mesh>
+void expect_guided_brute_force(const Mesh_view<Mesh>& view, const TC::Trivial_connection_solver<Mesh>& solver,
+                               const Singularities& sing, int n, const Targets& hard, const Targets& guides, double mu,
+                               const TC::Solve_report& report, int min_dimension)
+{
+  std::vector<int> faces = hard.faces;
+  std::vector<V3> directions = hard.directions;
+  std::vector<char> soft(faces.size(), 0);
+  faces.insert(faces.end(), guides.faces.begin(), guides.faces.end());
+  directions.insert(directions.end(), guides.directions.begin(), guides.directions.end());
+  soft.resize(faces.size(), 1);
+  int dimension = 0;
+  const double lowest = brute_force_minimum(view, solver, sing, n, faces, directions, 2, &dimension, soft, mu);
+  EXPECT_GE(dimension, min_dimension);
+  const double total = report.energy + report.guidance_energy;
+  EXPECT_NEAR(total, lowest, 1e-9 * std::max(1., lowest))
+    << "energy + guidance energy " << total << " vs the best of the enumeration over " << dimension << " integers";
+}
+} // namespace
+
+TEST(Soft_guidance, optimal_on_torus_and_disk_alone_and_with_constraints)
+{
+  for(int which : {0, 1}) {
+    const Surface_mesh m = which == 0 ? torus(2, 0.7, 12, 8) : to_surface_mesh(warped(disk_soup(4, 10)));
+    const Mesh_view<Surface_mesh> view(m);
+    const Targets spread = spread_targets(view, 5, true);
+    Targets hard, guides;
+    hard.faces = {spread.faces[0]};
+    hard.directions = {spread.directions[0]};
+    guides.faces.assign(spread.faces.begin() + 1, spread.faces.end());
+    guides.directions.assign(spread.directions.begin() + 1, spread.directions.end());
+    for(bool with_hard : {false, true})
+      for(double mu : {0.3, 5.}) {
+        const Targets none_hard;
+        const Targets& h = with_hard ? hard : none_hard;
+        TC::Trivial_connection_solver<Surface_mesh> solver(
+          m, TC::parameters::guidance_weight(mu, TC::parameters::guided_faces(face_descriptors(view, guides.faces),
+                                             TC::parameters::constrained_faces(face_descriptors(view, h.faces)))));
+        for(int n : {1, 4}) {
+          SCOPED_TRACE(std::string(which == 0 ? "torus" : "disk") + (with_hard ? ", with a constrained face" : "") +
+                       ", mu = " + std::to_string(mu) + ", n = " + std::to_string(n));
+          const Singularities none;
+          const auto s = solve_guided(view, solver, none, n, h, guides);
+          check_guided(view, solver, none, n, h, guides, mu, s);
+          expect_guided_brute_force(view, solver, none, n, h, guides, mu, s.report, which == 0 ? 5 : 3);
+          EXPECT_TRUE(s.report.integers_proven_optimal);
+        }
+      }
+  }
+}
+
+TEST(Soft_guidance, tends_to_the_hard_constraints_and_to_no_guidance)
+{
+  const Surface_mesh m = icosphere(2);
+  const Mesh_view<Surface_mesh> view(m);
+  const Targets t = spread_targets(view, 4);
+  const Singularities sing = plan_singularities(view, 4);
+  TC::Trivial_connection_solver<Surface_mesh> hard(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+  const double E_hard = solve_constrained(view, hard, sing, 4, t).report.energy;
+  TC::Trivial_connection_solver<Surface_mesh> free_solver(m);
+  std::vector<double> x;
+  const double E_free =
+    free_solver.solve(descriptors(view, sing), view.halfedge_map(x), TC::parameters::symmetry_order(4)).energy;
+  ASSERT_LT(E_free, E_hard - 1e-3);
+  const Targets none;
+  double previous_energy = 0, previous_mismatch = 1e300;
+  for(double mu : {1e-6, 1e-2, 1., 1e2, 1e6}) {
+    TC::Trivial_connection_solver<Surface_mesh> solver(
+      m, TC::parameters::guidance_weight(mu, TC::parameters::guided_faces(face_descriptors(view, t.faces))));
+    const auto s = solve_guided(view, solver, sing, 4, none, t);
+    check_guided(view, solver, sing, 4, none, t, mu, s);
+    double mismatch = 0;
+    for(const auto& g : s.report.guidance) mismatch = std::max(mismatch, std::abs(g.mismatch));
+    // more weight: a smoother field is traded for a closer one
+    EXPECT_GE(s.report.energy, previous_energy - 1e-9);
+    EXPECT_LE(mismatch, previous_mismatch + 1e-9);
+    EXPECT_LE(s.report.energy, E_hard + 1e-9);
+    if(mu == 1e-6) EXPECT_NEAR(s.report.energy, E_free, 1e-4 * E_free);
+    if(mu == 1e6) {
+      EXPECT_NEAR(s.report.energy, E_hard, 1e-4 * E_hard);
+      EXPECT_LT(mismatch, 1e-4);
+    }
+    previous_energy = s.report.energy;
+    previous_mismatch = mismatch;
+  }
+}
+
+TEST(Soft_guidance, bad_input_is_rejected)
+{
+  using Solver = TC::Trivial_connection_solver<Surface_mesh>;
+  const Surface_mesh m = to_surface_mesh(warped(disk_soup(3, 8)));
+  const Mesh_view<Surface_mesh> view(m);
+  const Targets t = spread_targets(view, 3, true);
+  const auto faces = face_descriptors(view, t.faces);
+  expect_error([&] { Solver s(m, TC::parameters::guided_faces(faces, TC::parameters::constrained_faces(faces))); },
+               TC::Error_code::invalid_constraint, "both constrained and guided");
+  expect_error([&] { Solver s(m, TC::parameters::guided_faces(std::vector<Surface_mesh::Face_index>{faces[0], faces[0]})); },
+               TC::Error_code::invalid_constraint, "guided twice");
+  for(double mu : {0., -1., std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()})
+    expect_error([&] { Solver s(m, TC::parameters::guidance_weight(mu, TC::parameters::guided_faces(faces))); },
+                 TC::Error_code::invalid_argument, "guidance weight");
+  int boundary_face = -1;
+  for(int f = 0; f < view.nf() && boundary_face < 0; ++f)
+    if(!border_directions(view, f).empty()) boundary_face = f;
+  expect_error([&] { Solver s(m, TC::parameters::align_with_boundary(true, TC::parameters::guided_faces(
+                                    std::vector<Surface_mesh::Face_index>{view.faces[boundary_face]}))); },
+               TC::Error_code::invalid_constraint, "cannot be guided too");
+  // a component with guided faces only needs n to rotate the field
+  Solver solver(m, TC::parameters::guided_faces(faces));
+  std::vector<Vector> directions(view.nf(), Vector(1, 0, 0)), field;
+  Indexed_map<Surface_mesh::Face_index, Vector> dmap{&view.fid, &directions};
+  std::vector<double> x;
+  solver.solve(descriptors(view, Singularities()), view.halfedge_map(x), TC::parameters::face_directions(dmap));
+  expect_error([&] { solver.compute_field(view.halfedge_map_const(x), view.face_map(field), TC::parameters::face_directions(dmap)); },
+               TC::Error_code::invalid_argument, "symmetry_order");
+}
+
+// -----------------------------------------------------------------------------------------------------
 // Real meshes: closed genus 0, genus >= 1, bordered with many holes
 // -----------------------------------------------------------------------------------------------------
 
@@ -613,19 +835,6 @@ TEST(Directional_constraints, real_meshes)
 // Bad input
 // -----------------------------------------------------------------------------------------------------
 
-namespace {
-template <class F>
-void expect_error(F&& f, TC::Error_code code, const std::string& fragment)
-{
-  try {
-    f();
-    ADD_FAILURE() << "no exception; expected " << TC::error_code_name(code);
-  } catch(const TC::Invalid_input& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
-}
-} // namespace
 
 TEST(Directional_constraints, bad_input_is_rejected_with_a_clear_message)
 {
@@ -680,5 +889,5 @@ TEST(Directional_constraints, bad_input_is_rejected_with_a_clear_message)
   solver.solve(descriptors(view, none), view.halfedge_map(x), TC::parameters::face_directions(dmap));
   expect_error([&] { solver.compute_field(view.halfedge_map_const(x), view.face_map(field),
                                           TC::parameters::seed_face(view.faces[0], TC::parameters::face_directions(dmap))); },
-               TC::Error_code::invalid_argument, "constrained faces");
+               TC::Error_code::invalid_argument, "constrained or guided faces");
 }

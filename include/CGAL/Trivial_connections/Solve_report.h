@@ -54,7 +54,21 @@ struct Constraint_report
   std::size_t from_face = 0, to_face = 0;
   std::size_t length = 0;   ///< number of edges the path crosses
   std::int64_t period = 0;  ///< chosen by the solver, minimising the energy with the loop integers
-  double residual = 0;      ///< `|T + theta_from - theta_to + X - 2 pi period / n|`
+  /// `|T + theta_from - theta_to + X - 2 pi period / n - (d_to - d_from)|`, with `d` the mismatch of a guided
+  /// end (0 for a constrained one)
+  double residual = 0;
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+The angle between the field and the guide on a guided face: the field's angle minus the guide's, in the
+representative chosen with the integers (multiples of `2 pi / n` apart, in `(-pi/n, pi/n]` for optimal
+integers), measured counter-clockwise about the face normal.
+*/
+struct Guidance_report
+{
+  std::size_t face = 0;
+  double mismatch = 0;
 };
 
 /*!
@@ -78,9 +92,12 @@ struct Solve_report
 {
   int symmetry_order = 1;
   double energy = 0;                    ///< `sum_e w_e x_e^2` over interior edges
+  /// with guided faces: `mu sum_g d_g^2` (`guidance_weight` mu, `Guidance_report::mismatch` d_g); the solve
+  /// minimises `energy + guidance_energy`
+  double guidance_energy = 0;
   double max_vertex_residual = 0;       ///< max over interior vertices of `|K_v + sum x - 2 pi k_v|`
   double max_loop_residual = 0;         ///< max of the `Loop_report::residual`
-  /// energy the same solve would have with the integers rounded one by one (for comparison)
+  /// energy (plus guidance energy) the same solve would have with the integers rounded one by one (for comparison)
   double rounding_energy = 0;
   /// `true` when the integer choice was proven optimal by exhaustive enumeration (or prescribed, or empty)
   bool integers_proven_optimal = true;
@@ -88,6 +105,7 @@ struct Solve_report
   /// one per path joining two constrained faces (empty without directional constraints)
   std::vector<Constraint_report> constraints;
   double max_constraint_residual = 0;   ///< max of the `Constraint_report::residual`
+  std::vector<Guidance_report> guidance; ///< one per guided face, in the order given to the constructor
   std::vector<Component_report> components;
 };
 

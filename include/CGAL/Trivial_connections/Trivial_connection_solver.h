@@ -146,9 +146,21 @@ public:
         its vertices, so the turn the field makes at each boundary vertex is one of the free integers}
       \cgalParamType{`bool`} \cgalParamDefault{`false`}
     \cgalParamNEnd
+    \cgalParamNBegin{guided_faces}
+      \cgalParamDescription{soft guidance: faces on which the field is drawn towards a direction given to each
+        `solve()` (`face_directions`). The solve then minimises `sum_e w_e x_e^2 + mu sum_g d_g^2`, with d_g the
+        angle between the field and the guide on face g (modulo 2 pi / n), still with exactly the prescribed
+        singularities; new guides cost back-substitutions only (see the user manual)}
+      \cgalParamType{a range of `face_descriptor`} \cgalParamDefault{none}
+    \cgalParamNEnd
+    \cgalParamNBegin{guidance_weight}
+      \cgalParamDescription{mu, positive and finite}
+      \cgalParamType{`double`} \cgalParamDefault{1}
+    \cgalParamNEnd
   \cgalNamedParamsEnd
   \throws Invalid_input `empty_mesh`, `not_triangle_mesh`, `non_manifold`, `degenerate_face`,
-          `invalid_constraint` (a constrained face not of the mesh, listed twice, or on an aligned boundary),
+          `invalid_constraint` (a constrained or guided face not of the mesh, listed twice, both constrained and
+          guided, or on an aligned boundary), `invalid_argument` (a guidance weight not positive and finite),
           `solver_failure`
   */
   template <class NamedParameters = parameters::Default_named_parameters>
@@ -167,7 +179,24 @@ public:
       m_geometry(),
       m_topology()
   {
-    const std::vector<int> user_faces = constrained_face_indices(np);
+    std::vector<int> user_faces, guided;
+    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::constrained_faces_t>::value)
+      user_faces = face_indices(CGAL::parameters::get_parameter(np, tc_np::constrained_faces), "constrained");
+    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::guided_faces_t>::value)
+      guided = face_indices(CGAL::parameters::get_parameter(np, tc_np::guided_faces), "guided");
+    {
+      std::vector<char> constrained(std::size_t(m_mesh.nf), 0);
+      for(int f : user_faces)
+        constrained[f] = 1;
+      for(int f : guided)
+        if(constrained[f])
+          throw Invalid_input(Error_code::invalid_constraint,
+                              "face " + std::to_string(f) + " is both constrained and guided", std::size_t(f));
+    }
+    m_guidance_weight = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::guidance_weight), 1.);
+    if(!(m_guidance_weight > 0) || !std::isfinite(m_guidance_weight))
+      throw Invalid_input(Error_code::invalid_argument, "the guidance weight must be positive and finite (got " +
+                                                          std::to_string(m_guidance_weight) + ")");
     const bool align = CGAL::parameters::choose_parameter(
       CGAL::parameters::get_parameter(np, tc_np::align_with_boundary), false);
     // The fill-reducing order of the node rows needs only the connectivity: it runs on a second thread
@@ -206,7 +235,7 @@ public:
     notify(Phase::trees, 0);
     m_topology.build_trees(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner);
     build_loops();
-    build_constraint_paths(user_faces, align);
+    build_constraint_paths(user_faces, guided, align);
     notify(Phase::trees, 1);
     notify(Phase::assembly, 0);
     build_constraints();
@@ -319,8 +348,8 @@ public:
     \cgalParamNEnd
     \cgalParamNBegin{face_directions}
       \cgalParamDescription{a readable property map `face_descriptor -> Vector_3`, read at the faces given as
-        `constrained_faces`: the direction the field must have there (one of its n directions), projected onto
-        the face. Required when the solver has such faces}
+        `constrained_faces` (the direction the field must have there, as one of its n directions) and as
+        `guided_faces` (the guide), projected onto the face. Required when the solver has such faces}
     \cgalParamNEnd
   \cgalNamedParamsEnd
   \throws Invalid_input `invalid_symmetry_order`, `invalid_vertex`, `singularity_on_boundary`,
@@ -444,12 +473,10 @@ public:
 
     Constraint_sums sums;
     const Eigen::VectorXd xe = checked_connection(b, lambda, sums);
-    if(!choose_periods)
-      rounding_energy = b.dot(lambda);
     write_connection(xe, x);
 
     fill_report(sums, k, periods, prescribed, holonomy, n, report);
-    report.rounding_energy = choose_periods ? rounding_energy : report.energy;
+    report.rounding_energy = choose_periods ? rounding_energy : report.energy + report.guidance_energy;
     notify(progress, Phase::solve, 1);
     return report;
   }
@@ -467,8 +494,14 @@ public:
       \cgalParamType{`double`} \cgalParamDefault{0}
     \cgalParamNEnd
     \cgalParamNBegin{face_directions}
-      \cgalParamDescription{as for `solve()`: required when the solver has constrained faces. A component with
-        constrained faces starts from the target of one of them, so that the field meets every target}
+      \cgalParamDescription{as for `solve()`: required when the solver has constrained or guided faces. A
+        component with constrained faces starts from the target of one of them, so that the field meets every
+        target; a component with guided faces only is rotated to minimise `sum_g d_g^2`}
+    \cgalParamNEnd
+    \cgalParamNBegin{symmetry_order}
+      \cgalParamDescription{the n of the solve; required when a component has guided faces only (the mismatches
+        are taken modulo 2 pi / n)}
+      \cgalParamType{`int`}
     \cgalParamNEnd
   \cgalNamedParamsEnd
   Other components start with angle 0 in their first face (in face-index order).
@@ -513,12 +546,37 @@ public:
           shift[c] = target[m_seed_constraint[c]] - angle[m_constrained[m_seed_constraint[c]].face];
           shifted[c] = 1;
         }
+      // a component with guided faces only: the rotation minimising sum_g d_g^2, the mismatches d_g wrapped to
+      // a period of the n-field
+      std::vector<std::vector<double>> offsets(m_components.size());
+      for(std::size_t a = std::size_t(m_first_guided); a < m_constrained.size(); ++a) {
+        const int f = m_constrained[a].face, c = m_topology.component_of_face[f];
+        if(m_seed_constraint[c] < 0)
+          offsets[c].push_back(angle[f] - target[a]);
+      }
+      const bool has_guided_only = std::any_of(offsets.begin(), offsets.end(),
+                                               [](const std::vector<double>& o) { return !o.empty(); });
+      if(has_guided_only) {
+        if(CGAL::parameters::is_default_parameter<NamedParameters, tc_np::symmetry_order_t>::value)
+          throw Invalid_input(Error_code::invalid_argument,
+                              "a component has guided faces only: compute_field() needs the symmetry_order of the "
+                              "solve to rotate the field towards the guides");
+        const int n = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::symmetry_order), 1);
+        if(n < 1)
+          throw Invalid_input(Error_code::invalid_symmetry_order,
+                              "the symmetry order n must be at least 1 (got " + std::to_string(n) + ")");
+        for(std::size_t c = 0; c < m_components.size(); ++c)
+          if(!offsets[c].empty()) {
+            shift[c] = best_rotation(offsets[c], 2 * CGAL_PI / n);
+            shifted[c] = 1;
+          }
+      }
     }
     if(seed >= 0) {
       const int c = m_topology.component_of_face[seed];
       if(shifted[c])
         throw Invalid_input(Error_code::invalid_argument,
-                            "the seed face is in a component with constrained faces, which set the field there",
+                            "the seed face is in a component with constrained or guided faces, which set the field there",
                             std::size_t(seed));
       shift[c] = seed_angle - angle[seed];
       shifted[c] = 1;
@@ -584,23 +642,20 @@ private:
     }
   }
 
-  // The constrained faces given to the constructor, as face indices (checked: faces of the mesh, once each)
-  template <class NamedParameters>
-  std::vector<int> constrained_face_indices(const NamedParameters& np) const
+  // A range of faces given to the constructor, as face indices (checked: faces of the mesh, once each)
+  template <class FaceRange>
+  std::vector<int> face_indices(const FaceRange& range, const std::string& what) const
   {
     std::vector<int> faces;
-    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::constrained_faces_t>::value) {
-      std::vector<char> listed(std::size_t(m_mesh.nf), 0);
-      for(const face_descriptor f : CGAL::parameters::get_parameter(np, tc_np::constrained_faces)) {
-        const std::size_t i = f == Graph_traits::null_face() ? std::size_t(m_mesh.nf) : std::size_t(get(m_mesh.face_index, f));
-        if(i >= std::size_t(m_mesh.nf) || m_mesh.face_descriptors[i] != f)
-          throw Invalid_input(Error_code::invalid_constraint, "a constrained face is not a face of the mesh");
-        if(listed[i])
-          throw Invalid_input(Error_code::invalid_constraint,
-                              "face " + std::to_string(i) + " is constrained twice", i);
-        listed[i] = 1;
-        faces.push_back(int(i));
-      }
+    std::vector<char> listed(std::size_t(m_mesh.nf), 0);
+    for(const face_descriptor f : range) {
+      const std::size_t i = f == Graph_traits::null_face() ? std::size_t(m_mesh.nf) : std::size_t(get(m_mesh.face_index, f));
+      if(i >= std::size_t(m_mesh.nf) || m_mesh.face_descriptors[i] != f)
+        throw Invalid_input(Error_code::invalid_constraint, "a " + what + " face is not a face of the mesh");
+      if(listed[i])
+        throw Invalid_input(Error_code::invalid_constraint, "face " + std::to_string(i) + " is " + what + " twice", i);
+      listed[i] = 1;
+      faces.push_back(int(i));
     }
     return faces;
   }
@@ -613,16 +668,18 @@ private:
   // spanning tree, by their paths in that tree (the tree paths between consecutive faces of a depth-first
   // order cross each tree edge at most twice in all). The links of a component form a tree on its
   // constrained faces, so the rows are independent of each other and of the cycle rows.
-  void build_constraint_paths(const std::vector<int>& user_faces, bool align)
+  // Guided faces (soft guidance) are linked like constrained ones; each has a slack, its mismatch d_g, which
+  // enters its links' rows (see the user manual).
+  void build_constraint_paths(const std::vector<int>& user_faces, const std::vector<int>& guided, bool align)
   {
     const internal::Mesh_topology& t = m_topology;
     const int nf = m_mesh.nf;
     std::vector<int> constraint_of_face(std::size_t(nf), -1);
     std::vector<std::vector<int>> units(t.components.size()); // per component: a constrained face of each chain
-    auto add_face = [&](int f, int border_corner) {
+    auto add_face = [&](int f, int border_corner, bool soft = false) {
       CGAL_assertion(constraint_of_face[f] < 0);
       constraint_of_face[f] = int(m_constrained.size());
-      m_constrained.push_back({f, border_corner});
+      m_constrained.push_back({f, border_corner, soft});
       return int(m_constrained.size()) - 1;
     };
     auto border_length = [&](int i) { return internal::norm(internal::sub(m_mesh.points[m_mesh.target_of(i)],
@@ -670,7 +727,16 @@ private:
                             std::size_t(f));
       units[t.component_of_face[f]].push_back(add_face(f, -1));
     }
-    m_has_user_constraints = !user_faces.empty();
+    m_first_guided = int(m_constrained.size());
+    for(int f : guided) {
+      if(constraint_of_face[f] >= 0)
+        throw Invalid_input(Error_code::invalid_constraint,
+                            "face " + std::to_string(f) +
+                              " is on the boundary, which the field is aligned with: it cannot be guided too",
+                            std::size_t(f));
+      units[t.component_of_face[f]].push_back(add_face(f, -1, true));
+    }
+    m_has_user_constraints = !user_faces.empty() || !guided.empty();
     m_seed_constraint.assign(t.components.size(), -1);
     if(m_constrained.empty())
       return;
@@ -714,7 +780,13 @@ private:
       std::sort(u.begin(), u.end(), [&](int a, int b) {
         return preorder[m_constrained[a].face] < preorder[m_constrained[b].face];
       });
-      m_seed_constraint[c] = u.front();
+      // the field starts from a constrained face (its target is exact); a component with guided faces only
+      // is rotated by compute_field()
+      for(int a : u)
+        if(!m_constrained[a].soft) {
+          m_seed_constraint[c] = a;
+          break;
+        }
       for(std::size_t k = 1; k < u.size(); ++k) {
         // up from a to the common ancestor, then down to b
         int a = m_constrained[u[k - 1]].face, b = m_constrained[u[k]].face;
@@ -732,6 +804,21 @@ private:
         m_paths.push_back({u[k - 1], u[k], int(c), std::move(crossings)});
       }
     }
+    // per guided face, the links at it: the slack s_g enters +1 in a link from it, -1 in a link to it
+    m_slack_start.assign(m_constrained.size() - std::size_t(m_first_guided) + 1, 0);
+    for(const Constraint_path& path : m_paths)
+      for(int end : {path.from, path.to})
+        if(m_constrained[end].soft)
+          ++m_slack_start[std::size_t(end - m_first_guided) + 1];
+    for(std::size_t g = 1; g < m_slack_start.size(); ++g)
+      m_slack_start[g] += m_slack_start[g - 1];
+    m_slack_links.resize(std::size_t(m_slack_start.back()));
+    std::vector<int> next(m_slack_start.begin(), m_slack_start.end() - 1);
+    for(std::size_t j = 0; j < m_paths.size(); ++j)
+      for(int end : {m_paths[j].from, m_paths[j].to})
+        if(m_constrained[end].soft)
+          m_slack_links[std::size_t(next[std::size_t(end - m_first_guided)]++)] =
+            end == m_paths[j].from ? int(j) : ~int(j);
   }
 
   // needs the corner angles
@@ -879,6 +966,10 @@ private:
           for(int q = crossing_start[e]; q < crossing_start[e + 1]; ++q)
             add(crossings[q].first, v * crossings[q].second, g);
         }
+        if(l >= t.loops.size()) // a link: its guided ends' slacks couple it with the other links there (C C^T / mu)
+          for_each_slack_coupling(int(l - t.loops.size()), [&](int other, double value) {
+            add(m_row_of_loop[t.loops.size() + std::size_t(other)], value, g);
+          });
         std::sort(pattern.begin(), pattern.end());
         for(int r : pattern) {
           generator_row.push_back(r);
@@ -1056,8 +1147,10 @@ private:
   // loop; pinned nodes too), per loop the signed sum of its crossings (a boundary loop's is its node's).
   struct Constraint_sums
   {
-    std::vector<double> node, loop;
+    std::vector<double> node, loop; // a link's sum includes its guided ends' slacks
     double energy = 0; // sum of w_e x_e^2, read on the way
+    std::vector<double> slack; // per guided face, its mismatch d_g
+    double guidance_energy = 0; // mu sum_g d_g^2
   };
 
   // M^-1 b (rows in their own order), to be checked by the caller
@@ -1140,6 +1233,81 @@ private:
       sums.loop[l] = sum;
     }
     sums.node.swap(node_sum);
+    // the guided faces' slacks: row j of the links reads sum x + s_from - s_to
+    sums.slack = slacks(lambda);
+    sums.guidance_energy = 0;
+    for(std::size_t g = 0; g < sums.slack.size(); ++g) {
+      sums.guidance_energy += m_guidance_weight * sums.slack[g] * sums.slack[g];
+      for(int p = m_slack_start[g]; p < m_slack_start[g + 1]; ++p) {
+        const int code = m_slack_links[p];
+        sums.loop[t.loops.size() + std::size_t(edge_of_code(code))] += sign_of_code(code) * sums.slack[g];
+      }
+    }
+  }
+
+  // For link j, calls visit(link, value) for the entries of C C^T / mu in its row: C has one column per guided
+  // face, +1 in the links from it and -1 in the links to it
+  template <class Visit>
+  void for_each_slack_coupling(int j, Visit visit) const
+  {
+    for(int end : {m_paths[j].from, m_paths[j].to}) {
+      if(!m_constrained[end].soft)
+        continue;
+      const double sign = end == m_paths[j].from ? 1. : -1.;
+      const std::size_t g = std::size_t(end - m_first_guided);
+      for(int p = m_slack_start[g]; p < m_slack_start[g + 1]; ++p) {
+        const int code = m_slack_links[p];
+        visit(edge_of_code(code), sign * sign_of_code(code) / m_guidance_weight);
+      }
+    }
+  }
+
+  // the slacks s = C^T lambda / mu of the guided faces (their mismatches d_g), from the multipliers
+  std::vector<double> slacks(const Eigen::VectorXd& lambda) const
+  {
+    const std::size_t nl = m_topology.loops.size();
+    std::vector<double> s(m_constrained.size() - std::size_t(m_first_guided), 0.);
+    for(std::size_t g = 0; g < s.size(); ++g)
+      for(int p = m_slack_start[g]; p < m_slack_start[g + 1]; ++p) {
+        const int code = m_slack_links[p];
+        s[g] += sign_of_code(code) * lambda[m_row_of_loop[nl + std::size_t(edge_of_code(code))]];
+      }
+    for(double& v : s)
+      v /= m_guidance_weight;
+    return s;
+  }
+
+  // The phi minimising sum_g (phi + o_g)^2 with each phi + o_g reduced to (-period/2, period/2]: the values
+  // -o_g reduced to [0, period) are sorted; an optimal choice of representatives takes them as they are from
+  // some point on and one period higher before it (a contiguous arc), and phi is their mean.
+  static double best_rotation(const std::vector<double>& offsets, double period)
+  {
+    std::vector<double> u;
+    u.reserve(offsets.size());
+    for(double o : offsets) {
+      double r = std::fmod(-o, period);
+      if(r < 0)
+        r += period;
+      u.push_back(r);
+    }
+    std::sort(u.begin(), u.end());
+    const double count = double(u.size());
+    double s1 = 0, s2 = 0;
+    for(double v : u) {
+      s1 += v;
+      s2 += v * v;
+    }
+    double best = s2 - s1 * s1 / count, phi = s1 / count;
+    for(double v : u) { // move v up by a period
+      s2 += 2 * period * v + period * period;
+      s1 += period;
+      const double cost = s2 - s1 * s1 / count;
+      if(cost < best) {
+        best = cost;
+        phi = s1 / count;
+      }
+    }
+    return phi;
   }
 
   // a generator or a constraint path: a row made of its crossings (a boundary loop's row is its node's)
@@ -1459,7 +1627,7 @@ private:
       return angle;
     if constexpr(CGAL::parameters::is_default_parameter<NamedParameters, tc_np::face_directions_t>::value) {
       throw Invalid_input(Error_code::invalid_constraint,
-                          "the solver has constrained faces: their directions (face_directions) are missing");
+                          "the solver has constrained or guided faces: their directions (face_directions) are missing");
     } else {
       const auto directions = CGAL::parameters::get_parameter(np, tc_np::face_directions);
       typename Geom_traits::Compute_x_3 x = m_traits.compute_x_3_object();
@@ -1586,6 +1754,10 @@ private:
       r.residual = std::abs(m_loop_holonomy[l] + sum - unit * double(periods[l]));
       report.max_loop_residual = (std::max)(report.max_loop_residual, r.residual);
     }
+    report.guidance_energy = sums.guidance_energy;
+    report.guidance.resize(sums.slack.size());
+    for(std::size_t g = 0; g < sums.slack.size(); ++g)
+      report.guidance[g] = {std::size_t(m_constrained[std::size_t(m_first_guided) + g].face), sums.slack[g]};
     report.max_constraint_residual = 0;
     report.constraints.resize(m_paths.size());
     for(std::size_t j = 0; j < m_paths.size(); ++j) {
@@ -1617,6 +1789,7 @@ private:
   {
     int face;
     int border_corner; // the border corner halfedge it follows with the boundary aligned; -1: a user target
+    bool soft;         // a guided face (its target is a guide)
   };
   struct Constraint_path
   {
@@ -1628,7 +1801,11 @@ private:
   std::vector<Constrained_face> m_constrained;
   std::vector<Constraint_path> m_paths;
   std::vector<int> m_seed_constraint; // per component: the constrained face the field starts from, or -1
-  bool m_has_user_constraints = false;
+  bool m_has_user_constraints = false; // user targets or guides (read from face_directions)
+  int m_first_guided = 0;              // the guided faces are the last of m_constrained
+  double m_guidance_weight = 1;        // mu
+  // per guided face (CSR): the links at it, j when it is their `from` end (+1), ~j when their `to` end (-1)
+  std::vector<int> m_slack_start, m_slack_links;
 
   // Rows with an integer are numbered by "slots": the loops of loops(), then the constraint paths.
   std::vector<int> m_row_of_node, m_row_of_loop /* per slot */, m_vertex_of_node, m_free_rows;

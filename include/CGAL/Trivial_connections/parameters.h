@@ -31,6 +31,8 @@ enum progress_t { progress };
 enum constrained_faces_t { constrained_faces };
 enum align_with_boundary_t { align_with_boundary };
 enum face_directions_t { face_directions };
+enum guided_faces_t { guided_faces };
+enum guidance_weight_t { guidance_weight };
 } // namespace tc_np
 
 /*!
@@ -77,9 +79,15 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(progress)
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(constrained_faces)
 /// `bool`, default `false`: the field follows the boundary on every boundary face; read by the constructor
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(align_with_boundary)
-/// a readable property map `face_descriptor -> Vector_3`: the target direction of every constrained face;
-/// read by `solve()` and `compute_field()`
+/// a readable property map `face_descriptor -> Vector_3`: the target direction of every constrained face and
+/// the guide of every guided face; read by `solve()` and `compute_field()`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(face_directions)
+
+/// faces on which the field is drawn towards a direction given to each `solve()` (a range of
+/// `face_descriptor`, soft guidance); read by the solver's constructor
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(guided_faces)
+/// `double` mu > 0, default 1: the weight of the guidance term mu sum_g d_g^2; read by the constructor
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(guidance_weight)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
 } // namespace parameters

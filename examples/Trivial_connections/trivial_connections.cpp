@@ -7,7 +7,7 @@
 // singularities on a triangle mesh, and the n-direction field it defines, and writes both to files.
 //
 //   trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--constraints FILE]
-//                            [--align-boundary] [--n N] [--weights hodge|unit]
+//                            [--align-boundary] [--guidance FILE] [--guidance-weight MU] [--n N] [--weights hodge|unit]
 //                            [--connection OUT] [--field OUT] [--progress] [--help]
 //
 // Exit status: 0 on success, 1 on an input error (mesh, singularities, solver, output files), 2 on a usage
@@ -65,7 +65,8 @@ const char* const program = "trivial_connections";
 
 const char* const usage_text =
   "Usage: trivial_connections MESH [--singularities FILE] [--boundary-indices FILE]\n"
-  "                           [--constraints FILE] [--align-boundary] [--n N] [--weights hodge|unit]\n"
+  "                           [--constraints FILE] [--align-boundary] [--guidance FILE]\n"
+  "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
   "                           [--connection OUT] [--field OUT] [--progress] [--help]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
@@ -86,6 +87,10 @@ const char* const usage_text =
   "                        adds one free integer, chosen with the loop integers.\n"
   "  --align-boundary      the field follows the boundary on every boundary face: along its border edge\n"
   "                        (the longer one when it has two); for N = 4, tangent and normal to it.\n"
+  "  --guidance FILE       soft guidance, lines 'f x y z' as for --constraints: the solve minimises the\n"
+  "                        energy plus MU times the sum over these faces of the squared angle between the\n"
+  "                        field and the guide (modulo 2pi/N), still with exactly the given singularities.\n"
+  "  --guidance-weight MU  the weight MU > 0 of the guidance (default 1)\n"
   "  --n N                 symmetry order: 1 vector field, 2 line field, 4 cross field, ... (default 1)\n"
   "  --weights W           energy weights: hodge (|e|/|e*|, default) or unit\n"
   "  --connection OUT      connection file, one line 'i j x w' per interior edge\n"
@@ -115,6 +120,8 @@ struct Options
   std::string boundary_indices;
   std::string constraints;
   bool align_boundary = false;
+  std::string guidance;
+  double guidance_weight = 1;
   int n = 1;
   TC::Weighting weighting = TC::Weighting::hodge_star;
   std::string weights_name = "hodge";
@@ -149,8 +156,8 @@ Options parse_arguments(int argc, char** argv)
       o.help = true;
       return o;
     }
-  bool seen_singularities = false, seen_boundary = false, seen_constraints = false, seen_n = false,
-       seen_weights = false, seen_connection = false, seen_field = false;
+  bool seen_singularities = false, seen_boundary = false, seen_constraints = false, seen_guidance = false,
+       seen_guidance_weight = false, seen_n = false, seen_weights = false, seen_connection = false, seen_field = false;
   for(std::size_t i = 0; i < args.size(); ++i) {
     std::string a = args[i];
     if(a == "--progress") {
@@ -176,6 +183,8 @@ Options parse_arguments(int argc, char** argv)
       if(name == "--singularities") seen = &seen_singularities;
       else if(name == "--boundary-indices") seen = &seen_boundary;
       else if(name == "--constraints") seen = &seen_constraints;
+      else if(name == "--guidance") seen = &seen_guidance;
+      else if(name == "--guidance-weight") seen = &seen_guidance_weight;
       else if(name == "--n") seen = &seen_n;
       else if(name == "--weights") seen = &seen_weights;
       else if(name == "--connection") seen = &seen_connection;
@@ -195,6 +204,13 @@ Options parse_arguments(int argc, char** argv)
       if(name == "--singularities") o.singularities = value;
       else if(name == "--boundary-indices") o.boundary_indices = value;
       else if(name == "--constraints") o.constraints = value;
+      else if(name == "--guidance") o.guidance = value;
+      else if(name == "--guidance-weight") {
+        char* end = nullptr;
+        o.guidance_weight = std::strtod(value.c_str(), &end);
+        if(end != value.c_str() + value.size() || !(o.guidance_weight > 0) || !std::isfinite(o.guidance_weight))
+          throw Usage_error("--guidance-weight expects a positive finite number, got '" + value + "'");
+      }
       else if(name == "--connection") o.connection = value;
       else if(name == "--field") o.field = value;
       else if(name == "--n") o.n = parse_symmetry_order(value);
@@ -238,6 +254,8 @@ Options parse_arguments(int argc, char** argv)
       throw Usage_error("the output '" + *out + "' would overwrite the boundary index file");
     if(!o.constraints.empty() && same_file(*out, o.constraints))
       throw Usage_error("the output '" + *out + "' would overwrite the constraint file");
+    if(!o.guidance.empty() && same_file(*out, o.guidance))
+      throw Usage_error("the output '" + *out + "' would overwrite the guidance file");
   }
   return o;
 }
@@ -384,21 +402,37 @@ int run(const Options& o, Progress_printer& progress)
   std::vector<TC::Face_direction> constraints;
   if(!o.constraints.empty())
     constraints = TC::read_face_directions(o.constraints, order.faces.size());
-  std::vector<face_descriptor> constrained_faces;
+  std::vector<TC::Face_direction> guides;
+  if(!o.guidance.empty())
+    guides = TC::read_face_directions(o.guidance, order.faces.size());
+  std::vector<face_descriptor> constrained_faces, guided_faces;
   Mesh::Property_map<face_descriptor, Kernel::Vector_3> directions =
     mesh.add_property_map<face_descriptor, Kernel::Vector_3>("f:tc_directions", CGAL::NULL_VECTOR).first;
+  std::vector<char> in_constraints(order.faces.size(), 0);
   for(const TC::Face_direction& d : constraints) {
     constrained_faces.push_back(order.faces[d.face]);
+    in_constraints[d.face] = 1;
     directions[order.faces[d.face]] = Kernel::Vector_3(d.direction[0], d.direction[1], d.direction[2]);
   }
-  // the solver's errors about the constraints name faces: name the file too
+  for(const TC::Face_direction& d : guides) {
+    if(in_constraints[d.face])
+      throw TC::Invalid_input(TC::Error_code::invalid_constraint,
+                              "face " + std::to_string(d.face) + " is in both " + o.constraints + " and " + o.guidance,
+                              d.face);
+    guided_faces.push_back(order.faces[d.face]);
+    directions[order.faces[d.face]] = Kernel::Vector_3(d.direction[0], d.direction[1], d.direction[2]);
+  }
+  // the solver's errors about the constraints and guides name faces: name the file that has the face too
   auto naming_the_constraint_file = [&](auto&& call) {
     try {
       return call();
     } catch(const TC::Invalid_input& e) {
-      if(e.code() != TC::Error_code::invalid_constraint || o.constraints.empty())
+      if(e.code() != TC::Error_code::invalid_constraint || (o.constraints.empty() && o.guidance.empty()))
         throw;
-      throw TC::Invalid_input(e.code(), o.constraints + ": " + e.what(), e.where());
+      std::string file = o.constraints.empty() ? o.guidance : o.constraints;
+      if(!o.guidance.empty() && e.where() < in_constraints.size() && !in_constraints[e.where()])
+        file = o.guidance;
+      throw TC::Invalid_input(e.code(), file + ": " + e.what(), e.where());
     }
   };
 
@@ -407,8 +441,12 @@ int run(const Options& o, Progress_printer& progress)
     return Solver(mesh, TC::parameters::progress(
                           solver_progress,
                           TC::parameters::weighting(
-                            o.weighting, TC::parameters::constrained_faces(
-                                           constrained_faces, TC::parameters::align_with_boundary(o.align_boundary)))));
+                            o.weighting,
+                            TC::parameters::constrained_faces(
+                              constrained_faces,
+                              TC::parameters::align_with_boundary(
+                                o.align_boundary, TC::parameters::guided_faces(
+                                                    guided_faces, TC::parameters::guidance_weight(o.guidance_weight)))))));
   });
   const double t_setup = seconds_since(t);
 
@@ -461,7 +499,9 @@ int run(const Options& o, Progress_printer& progress)
     }
   };
   const TC::Solve_report report = solve();
-  solver.compute_field(x, field, TC::parameters::progress(solver_progress, TC::parameters::face_directions(directions)));
+  solver.compute_field(x, field, TC::parameters::progress(
+                                   solver_progress, TC::parameters::face_directions(
+                                                      directions, TC::parameters::symmetry_order(o.n))));
   const double t_solve = seconds_since(t);
 
   std::size_t interior_edges = 0;
@@ -476,6 +516,9 @@ int run(const Options& o, Progress_printer& progress)
                                                           : ", singularities '" + o.singularities + "'") +
                                  (o.constraints.empty() ? std::string() : ", constraints '" + o.constraints + "'") +
                                  (o.align_boundary ? ", aligned with the boundary" : "") +
+                                 (o.guidance.empty() ? std::string()
+                                                     : ", guidance '" + o.guidance + "' with weight " +
+                                                         std::to_string(o.guidance_weight)) +
                                  ", n = " + std::to_string(o.n) + ", weights " + o.weights_name + "\n";
   const auto vertex_index = get(boost::vertex_index, mesh);
   TC::write_files_atomically(
@@ -511,22 +554,37 @@ int run(const Options& o, Progress_printer& progress)
       << (o.boundary_indices.empty() ? std::string() : "; boundary indices from " + o.boundary_indices) << "; n = " << o.n
       << "; weights " << o.weights_name << "\n";
   out << "energy: " << std::setprecision(10) << report.energy;
-  if(!report.loops.empty())
-    out << " (with the loop integers rounded one by one: " << report.rounding_energy << ")";
+  if(!guides.empty())
+    out << " + guidance " << report.guidance_energy << " = " << report.energy + report.guidance_energy;
+  if(!report.loops.empty() || !report.constraints.empty())
+    out << " (with the integers rounded one by one: " << report.rounding_energy << ")";
   out << "\n";
   out << "max residual: vertices " << scientific(report.max_vertex_residual) << ", loops "
       << scientific(report.max_loop_residual);
   if(!report.constraints.empty())
     out << ", constraints " << scientific(report.max_constraint_residual);
   out << "\n";
-  if(!constraints.empty() || o.align_boundary) {
-    out << "constraints: ";
+  if(!guides.empty()) {
+    double worst = 0;
+    for(const TC::Guidance_report& g : report.guidance)
+      worst = (std::max)(worst, std::abs(g.mismatch));
+    out << "guidance: " << guides.size() << " face" << (guides.size() == 1 ? "" : "s") << " from " << o.guidance
+        << ", weight " << o.guidance_weight << "; guidance energy " << report.guidance_energy
+        << ", largest angle to a guide " << fixed(worst, 6) << " rad\n";
+  }
+  if(!constraints.empty() || o.align_boundary || !guides.empty()) {
+    std::string parts;
+    auto part = [&](const std::string& p) { parts += (parts.empty() ? "" : "; ") + p; };
     if(!constraints.empty())
-      out << constraints.size() << " face" << (constraints.size() == 1 ? "" : "s") << " from " << o.constraints;
+      part(std::to_string(constraints.size()) + (constraints.size() == 1 ? " face" : " faces") + " from " +
+           o.constraints);
     if(o.align_boundary)
-      out << (constraints.empty() ? "" : "; ") << "aligned with the boundary";
-    out << "; " << report.constraints.size() << " path" << (report.constraints.size() == 1 ? "" : "s")
-        << " between constrained faces, their integers chosen with the loops'\n";
+      part("aligned with the boundary");
+    if(!guides.empty())
+      part(std::to_string(guides.size()) + " guided");
+    out << "constraints: " << parts << "; " << report.constraints.size()
+        << (report.constraints.size() == 1 ? " path" : " paths")
+        << " between constrained or guided faces, their integers chosen with the loops'\n";
   }
   if(report.loops.empty()) {
     out << "loops: none (no generator, no boundary loop)\n";

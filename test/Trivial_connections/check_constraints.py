@@ -4,11 +4,16 @@
 #    projected onto the face is a multiple of 2 pi / n;
 #  - with --align-boundary, on every boundary face the field is along its border edge (the longer one when
 #    it has two), modulo 2 pi / n;
+#  - with --guidance, on every guided face the mismatch d_g (angle from the guide to the field, reduced to
+#    (-pi/n, pi/n]) is measured;
 #  - optimality where it must hold: the weighted divergence sum_h w_e x(h) of the connection vanishes on
-#    every face that is not constrained (on constrained faces it does not: that is where the paths end).
+#    every face that is neither constrained nor guided (on constrained faces it does not: that is where the
+#    paths end), and equals MU d_g on a guided face (the optimality condition of energy + MU sum d_g^2 with
+#    optimal integers).
 # The holonomy, the field's parallelism and everything else are checked by ../shared/tools/check_connection.py
 # (run with --no-optimality on constrained outputs).
-# Usage: check_constraints.py MESH.off --connection C --field F [--constraints FILE] [--align-boundary] [--n N]
+# Usage: check_constraints.py MESH.off --connection C --field F [--constraints FILE] [--align-boundary]
+#                             [--guidance FILE] [--guidance-weight MU] [--n N]
 import argparse, math, sys
 import numpy as np
 
@@ -42,6 +47,8 @@ def main():
     ap.add_argument('--field', required=True)
     ap.add_argument('--constraints')
     ap.add_argument('--align-boundary', action='store_true')
+    ap.add_argument('--guidance')
+    ap.add_argument('--guidance-weight', type=float, default=1.0)
     ap.add_argument('--n', type=int, default=1)
     a = ap.parse_args()
     V, F = read_off(a.mesh)
@@ -54,14 +61,26 @@ def main():
     N = np.array([np.cross(V[j] - V[i], V[k] - V[i]) for (i, j, k) in F])
     N /= np.linalg.norm(N, axis=1)[:, None]
 
-    def mismatch(f, d):
+    def signed_mismatch(f, d):  # from the guide d to the field, reduced to (-period/2, period/2]
         d = d - np.dot(d, N[f]) * N[f]
         u = U[f]
-        a_ = math.atan2(np.dot(np.cross(u, d), N[f]), np.dot(u, d))
+        a_ = math.atan2(np.dot(np.cross(d, u), N[f]), np.dot(u, d))
         r = math.fmod(a_, period)
         if r > period / 2: r -= period
         if r <= -period / 2: r += period
-        return abs(r)
+        return r
+
+    def mismatch(f, d):
+        return abs(signed_mismatch(f, d))
+
+    def read_directions(path):
+        out = []
+        with open(path) as c:
+            for line in c:
+                w = line.split('#', 1)[0].split()
+                if w:
+                    out.append((int(w[0]), np.array([float(w[1]), float(w[2]), float(w[3])])))
+        return out
 
     constrained = set()
     rep, ok = {}, True
@@ -108,8 +127,17 @@ def main():
             div[g] -= wt * x
             scale[f] += abs(wt * x)
             scale[g] += abs(wt * x)
+    expected = np.zeros(len(F))
+    if a.guidance:
+        guides = read_directions(a.guidance)
+        worst = 0.0
+        for f, d in guides:
+            expected[f] = a.guidance_weight * signed_mismatch(f, d)
+            worst = max(worst, abs(expected[f]) / a.guidance_weight)
+        rep['guides'] = len(guides)
+        rep['largest_guide_angle'] = worst
     free = [f for f in range(len(F)) if f not in constrained]
-    rep['optimality_err'] = float(np.max(np.abs(div[free])) / max(1e-300, np.max(scale))) if free else 0.0
+    rep['optimality_err'] = float(np.max(np.abs(div[free] - expected[free])) / max(1e-300, np.max(scale))) if free else 0.0
     ok &= rep['optimality_err'] < 1e-6
     print(' '.join(f"{k}={v:.3g}" if isinstance(v, float) else f"{k}={v}" for k, v in rep.items()))
     print('PASS' if ok else 'FAIL')

@@ -4,10 +4,11 @@
 # Usage: cli_check.sh --cli PROGRAM --checker check_connection.py --out DIR --mesh MESH
 #                     [--python PY] [--singularities FILE|none] [--n N] [--weights hodge|unit]
 #                     [--boundary-indices FILE]  (then every loop of the file must be reported prescribed)
-#                     [--constraints FILE] [--align-boundary]  (then check_constraints.py checks the targets and
-#                     the optimality off the constrained faces; the checker runs with --no-optimality)
+#                     [--constraints FILE] [--align-boundary] [--guidance FILE] [--guidance-weight MU]
+#                     (then check_constraints.py checks the targets, the guides and the optimality; the checker
+#                     runs with --no-optimality)
 set -euo pipefail
-cli="" checker="" python="" out="" mesh="" sing="none" n=1 weights=hodge boundary="" constraints="" align=""
+cli="" checker="" python="" out="" mesh="" sing="none" n=1 weights=hodge boundary="" constraints="" align="" guidance="" guidance_weight=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --cli) cli="$2"; shift 2 ;;
@@ -21,6 +22,8 @@ while [ $# -gt 0 ]; do
     --boundary-indices) boundary="$2"; shift 2 ;;
     --constraints) constraints="$2"; shift 2 ;;
     --align-boundary) align="--align-boundary"; shift ;;
+    --guidance) guidance="$2"; shift 2 ;;
+    --guidance-weight) guidance_weight="$2"; shift 2 ;;
     *) echo "cli_check.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -53,6 +56,7 @@ if [ -n "$boundary" ]; then boundary_args=(--boundary-indices "$boundary"); fi
 constraint_args=()
 if [ -n "$constraints" ]; then constraint_args=(--constraints "$constraints"); fi
 if [ -n "$align" ]; then constraint_args+=("$align"); fi
+if [ -n "$guidance" ]; then constraint_args+=(--guidance "$guidance" --guidance-weight "$guidance_weight"); fi
 
 echo "+ $cli $mesh ${sing_args[*]} ${boundary_args[*]} ${constraint_args[*]} --n $n --weights $weights --connection $conn --field $field"
 "$cli" "$mesh" "${sing_args[@]}" "${boundary_args[@]}" "${constraint_args[@]}" --n "$n" --weights "$weights" \

@@ -54,11 +54,16 @@ expect_constraints "$pig" '2 1e999 0 0\n' 1 "not a finite number"
 expect_constraints "$pig" '2 1 0 0\n# comment\n2 0 1 0\n' 1 "listed twice (lines 1 and 3)"
 expect_constraints "$pig" '0 1 0 0\n' 4 "constraints.txt: face 0 is on the boundary" --align-boundary
 expect_constraints "$out/missing.off" '2 1 0 0\n' 1 "missing.off"
+# --guidance: the same format; a guided face on an aligned boundary, or also constrained
+expect_with --guidance guides.txt "$pig" '0 1 0 0\n' 4 "guides.txt: face 0 is on the boundary" --align-boundary
+expect_with --guidance guides.txt "$pig" '2 0 0 0\n' 4 "guides.txt:1: face 2: the direction is the zero vector"
+printf '2 1 0 0\n' > "$out/both.txt"
+expect_with --guidance guides.txt "$pig" '2 0 1 0\n' 4 "is in both" --constraints "$out/both.txt"
 # a constraint file that cannot be read
 rm -f "$out/c.txt" "$out/f.txt"
 message=$("$cli" "$pig" --constraints "$out/no_such_file.txt" --connection "$out/c.txt" --field "$out/f.txt" 2>&1 >/dev/null)
 status=$?
-if [ "$status" != 1 ] || [[ "$message" != *"cannot read constraint file"* ]] || [ -e "$out/c.txt" ]; then
+if [ "$status" != 1 ] || [[ "$message" != *"cannot read direction file"* ]] || [ -e "$out/c.txt" ]; then
   echo "FAIL (unreadable constraint file): status $status, message: $message"; failures=$((failures + 1))
 else
   echo "ok: $message"

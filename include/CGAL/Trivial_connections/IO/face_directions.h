@@ -112,12 +112,12 @@ inline std::vector<Face_direction> read_face_directions(const std::string& path,
 {
   std::error_code ec;
   if(std::filesystem::is_directory(path, ec))
-    throw Invalid_input(Error_code::io_error, "cannot read constraint file '" + path + "': it is a directory");
+    throw Invalid_input(Error_code::io_error, "cannot read direction file '" + path + "': it is a directory");
   errno = 0;
   std::ifstream is(path);
   if(!is) {
     const int err = errno;
-    throw Invalid_input(Error_code::io_error, "cannot read constraint file '" + path + "'" +
+    throw Invalid_input(Error_code::io_error, "cannot read direction file '" + path + "'" +
                                                 (err != 0 ? std::string(": ") + std::strerror(err) : std::string()));
   }
   return read_face_directions(is, path, number_of_faces);

@@ -620,12 +620,16 @@ namespace {
 */
 template <class Mesh, class Solver>
 void check_guided(const Mesh_view<Mesh>& view, const Solver& solver, const Singularities& sing, int n,
-                  const Targets& hard, const Targets& guides, double mu, const Constrained_solution<Mesh>& s)
+                  const Targets& hard, const Targets& guides, double mu, const Constrained_solution<Mesh>& s,
+                  bool aligned = false)
 {
   const double unit_angle = two_pi / n;
   check_connection(view, solver, sing, n, s.x, s.report, /*all_cycles_constrained=*/false);
   check_field(view, s.x, s.field, n);
-  std::vector<int> role(view.nf(), 0); // 1 constrained, 2 guided
+  std::vector<int> role(view.nf(), 0); // 1 constrained (or an aligned boundary face), 2 guided
+  if(aligned)
+    for(int f = 0; f < view.nf(); ++f)
+      if(!border_directions(view, f).empty()) role[f] = 1;
   for(std::size_t i = 0; i < hard.faces.size(); ++i) {
     const int f = hard.faces[i];
     role[f] = 1;
@@ -667,8 +671,8 @@ void check_guided(const Mesh_view<Mesh>& view, const Solver& solver, const Singu
                                                 << " (role " << (worst_f >= 0 ? role[worst_f] : -1) << ")";
 }
 
-template <class Mesh>
-Constrained_solution<Mesh> solve_guided(const Mesh_view<Mesh>& view, TC::Trivial_connection_solver<Mesh>& solver,
+template <class Mesh, class Solver>
+Constrained_solution<Mesh> solve_guided(const Mesh_view<Mesh>& view, Solver& solver,
                                         const Singularities& sing, int n, const Targets& hard, const Targets& guides)
 {
   Targets all = hard;
@@ -802,6 +806,98 @@ TEST(Soft_guidance, bad_input_is_rejected)
   solver.solve(descriptors(view, Singularities()), view.halfedge_map(x), TC::parameters::face_directions(dmap));
   expect_error([&] { solver.compute_field(view.halfedge_map_const(x), view.face_map(field), TC::parameters::face_directions(dmap)); },
                TC::Error_code::invalid_argument, "symmetry_order");
+}
+
+// -----------------------------------------------------------------------------------------------------
+// Changing the constrained and guided faces of a prefactored solver
+// -----------------------------------------------------------------------------------------------------
+
+namespace {
+template <class Traits>
+void expect_set_constraints_like_fresh_solvers()
+{
+  using Solver = TC::Trivial_connection_solver<Surface_mesh, CGAL::Default, Traits>;
+  const Surface_mesh m = annulus(0.5, 1.5, 3, 12);
+  const Mesh_view<Surface_mesh> view(m);
+  const Targets all = spread_targets(view, 6, true);
+  auto pick = [&](std::initializer_list<int> which) {
+    Targets t;
+    for(int i : which) { t.faces.push_back(all.faces[std::size_t(i)]); t.directions.push_back(all.directions[std::size_t(i)]); }
+    return t;
+  };
+  // (constrained, guided) sets in turn: more faces, fewer, a face moving from one set to the other, none
+  const std::vector<std::pair<Targets, Targets>> sets = {
+    {pick({0, 2}), pick({4})}, {pick({0, 1, 2, 3}), pick({4, 5})}, {pick({2}), pick({0, 4})}, {Targets(), Targets()},
+    {pick({0, 2}), pick({4})}};
+  for(bool align : {false, true}) {
+    Solver solver(m, TC::parameters::align_with_boundary(align, TC::parameters::guidance_weight(
+                                                                  2., TC::parameters::constrained_faces(face_descriptors(view, sets[0].first.faces),
+                                                                       TC::parameters::guided_faces(face_descriptors(view, sets[0].second.faces))))));
+    for(std::size_t k = 0; k < sets.size(); ++k) {
+      SCOPED_TRACE("set " + std::to_string(k) + (align ? ", aligned" : ""));
+      const Targets& hard = sets[k].first;
+      const Targets& guides = sets[k].second;
+      if(k > 0)
+        solver.set_constraints(TC::parameters::constrained_faces(face_descriptors(view, hard.faces),
+                                                                 TC::parameters::guided_faces(face_descriptors(view, guides.faces))));
+      Solver fresh(m, TC::parameters::align_with_boundary(align, TC::parameters::guidance_weight(
+                                                                   2., TC::parameters::constrained_faces(face_descriptors(view, hard.faces),
+                                                                        TC::parameters::guided_faces(face_descriptors(view, guides.faces))))));
+      for(int n : {1, 4}) {
+        const Singularities none;
+        const auto s = solve_guided(view, solver, none, n, hard, guides);
+        const auto f = solve_guided(view, fresh, none, n, hard, guides);
+        check_guided(view, solver, none, n, hard, guides, 2., s, align);
+        if(align) {
+          // every boundary face along its border edge
+          double worst = 0;
+          for(int g = 0; g < view.nf(); ++g) {
+            const std::vector<V3> border = border_directions(view, g);
+            if(!border.empty())
+              worst = std::max(worst, std::abs(wrap(signed_angle(field_at(view, s.field, g), border[0], view.N[g]), two_pi / n)));
+          }
+          EXPECT_LT(worst, 1e-9);
+        }
+        EXPECT_NEAR(s.report.energy + s.report.guidance_energy, f.report.energy + f.report.guidance_energy,
+                    1e-9 * std::max(1., f.report.energy));
+        ASSERT_EQ(s.report.constraints.size(), f.report.constraints.size());
+        for(std::size_t j = 0; j < f.report.constraints.size(); ++j)
+          EXPECT_EQ(s.report.constraints[j].period, f.report.constraints[j].period);
+      }
+    }
+  }
+}
+} // namespace
+
+TEST(Set_constraints, a_prefactored_solver_changes_its_faces_like_fresh_solvers)
+{
+  expect_set_constraints_like_fresh_solvers<TC::Default_solver_traits>();
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  expect_set_constraints_like_fresh_solvers<TC::Cholmod_solver_traits>();
+#endif
+  expect_set_constraints_like_fresh_solvers<CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>>();
+}
+
+TEST(Set_constraints, bad_faces_change_nothing)
+{
+  const Surface_mesh m = torus(2, 0.7, 12, 8);
+  const Mesh_view<Surface_mesh> view(m);
+  const Targets t = spread_targets(view, 3);
+  TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+  auto faces = face_descriptors(view, t.faces);
+  faces.push_back(faces[0]);
+  expect_error([&] { solver.set_constraints(TC::parameters::constrained_faces(faces)); }, TC::Error_code::invalid_constraint,
+               "constrained twice");
+  // a failed check changes nothing: the solver still has its three faces
+  std::vector<double> x;
+  expect_error([&] { solver.solve(descriptors(view, Singularities()), view.halfedge_map(x)); },
+               TC::Error_code::invalid_constraint, "face_directions");
+  solver.set_constraints();
+  const TC::Solve_report r = solver.solve(descriptors(view, Singularities()), view.halfedge_map(x));
+  EXPECT_TRUE(r.constraints.empty());
+  TC::Trivial_connection_solver<Surface_mesh> plain(m);
+  std::vector<double> y;
+  EXPECT_NEAR(r.energy, plain.solve(descriptors(view, Singularities()), view.halfedge_map(y)).energy, 1e-12);
 }
 
 // -----------------------------------------------------------------------------------------------------

@@ -180,25 +180,12 @@ public:
       m_topology()
   {
     std::vector<int> user_faces, guided;
-    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::constrained_faces_t>::value)
-      user_faces = face_indices(CGAL::parameters::get_parameter(np, tc_np::constrained_faces), "constrained");
-    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::guided_faces_t>::value)
-      guided = face_indices(CGAL::parameters::get_parameter(np, tc_np::guided_faces), "guided");
-    {
-      std::vector<char> constrained(std::size_t(m_mesh.nf), 0);
-      for(int f : user_faces)
-        constrained[f] = 1;
-      for(int f : guided)
-        if(constrained[f])
-          throw Invalid_input(Error_code::invalid_constraint,
-                              "face " + std::to_string(f) + " is both constrained and guided", std::size_t(f));
-    }
+    read_face_sets(np, user_faces, guided);
     m_guidance_weight = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::guidance_weight), 1.);
     if(!(m_guidance_weight > 0) || !std::isfinite(m_guidance_weight))
       throw Invalid_input(Error_code::invalid_argument, "the guidance weight must be positive and finite (got " +
                                                           std::to_string(m_guidance_weight) + ")");
-    const bool align = CGAL::parameters::choose_parameter(
-      CGAL::parameters::get_parameter(np, tc_np::align_with_boundary), false);
+    m_align = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::align_with_boundary), false);
     // The fill-reducing order of the node rows needs only the connectivity: it runs on a second thread
     // while the rest of the set-up (points, degenerate faces), the geometry and the trees are computed, and
     // the corner angles (not needed by the system) run beside the factorization. The other thread never
@@ -235,7 +222,7 @@ public:
     notify(Phase::trees, 0);
     m_topology.build_trees(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner);
     build_loops();
-    build_constraint_paths(user_faces, guided, align);
+    build_constraint_paths(user_faces, guided, m_align);
     notify(Phase::trees, 1);
     notify(Phase::assembly, 0);
     build_constraints();
@@ -330,6 +317,27 @@ public:
   Weighting weighting() const { return m_weighting; }
   const Geom_traits& geom_traits() const { return m_traits; }
   /// @}
+
+  /*!
+  Replaces the constrained and the guided faces by those of the named parameters `constrained_faces` and
+  `guided_faces` (as for the constructor; an absent one means none). The boundary alignment and the guidance
+  weight stay those given to the constructor. The mesh set-up, the geometry, the trees and the fill-reducing
+  order are kept; the constraint system is assembled again and factored again.
+  \throws Invalid_input as the constructor for these parameters: the solver is then unchanged; and
+  `solver_failure`, after which the solver is left without constrained or guided faces (but aligned if it was)
+  */
+  template <class NamedParameters = parameters::Default_named_parameters>
+  void set_constraints(const NamedParameters& np = parameters::default_values())
+  {
+    std::vector<int> user_faces, guided;
+    read_face_sets(np, user_faces, guided);
+    try {
+      rebuild_constraints(user_faces, guided);
+    } catch(...) {
+      rebuild_constraints({}, {});
+      throw;
+    }
+  }
 
   /*!
   Computes the trivial connection closest to Levi-Civita with the given singularities and writes it.
@@ -642,6 +650,23 @@ private:
     }
   }
 
+  // `constrained_faces` and `guided_faces` as face indices, checked
+  template <class NamedParameters>
+  void read_face_sets(const NamedParameters& np, std::vector<int>& user_faces, std::vector<int>& guided) const
+  {
+    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::constrained_faces_t>::value)
+      user_faces = face_indices(CGAL::parameters::get_parameter(np, tc_np::constrained_faces), "constrained");
+    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::guided_faces_t>::value)
+      guided = face_indices(CGAL::parameters::get_parameter(np, tc_np::guided_faces), "guided");
+    std::vector<char> constrained(std::size_t(m_mesh.nf), 0);
+    for(int f : user_faces)
+      constrained[f] = 1;
+    for(int f : guided)
+      if(constrained[f])
+        throw Invalid_input(Error_code::invalid_constraint,
+                            "face " + std::to_string(f) + " is both constrained and guided", std::size_t(f));
+  }
+
   // A range of faces given to the constructor, as face indices (checked: faces of the mesh, once each)
   template <class FaceRange>
   std::vector<int> face_indices(const FaceRange& range, const std::string& what) const
@@ -819,6 +844,37 @@ private:
         if(m_constrained[end].soft)
           m_slack_links[std::size_t(next[std::size_t(end - m_first_guided)]++)] =
             end == m_paths[j].from ? int(j) : ~int(j);
+  }
+
+  // The constraint rows again for new constrained and guided faces, on the same mesh data and node order.
+  void rebuild_constraints(const std::vector<int>& user_faces, const std::vector<int>& guided)
+  {
+    // the nodes in their current order (positions of their rows), for the same fill-reducing order
+    const internal::Mesh_topology& t = m_topology;
+    std::vector<int> order(std::size_t(t.number_of_nodes));
+    for(int node = 0; node < t.number_of_nodes; ++node)
+      order[std::size_t(node)] = node;
+    if(m_rows > 0)
+      std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        const int ra = m_row_of_node[a], rb = m_row_of_node[b];
+        return (ra < 0 ? -1 : m_permutation.indices()[ra]) < (rb < 0 ? -1 : m_permutation.indices()[rb]);
+      });
+    m_constrained.clear();
+    m_paths.clear();
+    m_slack_start.clear();
+    m_slack_links.clear();
+    m_free_rows.clear();
+    m_border_corners.clear();
+    build_constraint_paths(user_faces, guided, m_align);
+    build_constraints();
+    std::vector<int> node_start, node_rows;
+    m_topology.node_adjacency(m_mesh, node_start, node_rows);
+    Sparse M = system_in_row_order(node_start, node_rows);
+    std::vector<int>().swap(node_start);
+    std::vector<int>().swap(node_rows);
+    assemble_system(M, order);
+    factor();
+    compute_loop_metric();
   }
 
   // needs the corner angles
@@ -1802,6 +1858,7 @@ private:
   std::vector<Constraint_path> m_paths;
   std::vector<int> m_seed_constraint; // per component: the constrained face the field starts from, or -1
   bool m_has_user_constraints = false; // user targets or guides (read from face_directions)
+  bool m_align = false;                // align_with_boundary
   int m_first_guided = 0;              // the guided faces are the last of m_constrained
   double m_guidance_weight = 1;        // mu
   // per guided face (CSR): the links at it, j when it is their `from` end (+1), ~j when their `to` end (-1)

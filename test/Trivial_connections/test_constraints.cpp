@@ -813,11 +813,29 @@ TEST(Soft_guidance, bad_input_is_rejected)
 // -----------------------------------------------------------------------------------------------------
 
 namespace {
+// a torus with one face removed: genus 1, one boundary loop
+Soup holed_soup()
+{
+  Soup s = warped(torus_soup(2, 0.7, 12, 8));
+  s.faces.erase(s.faces.begin() + 17);
+  return s;
+}
+
 template <class Traits>
-void expect_set_constraints_like_fresh_solvers()
+void expect_set_constraints_like_fresh_solvers(const Surface_mesh& m, bool factor_access);
+
+template <class Traits>
+void expect_set_constraints_like_fresh_solvers(bool factor_access)
+{
+  // warped: no tie between integers; a torus with a hole: generators and boundary loops
+  for(const Soup& soup : {warped(annulus_soup(0.5, 1.5, 3, 12)), holed_soup()})
+    expect_set_constraints_like_fresh_solvers<Traits>(to_surface_mesh(soup), factor_access);
+}
+
+template <class Traits>
+void expect_set_constraints_like_fresh_solvers(const Surface_mesh& m, bool factor_access)
 {
   using Solver = TC::Trivial_connection_solver<Surface_mesh, CGAL::Default, Traits>;
-  const Surface_mesh m = annulus(0.5, 1.5, 3, 12);
   const Mesh_view<Surface_mesh> view(m);
   const Targets all = spread_targets(view, 6, true);
   auto pick = [&](std::initializer_list<int> which) {
@@ -837,9 +855,17 @@ void expect_set_constraints_like_fresh_solvers()
       SCOPED_TRACE("set " + std::to_string(k) + (align ? ", aligned" : ""));
       const Targets& hard = sets[k].first;
       const Targets& guides = sets[k].second;
-      if(k > 0)
-        solver.set_constraints(TC::parameters::constrained_faces(face_descriptors(view, hard.faces),
-                                                                 TC::parameters::guided_faces(face_descriptors(view, guides.faces))));
+      if(k > 0) {
+        const TC::Constraint_update u = solver.set_constraints(TC::parameters::constrained_faces(
+          face_descriptors(view, hard.faces), TC::parameters::guided_faces(face_descriptors(view, guides.faces))));
+        // only a backend that hides its factor refactors; the others pay one forward substitution per new link
+        EXPECT_EQ(u.refactored, !factor_access);
+        if(factor_access) {
+          EXPECT_LE(u.new_forward_substitutions, u.links_outside_the_factor);
+          EXPECT_LE(u.links_outside_the_factor, u.links);
+          if(k == 4) EXPECT_EQ(u.new_forward_substitutions, 0u); // the constructor's faces again: nothing new
+        }
+      }
       Solver fresh(m, TC::parameters::align_with_boundary(align, TC::parameters::guidance_weight(
                                                                    2., TC::parameters::constrained_faces(face_descriptors(view, hard.faces),
                                                                         TC::parameters::guided_faces(face_descriptors(view, guides.faces))))));
@@ -861,8 +887,9 @@ void expect_set_constraints_like_fresh_solvers()
         EXPECT_NEAR(s.report.energy + s.report.guidance_energy, f.report.energy + f.report.guidance_energy,
                     1e-9 * std::max(1., f.report.energy));
         ASSERT_EQ(s.report.constraints.size(), f.report.constraints.size());
-        for(std::size_t j = 0; j < f.report.constraints.size(); ++j)
-          EXPECT_EQ(s.report.constraints[j].period, f.report.constraints[j].period);
+        if(s.report.integers_proven_optimal && f.report.integers_proven_optimal)
+          for(std::size_t j = 0; j < f.report.constraints.size(); ++j)
+            EXPECT_EQ(s.report.constraints[j].period, f.report.constraints[j].period);
       }
     }
   }
@@ -871,11 +898,12 @@ void expect_set_constraints_like_fresh_solvers()
 
 TEST(Set_constraints, a_prefactored_solver_changes_its_faces_like_fresh_solvers)
 {
-  expect_set_constraints_like_fresh_solvers<TC::Default_solver_traits>();
+  expect_set_constraints_like_fresh_solvers<TC::Default_solver_traits>(true);
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-  expect_set_constraints_like_fresh_solvers<TC::Cholmod_solver_traits>();
+  expect_set_constraints_like_fresh_solvers<TC::Cholmod_solver_traits>(true);
 #endif
-  expect_set_constraints_like_fresh_solvers<CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>>();
+  // Eigen's own AMD inside the backend: the solver cannot read the factor
+  expect_set_constraints_like_fresh_solvers<CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>>(false);
 }
 
 TEST(Set_constraints, bad_faces_change_nothing)

@@ -73,6 +73,18 @@ struct Guidance_report
 
 /*!
 \ingroup PkgTrivialConnectionsRef
+What `Trivial_connection_solver::set_constraints()` did.
+*/
+struct Constraint_update
+{
+  bool refactored = false;                    ///< the constraint system was assembled and factored again
+  std::size_t links = 0;                      ///< links between constrained or guided faces now
+  std::size_t links_outside_the_factor = 0;   ///< of which solved through the dense block (not refactored)
+  std::size_t new_forward_substitutions = 0;  ///< made by this call (one per new link; links met before are kept)
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
 Topology of one connected component (faces connected through edges).
 */
 struct Component_report

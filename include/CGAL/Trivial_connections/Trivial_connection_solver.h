@@ -34,11 +34,14 @@
 #include <cmath>
 #include <cstdint>
 #include <future>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -253,6 +256,7 @@ public:
     angles.get();
     compute_loop_holonomies();
     in_phase(Phase::loop_metric, [&] { compute_loop_metric(); return 0; });
+    keep_factored_links();
     m_progress = nullptr; // the callback may not outlive the constructor call
   }
 
@@ -322,21 +326,32 @@ public:
   Replaces the constrained and the guided faces by those of the named parameters `constrained_faces` and
   `guided_faces` (as for the constructor; an absent one means none). The boundary alignment and the guidance
   weight stay those given to the constructor. The mesh set-up, the geometry, the trees and the fill-reducing
-  order are kept; the constraint system is assembled again and factored again.
+  order are kept. With the default backend and with CHOLMOD the factorization is kept too: the links that were
+  factored by the constructor (or by the last full rebuild) and are still there keep their rows, the others
+  are dropped from the dense block of the integers, and each new link costs one forward substitution through
+  the factor (see the user manual). With other backends the system is assembled and factored again.
   \throws Invalid_input as the constructor for these parameters: the solver is then unchanged; and
   `solver_failure`, after which the solver is left without constrained or guided faces (but aligned if it was)
   */
   template <class NamedParameters = parameters::Default_named_parameters>
-  void set_constraints(const NamedParameters& np = parameters::default_values())
+  Constraint_update set_constraints(const NamedParameters& np = parameters::default_values())
   {
     std::vector<int> user_faces, guided;
     read_face_sets(np, user_faces, guided);
+    Constraint_update update;
     try {
-      rebuild_constraints(user_faces, guided);
+      if(m_loop_rows_in_factor) {
+        update = border_constraints(user_faces, guided);
+      } else {
+        rebuild_constraints(user_faces, guided);
+        update.refactored = true;
+        update.links = m_paths.size();
+      }
     } catch(...) {
       rebuild_constraints({}, {});
       throw;
     }
+    return update;
   }
 
   /*!
@@ -402,7 +417,23 @@ public:
     for(const std::vector<int>& free : m_free_loops)
       for(int l : free)
         choose_periods = choose_periods || !prescribed[l];
-    if(choose_periods && m_loop_rows_in_factor) {
+    if(choose_periods && m_bordered_mode) {
+      Bordered_forward forward = bordered_forward(b);
+      notify(progress, Phase::loop_integers, 0);
+      const double loop_energy = choose_loop_periods(forward.y, unit, prescribed, holonomy, periods, report);
+      notify(progress, Phase::loop_integers, 1);
+      std::vector<Eigen::VectorXd> blocks(m_components.size());
+      for(std::size_t c = 0; c < m_components.size(); ++c) {
+        Eigen::VectorXd t = forward.y[c];
+        for(Eigen::Index a = 0; a < t.size(); ++a)
+          if(!prescribed[m_free_loops[c][a]])
+            t[a] += unit * double(periods[m_free_loops[c][a]]);
+        blocks[c] = t.size() > 0 ? Eigen::VectorXd(m_loop_metric[c].system.solve(t)) : t;
+      }
+      rounding_energy = forward.node_part + loop_energy;
+      lambda = bordered_backward(forward, blocks);
+      add_loop_periods(periods, prescribed, unit, b);
+    } else if(choose_periods && m_loop_rows_in_factor) {
       // One forward and one backward substitution in all, the free loop rows F last. The forward
       // substitution through the node columns N leaves on the rows F y = b_F - M_FN M_NN^-1 b_N, the
       // right-hand side of their Schur complement S = L_FF D_F L_FF^T (the trailing block of the factor):
@@ -875,6 +906,423 @@ private:
     assemble_system(M, order);
     factor();
     compute_loop_metric();
+    keep_factored_links();
+  }
+
+  // ---- Constraint links outside the factorization (set_constraints() with a backend that exposes its factor)
+  //
+  // The factor is that of the constructor: node rows N, then the free rows F (loops and the links made then).
+  // After set_constraints(), a link that is still there keeps its row in F, a link that is gone is dropped
+  // from the dense block (its multiplier is 0: the Schur complement of the remaining rows is the principal
+  // submatrix), and a new link e is a "bordered" row outside the factor: with its column K_e of the full
+  // system, z_e = L_NN^-1 K_e,N (a forward substitution through the node columns, sparse) gives its Schur
+  // complement entries S_Fe and S_ee' = M_ee' - z_e^T D_N^-1 z_e'. The integers then live on a dense block per
+  // component over its free rows and its bordered rows, factored by a dense Cholesky.
+
+  struct Link_key
+  {
+    int from_face, to_face;
+    bool soft_from, soft_to;
+    bool operator<(const Link_key& o) const
+    {
+      return std::tie(from_face, to_face, soft_from, soft_to) < std::tie(o.from_face, o.to_face, o.soft_from, o.soft_to);
+    }
+  };
+  struct Factored_link
+  {
+    Link_key key;
+    int row;
+    std::vector<int> codes; // crossings, as in m_loop_edges
+  };
+  struct Bordered_row
+  {
+    Link_key key;
+    int component = 0;
+    std::vector<int> codes;
+    std::vector<int> z_index;    // z_e = L_NN^-1 K_e,N: positions (< first) ...
+    std::vector<double> z_value; // ... and values
+    Eigen::VectorXd schur_free;  // S_Fe, over the positions of F
+  };
+
+  Link_key key_of(std::size_t j) const // of link j of m_paths
+  {
+    const int from = m_paths[j].from, to = m_paths[j].to;
+    return {m_constrained[from].face, m_constrained[to].face, m_constrained[from].soft, m_constrained[to].soft};
+  }
+
+  // after a factorization: the links in the factor, and the metric of its free rows
+  void keep_factored_links()
+  {
+    m_factored_links.clear();
+    m_bordered.clear();
+    m_bordered_mode = false;
+    m_factor_metric = m_loop_metric;
+    const std::size_t nl = m_topology.loops.size();
+    for(std::size_t j = 0; j < m_paths.size(); ++j) {
+      const std::size_t l = nl + j;
+      m_factored_links.push_back({key_of(j), m_row_of_loop[l],
+                                  std::vector<int>(m_loop_edges.begin() + m_loop_edge_start[l],
+                                                   m_loop_edges.begin() + m_loop_edge_start[l + 1])});
+    }
+  }
+
+  Eigen::Index system_size() const { return m_rows + Eigen::Index(m_bordered.size()); }
+
+  Constraint_update border_constraints(const std::vector<int>& user_faces, const std::vector<int>& guided)
+  {
+    Constraint_update update;
+    using Substitutions = internal::Factor_substitutions<Solver_traits>;
+    const internal::Mesh_topology& t = m_topology;
+    const std::size_t nl = t.loops.size();
+    const Eigen::Index k = Eigen::Index(m_free_rows.size()), first = m_rows - k;
+    m_constrained.clear();
+    m_paths.clear();
+    m_slack_start.clear();
+    m_slack_links.clear();
+    build_constraint_paths(user_faces, guided, m_align);
+
+    // the row of every new link: in the factor, or bordered (computed before, or now)
+    std::map<Link_key, int> factored;
+    for(const Factored_link& link : m_factored_links)
+      factored[link.key] = link.row;
+    std::map<Link_key, std::size_t> previous;
+    for(std::size_t e = 0; e < m_bordered.size(); ++e)
+      previous[m_bordered[e].key] = e;
+    std::vector<Bordered_row> bordered;
+    std::vector<char> fresh;
+    m_row_of_loop.resize(nl + m_paths.size());
+    for(std::size_t j = 0; j < m_paths.size(); ++j) {
+      const Link_key key = key_of(j);
+      const auto f = factored.find(key);
+      if(f != factored.end()) {
+        m_row_of_loop[nl + j] = f->second;
+        continue;
+      }
+      m_row_of_loop[nl + j] = int(m_rows) + int(bordered.size());
+      const auto p = previous.find(key);
+      if(p != previous.end()) {
+        bordered.push_back(std::move(m_bordered[p->second]));
+        fresh.push_back(0);
+      } else {
+        Bordered_row row;
+        row.key = key;
+        row.component = m_paths[j].component;
+        for(int i : m_paths[j].crossings) {
+          const int e = m_geometry.edge_of_corner[i];
+          row.codes.push_back(m_geometry.edge_corner[e] == i ? e : ~e);
+        }
+        bordered.push_back(std::move(row));
+        fresh.push_back(1);
+      }
+    }
+    m_bordered = std::move(bordered);
+    // the slots: loops as before, then the links; the free slots per component
+    m_free_loops.assign(m_components.size(), {});
+    for(std::size_t l = 0; l < m_row_of_loop.size(); ++l)
+      if(m_row_of_loop[l] >= 0)
+        m_free_loops[l < nl ? std::size_t(t.loops[l].component) : std::size_t(m_paths[l - nl].component)].push_back(int(l));
+    m_loop_edge_start.resize(nl + 1);
+    m_loop_edges.resize(std::size_t(m_loop_edge_start[nl]));
+    for(auto& path : m_paths) {
+      for(int i : path.crossings) {
+        const int e = m_geometry.edge_of_corner[i];
+        m_loop_edges.push_back(m_geometry.edge_corner[e] == i ? e : ~e);
+      }
+      m_loop_edge_start.push_back(int(m_loop_edges.size()));
+      path.length = path.crossings.size();
+      std::vector<int>().swap(path.crossings);
+    }
+
+    // K_e of the new bordered rows on the factor's rows: its nodes, the factor's crossing rows (generators and
+    // links) through shared edges, and the slacks it shares with the factor's links
+    std::unordered_map<int, std::vector<std::pair<int, double>>> crossers; // edge -> (factor row, sign)
+    for(std::size_t e = 0; e < m_bordered.size(); ++e)
+      if(fresh[e])
+        for(int code : m_bordered[e].codes)
+          crossers.emplace(edge_of_code(code), std::vector<std::pair<int, double>>());
+    auto note_crossings = [&](int row, const int* begin, const int* end) {
+      for(const int* c = begin; c != end; ++c) {
+        const auto it = crossers.find(edge_of_code(*c));
+        if(it != crossers.end())
+          it->second.push_back({row, sign_of_code(*c)});
+      }
+    };
+    for(std::size_t l = 0; l < nl; ++l)
+      if(t.loops[l].kind == Loop_kind::generator)
+        note_crossings(m_row_of_loop[l], m_loop_edges.data() + m_loop_edge_start[l],
+                       m_loop_edges.data() + m_loop_edge_start[l + 1]);
+    for(const Factored_link& link : m_factored_links)
+      note_crossings(link.row, link.codes.data(), link.codes.data() + link.codes.size());
+    const std::vector<Eigen::MatrixXd> lower = trailing_lower_factors();
+    for(std::size_t e = 0; e < m_bordered.size(); ++e) {
+      if(!fresh[e])
+        continue;
+      Bordered_row& row = m_bordered[e];
+      Eigen::VectorXd column = Eigen::VectorXd::Zero(m_rows);
+      for(int code : row.codes) {
+        const int edge = edge_of_code(code);
+        const double v = sign_of_code(code) / m_geometry.weight[edge];
+        const std::array<int, 2> ends = m_edge_nodes[edge];
+        if(ends[0] != ends[1]) {
+          if(m_row_of_node[ends[1]] >= 0) column[m_row_of_node[ends[1]]] += v;
+          if(m_row_of_node[ends[0]] >= 0) column[m_row_of_node[ends[0]]] -= v;
+        }
+        for(const auto& c : crossers[edge])
+          column[c.first] += v * c.second;
+      }
+      for(const Factored_link& link : m_factored_links)
+        column[link.row] += slack_coupling(row.key, link.key);
+      Eigen::VectorXd z = m_permutation * column;
+      Eigen::VectorXd trailing;
+      if constexpr(Substitutions::leading_columns) {
+        Substitutions::forward(m_solver, z, first);
+        trailing = z.tail(k);
+      } else {
+        Substitutions::forward(m_solver, z);
+        trailing = trailing_times_lower(lower, z.tail(k), false);
+      }
+      row.z_index.clear();
+      row.z_value.clear();
+      for(Eigen::Index i = 0; i < first; ++i)
+        if(z[i] != 0) {
+          row.z_index.push_back(int(i));
+          row.z_value.push_back(z[i]);
+        }
+      row.schur_free = trailing;
+    }
+    bordered_metric();
+    m_bordered_mode = true;
+    update.links = m_paths.size();
+    update.links_outside_the_factor = m_bordered.size();
+    for(char f : fresh)
+      update.new_forward_substitutions += std::size_t(f);
+    return update;
+  }
+
+  // C C^T / mu between two links: the guided faces they share, +1 at the face a link leaves, -1 where it arrives
+  double slack_coupling(const Link_key& a, const Link_key& b) const
+  {
+    double sum = 0;
+    for(int i = 0; i < 2; ++i)
+      for(int j = 0; j < 2; ++j) {
+        const int fa = i == 0 ? a.from_face : a.to_face, fb = j == 0 ? b.from_face : b.to_face;
+        const bool sa = i == 0 ? a.soft_from : a.soft_to, sb = j == 0 ? b.soft_from : b.soft_to;
+        if(fa == fb && sa && sb)
+          sum += (i == 0 ? 1. : -1.) * (j == 0 ? 1. : -1.);
+      }
+    return sum / m_guidance_weight;
+  }
+
+  // per component of the factor's metric: its L_FF (lower, unit diagonal for LDL^T)
+  std::vector<Eigen::MatrixXd> trailing_lower_factors() const
+  {
+    std::vector<Eigen::MatrixXd> lower;
+    for(const Loop_metric& metric : m_factor_metric)
+      lower.push_back(metric.schur_factor);
+    return lower;
+  }
+
+  // L_FF v (or L_FF^T v) over the positions of F, component by component
+  Eigen::VectorXd trailing_times_lower(const std::vector<Eigen::MatrixXd>& lower, const Eigen::VectorXd& v,
+                                       bool transposed) const
+  {
+    Eigen::VectorXd out = Eigen::VectorXd::Zero(v.size());
+    for(std::size_t c = 0; c < m_factor_metric.size(); ++c) {
+      const std::vector<Eigen::Index>& block = m_factor_metric[c].block;
+      if(block.empty())
+        continue;
+      Eigen::VectorXd t(Eigen::Index(block.size()));
+      for(Eigen::Index a = 0; a < t.size(); ++a)
+        t[a] = v[block[a]];
+      const auto L = lower[c].template triangularView<Eigen::Lower>();
+      t = transposed ? Eigen::VectorXd(L.transpose() * t) : Eigen::VectorXd(L * t);
+      for(Eigen::Index a = 0; a < t.size(); ++a)
+        out[block[a]] = t[a];
+    }
+    return out;
+  }
+
+  // The dense block of the integers per component over its free rows (loops, links in the factor) and its
+  // bordered rows, in the order of m_free_loops, and its Cholesky factorization
+  void bordered_metric()
+  {
+    using Substitutions = internal::Factor_substitutions<Solver_traits>;
+    const std::size_t nl = m_topology.loops.size();
+    const Eigen::Index k = Eigen::Index(m_free_rows.size()), first = m_rows - k;
+    // S over the positions of F, per component of the factor: L D L^T
+    std::vector<Eigen::Index> component_at(std::size_t(k), 0), index_at(std::size_t(k), 0);
+    std::vector<Eigen::MatrixXd> S(m_factor_metric.size());
+    for(std::size_t c = 0; c < m_factor_metric.size(); ++c) {
+      const Loop_metric& metric = m_factor_metric[c];
+      for(std::size_t a = 0; a < metric.block.size(); ++a) {
+        component_at[std::size_t(metric.block[a])] = Eigen::Index(c);
+        index_at[std::size_t(metric.block[a])] = Eigen::Index(a);
+      }
+      if(!metric.block.empty())
+        S[c] = metric.schur_factor * metric.schur_diagonal.asDiagonal() * metric.schur_factor.transpose();
+    }
+    Eigen::VectorXd d_inverse = Eigen::VectorXd::Ones(m_rows); // D^-1
+    if(m_rows > 0)
+      Substitutions::scale(m_solver, d_inverse);
+    // shared edges between bordered rows
+    std::unordered_map<int, std::vector<std::pair<int, double>>> on_edge;
+    for(std::size_t e = 0; e < m_bordered.size(); ++e)
+      for(int code : m_bordered[e].codes)
+        on_edge[edge_of_code(code)].push_back({int(e), sign_of_code(code)});
+    const Eigen::Index ne = Eigen::Index(m_bordered.size());
+    Eigen::MatrixXd M_EE = Eigen::MatrixXd::Zero(ne, ne);
+    for(const auto& edge : on_edge)
+      for(const auto& a : edge.second)
+        for(const auto& b : edge.second)
+          M_EE(a.first, b.first) += a.second * b.second / m_geometry.weight[edge.first];
+    for(Eigen::Index a = 0; a < ne; ++a)
+      for(Eigen::Index b = 0; b < ne; ++b)
+        M_EE(a, b) += slack_coupling(m_bordered[a].key, m_bordered[b].key);
+    // z_e^T D^-1 z_e' through a dense scatter of z_e'
+    Eigen::VectorXd scattered = Eigen::VectorXd::Zero(first);
+    for(Eigen::Index b = 0; b < ne; ++b) {
+      const Bordered_row& rb = m_bordered[b];
+      for(std::size_t q = 0; q < rb.z_index.size(); ++q)
+        scattered[rb.z_index[q]] = rb.z_value[q] * d_inverse[rb.z_index[q]];
+      for(Eigen::Index a = 0; a < ne; ++a) {
+        if(m_bordered[a].component != rb.component)
+          continue;
+        double dot = 0;
+        const Bordered_row& ra = m_bordered[a];
+        for(std::size_t q = 0; q < ra.z_index.size(); ++q)
+          dot += ra.z_value[q] * scattered[ra.z_index[q]];
+        M_EE(a, b) -= dot;
+      }
+      for(int i : rb.z_index)
+        scattered[i] = 0;
+    }
+    m_loop_metric.assign(m_components.size(), Loop_metric());
+    for(std::size_t c = 0; c < m_components.size(); ++c) {
+      const std::vector<int>& free = m_free_loops[c];
+      const Eigen::Index kc = Eigen::Index(free.size());
+      if(kc == 0)
+        continue;
+      Loop_metric& metric = m_loop_metric[c];
+      metric.place.resize(free.size());
+      for(Eigen::Index a = 0; a < kc; ++a) {
+        const int row = m_row_of_loop[free[a]];
+        metric.place[a] = row < m_rows ? m_permutation.indices()[row] - first : -1 - (row - m_rows);
+      }
+      Eigen::MatrixXd system(kc, kc);
+      for(Eigen::Index a = 0; a < kc; ++a)
+        for(Eigen::Index b = 0; b < kc; ++b) {
+          const Eigen::Index pa = metric.place[a], pb = metric.place[b];
+          if(pa >= 0 && pb >= 0) {
+            CGAL_assertion(component_at[pa] == component_at[pb]);
+            system(a, b) = S[component_at[pa]](index_at[pa], index_at[pb]);
+          } else if(pa >= 0) {
+            system(a, b) = m_bordered[-1 - pb].schur_free[pa];
+          } else if(pb >= 0) {
+            system(a, b) = m_bordered[-1 - pa].schur_free[pb];
+          } else {
+            system(a, b) = M_EE(-1 - pa, -1 - pb);
+          }
+        }
+      system = (system + system.transpose()) / 2;
+      metric.system.compute(system);
+      if(metric.system.info() != Eigen::Success || !system.allFinite())
+        throw Invalid_input(Error_code::solver_failure, "the metric of the integers is not positive definite");
+      metric.inverse = metric.system.solve(Eigen::MatrixXd::Identity(kc, kc));
+      metric.inverse = (metric.inverse + metric.inverse.transpose()) / 2;
+      Eigen::LLT<Eigen::MatrixXd> llt(metric.inverse);
+      if(llt.info() != Eigen::Success)
+        throw Invalid_input(Error_code::solver_failure, "the metric of the integers is not positive definite");
+      metric.inverse_factor = llt.matrixU();
+    }
+    (void)nl;
+  }
+
+  // With bordered rows: the forward part of a solve of the full system for b (rows, then bordered rows): z after
+  // the forward substitution, u = D^-1 z, per component the right-hand side y of its dense block (in the order
+  // of m_free_loops), and b_N^T M_NN^-1 b_N
+  struct Bordered_forward
+  {
+    Eigen::VectorXd z, u;
+    std::vector<Eigen::VectorXd> y;
+    double node_part = 0;
+  };
+
+  Bordered_forward bordered_forward(const Eigen::VectorXd& b)
+  {
+    using Substitutions = internal::Factor_substitutions<Solver_traits>;
+    const Eigen::Index k = Eigen::Index(m_free_rows.size()), first = m_rows - k;
+    Bordered_forward f;
+    f.z = m_permutation * b.head(m_rows);
+    Eigen::VectorXd trailing;
+    if constexpr(Substitutions::leading_columns) {
+      Substitutions::forward(m_solver, f.z, first);
+      trailing = f.z.tail(k);
+    } else {
+      Substitutions::forward(m_solver, f.z);
+      trailing = trailing_times_lower(trailing_lower_factors(), f.z.tail(k), false);
+    }
+    f.u = f.z;
+    Substitutions::scale(m_solver, f.u);
+    f.node_part = f.z.head(first).dot(f.u.head(first));
+    f.y.resize(m_components.size());
+    for(std::size_t c = 0; c < m_components.size(); ++c) {
+      const Loop_metric& metric = m_loop_metric[c];
+      f.y[c].resize(Eigen::Index(metric.place.size()));
+      for(Eigen::Index a = 0; a < f.y[c].size(); ++a) {
+        const Eigen::Index p = metric.place[a];
+        if(p >= 0) {
+          f.y[c][a] = trailing[p];
+        } else {
+          const Bordered_row& row = m_bordered[-1 - p];
+          double v = b[m_rows + (-1 - p)];
+          for(std::size_t q = 0; q < row.z_index.size(); ++q)
+            v -= row.z_value[q] * f.u[row.z_index[q]];
+          f.y[c][a] = v;
+        }
+      }
+    }
+    return f;
+  }
+
+  // the multipliers (rows, then bordered rows) from the forward part and the dense blocks' solutions
+  Eigen::VectorXd bordered_backward(Bordered_forward& f, const std::vector<Eigen::VectorXd>& lambda_blocks)
+  {
+    using Substitutions = internal::Factor_substitutions<Solver_traits>;
+    const Eigen::Index k = Eigen::Index(m_free_rows.size()), first = m_rows - k;
+    Eigen::VectorXd lambda_free = Eigen::VectorXd::Zero(k), lambda_bordered = Eigen::VectorXd::Zero(system_size() - m_rows);
+    for(std::size_t c = 0; c < m_components.size(); ++c)
+      for(std::size_t a = 0; a < m_loop_metric[c].place.size(); ++a) {
+        const Eigen::Index p = m_loop_metric[c].place[a];
+        (p >= 0 ? lambda_free[p] : lambda_bordered[-1 - p]) = lambda_blocks[c][Eigen::Index(a)];
+      }
+    Eigen::VectorXd& z = f.z;
+    for(Eigen::Index e = 0; e < lambda_bordered.size(); ++e) {
+      const Bordered_row& row = m_bordered[std::size_t(e)];
+      for(std::size_t q = 0; q < row.z_index.size(); ++q)
+        z[row.z_index[q]] -= row.z_value[q] * lambda_bordered[e];
+    }
+    Substitutions::scale(m_solver, z);
+    if constexpr(Substitutions::leading_columns) {
+      z.tail(k) = lambda_free;
+      Substitutions::backward(m_solver, z, first);
+    } else {
+      z.tail(k) = trailing_times_lower(trailing_lower_factors(), lambda_free, true);
+      Substitutions::backward(m_solver, z);
+    }
+    Eigen::VectorXd lambda(system_size());
+    lambda.head(m_rows) = m_permutation.transpose() * z;
+    lambda.tail(lambda_bordered.size()) = lambda_bordered;
+    return lambda;
+  }
+
+  // M^-1 b with bordered rows
+  Eigen::VectorXd bordered_solve(const Eigen::VectorXd& b)
+  {
+    Bordered_forward f = bordered_forward(b);
+    std::vector<Eigen::VectorXd> lambda(m_components.size());
+    for(std::size_t c = 0; c < m_components.size(); ++c)
+      lambda[c] = f.y[c].size() > 0 ? Eigen::VectorXd(m_loop_metric[c].system.solve(f.y[c])) : Eigen::VectorXd();
+    return bordered_backward(f, lambda);
   }
 
   // needs the corner angles
@@ -1214,6 +1662,8 @@ private:
   {
     if(b.size() == 0)
       return b;
+    if(m_bordered_mode)
+      return bordered_solve(b);
     typename Solver_traits::Vector rhs(b.size()), sol(b.size());
     rhs = m_permutation * b;
     if(!m_solver.linear_solver(rhs, sol))
@@ -1388,7 +1838,7 @@ private:
   // A x, from its constraint sums
   Eigen::VectorXd row_sums(const Constraint_sums& sums) const
   {
-    Eigen::VectorXd ax(m_rows);
+    Eigen::VectorXd ax = Eigen::VectorXd::Zero(system_size());
     for(int node = 0; node < m_topology.number_of_nodes; ++node)
       if(m_row_of_node[node] >= 0)
         ax[m_row_of_node[node]] = sums.node[node];
@@ -1414,13 +1864,13 @@ private:
   {
     m_loop_metric.assign(m_components.size(), Loop_metric());
     const Eigen::Index k = Eigen::Index(m_free_rows.size());
-    if(k == 0)
-      return;
     const Eigen::Index first = m_rows - k;
     Eigen::MatrixXd Lt;
     Eigen::VectorXd d;
-    const bool from_factor = internal::Trailing_schur_complement<Solver_traits>::read(m_solver, k, Lt, d);
+    const bool from_factor = m_rows > 0 && internal::Trailing_schur_complement<Solver_traits>::read(m_solver, k, Lt, d);
     m_loop_rows_in_factor = from_factor && internal::Factor_substitutions<Solver_traits>::available(m_solver);
+    if(k == 0)
+      return;
     for(std::size_t c = 0; c < m_components.size(); ++c) {
       const std::vector<int>& free = m_free_loops[c];
       const Eigen::Index kc = Eigen::Index(free.size());
@@ -1731,7 +2181,7 @@ private:
                                   const std::vector<double>& holonomy, int n) const
   {
     const double unit = 2 * CGAL_PI / n;
-    Eigen::VectorXd b(m_rows);
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(system_size());
     for(std::size_t node = 0; node < m_vertex_of_node.size(); ++node) {
       const int r = m_row_of_node[node];
       if(r >= 0) {
@@ -1884,9 +2334,17 @@ private:
     Eigen::MatrixXd inverse;        // S^-1 = (M^-1) on the free loop rows of one component
     Eigen::MatrixXd inverse_factor; // R upper triangular with R^T R = S^-1
     std::vector<Eigen::Index> block; // per free loop of the component: its position after the first loop row
+    // with bordered rows (set_constraints()): per free slot, its position in F, or -1 - e for bordered row e;
+    // and the Cholesky factorization of the dense block
+    std::vector<Eigen::Index> place;
+    Eigen::LLT<Eigen::MatrixXd> system;
   };
   std::vector<Loop_metric> m_loop_metric;
   bool m_loop_rows_in_factor = false; // the metric was read from the factor, whose substitutions are available
+  std::vector<Factored_link> m_factored_links; // the links in the factor
+  std::vector<Loop_metric> m_factor_metric;    // the metric of the factor's free rows
+  std::vector<Bordered_row> m_bordered;        // links outside the factor (after set_constraints())
+  bool m_bordered_mode = false;                // solves go through bordered_forward/backward
 };
 
 } // namespace Trivial_connections

@@ -139,7 +139,7 @@ public:
       \cgalParamDescription{faces on which the field must point in a direction given to each `solve()`
         (`face_directions`). Per component, the constrained faces are linked by dual paths, one row each with a
         free integer chosen with the loop integers (see the user manual). Changing the directions costs
-        back-substitutions only; changing the set of faces needs a new solver}
+        back-substitutions only; `set_constraints()` changes the set of faces}
       \cgalParamType{a range of `face_descriptor`} \cgalParamDefault{none}
     \cgalParamNEnd
     \cgalParamNBegin{align_with_boundary}

@@ -186,9 +186,45 @@ def mesh_order(item):
 PROGRAM_PREFIX = "program/"
 
 
+CONTROLS_PREFIX = "controls/"
+
+
 def pipelines(meshes):
-    """the per-mesh pipeline entries of one backend (without the program's)"""
-    return {m: e for m, e in meshes.items() if not m.startswith(PROGRAM_PREFIX)}
+    """the per-mesh pipeline entries of one backend (without the program's and the design controls')"""
+    return {m: e for m, e in meshes.items() if not m.startswith(PROGRAM_PREFIX) and not m.startswith(CONTROLS_PREFIX)}
+
+
+def controls_table(results, lines):
+    rows = [(b, m[len(CONTROLS_PREFIX):], e) for b in sorted(results, key=backend_order)
+            for m, e in results[b].items() if m.startswith(CONTROLS_PREFIX)]
+    if not rows:
+        return
+    rows.sort(key=lambda r: (backend_order(r[0]), r[2]["counters"].get("faces", 0)))
+    lines.append("### Design controls: constrained and guided faces")
+    lines.append("")
+    lines.append("A solver with 20 constrained and 10 guided faces (n = 4), one solve, a re-solve with new directions "
+                 "on the same faces, `set_constraints()` with 5 constrained faces dropped and 10 added (links kept "
+                 "in the factor, links dropped from the dense block, new links bordered: one forward substitution "
+                 "each), and a solve after it; against the same reference factorization as above. Expected: "
+                 "re-solve and set_constraints far below the reference.")
+    lines.append("")
+    head = ["mesh", "backend", "faces", "reference", "build", "solve", "re-solve", "set_constraints",
+            "solve after", "links (bordered, new)", "build / ref", "re-solve / ref", "set_constraints / ref"]
+    lines.append("| " + " | ".join(head) + " |")
+    lines.append("|" + "|".join(["---", "---"] + ["---:"] * (len(head) - 2)) + "|")
+    for b, mesh, e in rows:
+        c = e["counters"]
+        if e["error"]:
+            lines.append(f"| {mesh} | {b} | " + " | ".join(["–"] * (len(head) - 3)) + f" | error: {e['error']} |")
+            continue
+        lines.append("| " + " | ".join([
+            mesh, b, fmt_faces(c.get("faces", 0)), fmt_time(c.get("t_reference")), fmt_time(c.get("t_build")),
+            fmt_time(c.get("t_solve")), fmt_time(c.get("t_resolve")), fmt_time(c.get("t_set_constraints")),
+            fmt_time(c.get("t_solve_after_set")),
+            f"{int(c.get('links_after_set', 0))} ({int(c.get('links_outside_the_factor', 0))}, "
+            f"{int(c.get('new_forward_substitutions', 0))})",
+            fmt_num(c.get("r_build")), fmt_num(c.get("r_resolve")), fmt_num(c.get("r_set_constraints"))]) + " |")
+    lines.append("")
 
 
 def program_table(results, lines):
@@ -322,6 +358,7 @@ def main():
         if pipelines(results[backend]):
             backend_table(backend, results[backend], lines)
     program_table(results, lines)
+    controls_table(results, lines)
     lines.append("### Scaling: log–log slopes")
     lines.append("")
     lines.append("Least-squares slope of log(time) (or log(peak memory)) against log(faces), over all meshes of "

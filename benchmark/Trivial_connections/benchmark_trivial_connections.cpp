@@ -477,6 +477,95 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
 }
 
 // ---------------------------------------------------------------------------------------------------------
+// Design controls (issue 5): a solver with 20 constrained and 10 guided faces; a solve; a re-solve with new
+// directions on the same faces (back-substitutions only); set_constraints() with 5 of the constrained faces
+// dropped and 10 new ones (the factorization kept: one forward substitution per new link); a solve after it.
+// Against the same reference factorization as the pipeline.
+
+template <class SolverTraits, class ReferenceSolver>
+void controls(benchmark::State& state, const Mesh_spec& spec)
+{
+  using Solver = TC::Trivial_connection_solver<Mesh, CGAL::Default, SolverTraits>;
+  Mesh mesh;
+  const std::string error = load_mesh(spec, mesh);
+  if(!error.empty()) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  auto x = mesh.add_property_map<Mesh::Halfedge_index, double>("h:x", 0.).first;
+  auto directions = mesh.add_property_map<Mesh::Face_index, K::Vector_3>("f:directions", K::Vector_3(1, 0, 0)).first;
+  const std::size_t nf = num_faces(mesh);
+  auto face_at = [&](std::size_t i) { return Mesh::Face_index(Mesh::size_type(i % nf)); };
+  std::vector<Mesh::Face_index> constrained, guided, changed;
+  for(std::size_t i = 0; i < 20; ++i)
+    constrained.push_back(face_at(i * nf / 20 + 3));
+  for(std::size_t i = 0; i < 10; ++i)
+    guided.push_back(face_at(i * nf / 10 + nf / 40 + 5));
+  changed.assign(constrained.begin() + 5, constrained.end());
+  for(std::size_t i = 0; i < 10; ++i)
+    changed.push_back(face_at(i * nf / 10 + nf / 30 + 11));
+  // directions that vary over the mesh, never normal to a face: the tangent part of a fixed vector turned per face
+  for(Mesh::Face_index f : faces(mesh)) {
+    const double a = 0.001 * double(std::size_t(f));
+    directions[f] = K::Vector_3(std::cos(a), std::sin(a), 0.5);
+  }
+  double t_build = 0, t_solve = 0, t_resolve = 0, t_set = 0, t_after = 0;
+  std::size_t links = 0, outside = 0, forward = 0;
+  Reference_result ref;
+  for(auto _ : state) {
+    std::vector<Weighted_edge> edges;
+    {
+      auto t0 = Clock::now();
+      Solver solver(mesh, TC::parameters::constrained_faces(constrained, TC::parameters::guided_faces(guided)));
+      t_build = seconds_since(t0);
+      const Singularities sing = singularities_for(mesh, solver, 0);
+      t0 = Clock::now();
+      benchmark::DoNotOptimize(solver.solve(sing, x, TC::parameters::face_directions(directions, TC::parameters::symmetry_order(4))).energy);
+      t_solve = seconds_since(t0);
+      for(Mesh::Face_index f : constrained)
+        directions[f] = K::Vector_3(-directions[f].y(), directions[f].x(), 0.5);
+      t0 = Clock::now();
+      benchmark::DoNotOptimize(solver.solve(sing, x, TC::parameters::face_directions(directions, TC::parameters::symmetry_order(4))).energy);
+      t_resolve = seconds_since(t0);
+      t0 = Clock::now();
+      const TC::Constraint_update u =
+        solver.set_constraints(TC::parameters::constrained_faces(changed, TC::parameters::guided_faces(guided)));
+      t_set = seconds_since(t0);
+      links = u.links;
+      outside = u.links_outside_the_factor;
+      forward = u.new_forward_substitutions;
+      t0 = Clock::now();
+      benchmark::DoNotOptimize(solver.solve(sing, x, TC::parameters::face_directions(directions, TC::parameters::symmetry_order(4))).energy);
+      t_after = seconds_since(t0);
+      edges.reserve(num_edges(mesh));
+      for(auto e : CGAL::edges(mesh))
+        if(solver.is_interior(e))
+          edges.push_back({int(source(halfedge(e, mesh), mesh)), int(target(halfedge(e, mesh), mesh)),
+                           1 / solver.weight(e)});
+    }
+    ref = reference_factorization<ReferenceSolver>(num_vertices(mesh), edges);
+    if(!ref.ok)
+      state.SkipWithError("the reference factorization failed");
+    state.SetIterationTime(t_build + t_solve);
+  }
+  auto& k = state.counters;
+  k["faces"] = double(nf);
+  k["t_reference"] = ref.seconds;
+  k["t_build"] = t_build;
+  k["t_solve"] = t_solve;
+  k["t_resolve"] = t_resolve;
+  k["t_set_constraints"] = t_set;
+  k["t_solve_after_set"] = t_after;
+  k["links_after_set"] = double(links);
+  k["links_outside_the_factor"] = double(outside);
+  k["new_forward_substitutions"] = double(forward);
+  k["r_build"] = t_build / ref.seconds;
+  k["r_resolve"] = t_resolve / ref.seconds;
+  k["r_set_constraints"] = t_set / ref.seconds;
+  k["r_solve_after_set"] = t_after / ref.seconds;
+}
+
+// ---------------------------------------------------------------------------------------------------------
 // The main program as a whole process (read, solve, field, both files written), on a closed genus-0 mesh
 // written as OFF (a usual input): its wall time against reading the same file with CGAL
 // (read_polygon_mesh into a Surface_mesh) plus one analysis + factorization of the mesh's Laplacian with
@@ -597,6 +686,14 @@ void register_backend(const std::string& backend, const std::vector<bool>& sizes
     if(sizes[std::size_t(spec.size)])
       benchmark::RegisterBenchmark((backend + "/" + spec.name).c_str(),
                                    [spec](benchmark::State& s) { pipeline<SolverTraits, ReferenceSolver>(s, spec); })
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
+  for(const Mesh_spec& spec : mesh_specs())
+    if(sizes[std::size_t(spec.size)] &&
+       (spec.name == "bunny00" || spec.name == "turbine" || spec.name == "bunny00_loop1" || spec.name == "bunny00_loop2"))
+      benchmark::RegisterBenchmark((backend + "/controls/" + spec.name).c_str(),
+                                   [spec](benchmark::State& s) { controls<SolverTraits, ReferenceSolver>(s, spec); })
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);

@@ -1053,7 +1053,6 @@ private:
                        m_loop_edges.data() + m_loop_edge_start[l + 1]);
     for(const Factored_link& link : m_factored_links)
       note_crossings(link.row, link.codes.data(), link.codes.data() + link.codes.size());
-    const std::vector<Eigen::MatrixXd> lower = trailing_lower_factors();
     for(std::size_t e = 0; e < m_bordered.size(); ++e) {
       if(!fresh[e])
         continue;
@@ -1079,7 +1078,7 @@ private:
         trailing = z.tail(k);
       } else {
         Substitutions::forward(m_solver, z);
-        trailing = trailing_times_lower(lower, z.tail(k), false);
+        trailing = trailing_times_lower(z.tail(k), false);
       }
       row.z_index.clear();
       row.z_value.clear();
@@ -1113,18 +1112,8 @@ private:
     return sum / m_guidance_weight;
   }
 
-  // per component of the factor's metric: its L_FF (lower, unit diagonal for LDL^T)
-  std::vector<Eigen::MatrixXd> trailing_lower_factors() const
-  {
-    std::vector<Eigen::MatrixXd> lower;
-    for(const Loop_metric& metric : m_factor_metric)
-      lower.push_back(metric.schur_factor);
-    return lower;
-  }
-
-  // L_FF v (or L_FF^T v) over the positions of F, component by component
-  Eigen::VectorXd trailing_times_lower(const std::vector<Eigen::MatrixXd>& lower, const Eigen::VectorXd& v,
-                                       bool transposed) const
+  // L_FF v (or L_FF^T v) over the positions of F, component by component (L_FF: the factor's trailing block)
+  Eigen::VectorXd trailing_times_lower(const Eigen::VectorXd& v, bool transposed) const
   {
     Eigen::VectorXd out = Eigen::VectorXd::Zero(v.size());
     for(std::size_t c = 0; c < m_factor_metric.size(); ++c) {
@@ -1134,7 +1123,7 @@ private:
       Eigen::VectorXd t(Eigen::Index(block.size()));
       for(Eigen::Index a = 0; a < t.size(); ++a)
         t[a] = v[block[a]];
-      const auto L = lower[c].template triangularView<Eigen::Lower>();
+      const auto L = m_factor_metric[c].schur_factor.template triangularView<Eigen::Lower>();
       t = transposed ? Eigen::VectorXd(L.transpose() * t) : Eigen::VectorXd(L * t);
       for(Eigen::Index a = 0; a < t.size(); ++a)
         out[block[a]] = t[a];
@@ -1147,7 +1136,6 @@ private:
   void bordered_metric()
   {
     using Substitutions = internal::Factor_substitutions<Solver_traits>;
-    const std::size_t nl = m_topology.loops.size();
     const Eigen::Index k = Eigen::Index(m_free_rows.size()), first = m_rows - k;
     // S over the positions of F, per component of the factor: L D L^T
     std::vector<Eigen::Index> component_at(std::size_t(k), 0), index_at(std::size_t(k), 0);
@@ -1234,7 +1222,6 @@ private:
         throw Invalid_input(Error_code::solver_failure, "the metric of the integers is not positive definite");
       metric.inverse_factor = llt.matrixU();
     }
-    (void)nl;
   }
 
   // With bordered rows: the forward part of a solve of the full system for b (rows, then bordered rows): z after
@@ -1259,7 +1246,7 @@ private:
       trailing = f.z.tail(k);
     } else {
       Substitutions::forward(m_solver, f.z);
-      trailing = trailing_times_lower(trailing_lower_factors(), f.z.tail(k), false);
+      trailing = trailing_times_lower(f.z.tail(k), false);
     }
     f.u = f.z;
     Substitutions::scale(m_solver, f.u);
@@ -1306,7 +1293,7 @@ private:
       z.tail(k) = lambda_free;
       Substitutions::backward(m_solver, z, first);
     } else {
-      z.tail(k) = trailing_times_lower(trailing_lower_factors(), lambda_free, true);
+      z.tail(k) = trailing_times_lower(lambda_free, true);
       Substitutions::backward(m_solver, z);
     }
     Eigen::VectorXd lambda(system_size());

@@ -8,7 +8,7 @@
 //
 //   trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--constraints FILE]
 //                            [--align-boundary] [--guidance FILE] [--guidance-weight MU] [--n N] [--weights hodge|unit]
-//                            [--connection OUT] [--field OUT] [--progress] [--help]
+//                            [--connection OUT] [--field OUT] [--progress] [--help] [--version]
 //
 // Exit status: 0 on success, 1 on an input error (mesh, singularities, solver, output files), 2 on a usage
 // error. On any error one line `trivial_connections: error: <message>` goes to stderr and no output file is
@@ -18,6 +18,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/version.h>
 
 #include <CGAL/Trivial_connections/IO/atomic_file.h>
 #include <CGAL/Trivial_connections/IO/connection_file.h>
@@ -67,7 +68,7 @@ const char* const usage_text =
   "Usage: trivial_connections MESH [--singularities FILE] [--boundary-indices FILE]\n"
   "                           [--constraints FILE] [--align-boundary] [--guidance FILE]\n"
   "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
-  "                           [--connection OUT] [--field OUT] [--progress] [--help]\n"
+  "                           [--connection OUT] [--field OUT] [--progress] [--help] [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
@@ -100,6 +101,7 @@ const char* const usage_text =
   "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
   "                        is a terminal)\n"
   "  --help, -h            print this help and exit\n"
+  "  --version             print the version (and those of CGAL, Eigen and the sparse solver) and exit\n"
   "\n"
   "The integers of the homology generators and boundary loops are chosen to minimise the energy.\n"
   "Both output files are written only if everything succeeded. Exit status: 0 success, 1 input error,\n"
@@ -114,6 +116,7 @@ struct Usage_error : std::runtime_error
 struct Options
 {
   bool help = false;
+  bool version = false;
   bool progress = false;
   std::string mesh;
   std::string singularities;
@@ -151,11 +154,16 @@ Options parse_arguments(int argc, char** argv)
 {
   Options o;
   std::vector<std::string> args(argv + 1, argv + argc);
-  for(const std::string& a : args)
+  for(const std::string& a : args) {
     if(a == "--help" || a == "-h") {
       o.help = true;
       return o;
     }
+    if(a == "--version") {
+      o.version = true;
+      return o;
+    }
+  }
   bool seen_singularities = false, seen_boundary = false, seen_constraints = false, seen_guidance = false,
        seen_guidance_weight = false, seen_n = false, seen_weights = false, seen_connection = false, seen_field = false;
   for(std::size_t i = 0; i < args.size(); ++i) {
@@ -632,6 +640,20 @@ int main(int argc, char** argv)
   }
   if(options.help) {
     std::cout << usage_text;
+    return 0;
+  }
+  if(options.version) {
+#ifndef TC_VERSION
+#define TC_VERSION "unknown"
+#endif
+    std::cout << program << " " << TC_VERSION << " (CGAL " << CGAL_VERSION_STR << ", Eigen " << EIGEN_WORLD_VERSION
+              << "." << EIGEN_MAJOR_VERSION << "." << EIGEN_MINOR_VERSION << ", sparse solver "
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+              << "CHOLMOD " << CHOLMOD_MAIN_VERSION << "." << CHOLMOD_SUB_VERSION << "." << CHOLMOD_SUBSUB_VERSION
+#else
+              << "Eigen SimplicialLDLT"
+#endif
+              << ")\n";
     return 0;
   }
   Progress_printer progress(options.progress || stderr_is_terminal());

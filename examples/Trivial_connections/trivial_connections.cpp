@@ -8,7 +8,8 @@
 //
 //   trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--constraints FILE]
 //                            [--align-boundary] [--guidance FILE] [--guidance-weight MU] [--n N] [--weights hodge|unit]
-//                            [--connection OUT] [--field OUT] [--progress] [--help] [--version]
+//                            [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT] [--singularity-points OUT]
+//                            [--progress] [--help] [--version]
 //
 // Exit status: 0 on success, 1 on an input error (mesh, singularities, solver, output files), 2 on a usage
 // error. On any error one line `trivial_connections: error: <message>` goes to stderr and no output file is
@@ -26,6 +27,7 @@
 #include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
+#include <CGAL/Trivial_connections/IO/viewer_files.h>
 #include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 
@@ -68,7 +70,8 @@ const char* const usage_text =
   "Usage: trivial_connections MESH [--singularities FILE] [--boundary-indices FILE]\n"
   "                           [--constraints FILE] [--align-boundary] [--guidance FILE]\n"
   "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
-  "                           [--connection OUT] [--field OUT] [--progress] [--help] [--version]\n"
+  "                           [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT]\n"
+  "                           [--singularity-points OUT] [--progress] [--help] [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
@@ -98,6 +101,10 @@ const char* const usage_text =
   "                        (default: <mesh stem>.connection.txt in the current directory)\n"
   "  --field OUT           field file, one line 'x y z' per face in input face order\n"
   "                        (default: <mesh stem>.field.txt in the current directory)\n"
+  "  --vtk OUT             also the mesh with the field for viewers, legacy VTK (ParaView): per face the N\n"
+  "                        directions (direction_0 ...), per vertex its singularity index\n"
+  "  --ply OUT             the same as an ASCII PLY file (MeshLab): face properties dk_x dk_y dk_z\n"
+  "  --singularity-points OUT  one line 'x y z k' per singular vertex\n"
   "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
   "                        is a terminal)\n"
   "  --help, -h            print this help and exit\n"
@@ -130,6 +137,7 @@ struct Options
   std::string weights_name = "hodge";
   std::string connection;
   std::string field;
+  std::string vtk, ply, singularity_points; // optional outputs for viewers
 };
 
 int parse_symmetry_order(const std::string& text)
@@ -165,7 +173,8 @@ Options parse_arguments(int argc, char** argv)
     }
   }
   bool seen_singularities = false, seen_boundary = false, seen_constraints = false, seen_guidance = false,
-       seen_guidance_weight = false, seen_n = false, seen_weights = false, seen_connection = false, seen_field = false;
+       seen_guidance_weight = false, seen_n = false, seen_weights = false, seen_connection = false, seen_field = false,
+       seen_vtk = false, seen_ply = false, seen_points = false;
   for(std::size_t i = 0; i < args.size(); ++i) {
     std::string a = args[i];
     if(a == "--progress") {
@@ -197,6 +206,9 @@ Options parse_arguments(int argc, char** argv)
       else if(name == "--weights") seen = &seen_weights;
       else if(name == "--connection") seen = &seen_connection;
       else if(name == "--field") seen = &seen_field;
+      else if(name == "--vtk") seen = &seen_vtk;
+      else if(name == "--ply") seen = &seen_ply;
+      else if(name == "--singularity-points") seen = &seen_points;
       else
         throw Usage_error("unknown option '" + name + "' (see --help)");
       if(*seen)
@@ -221,6 +233,9 @@ Options parse_arguments(int argc, char** argv)
       }
       else if(name == "--connection") o.connection = value;
       else if(name == "--field") o.field = value;
+      else if(name == "--vtk") o.vtk = value;
+      else if(name == "--ply") o.ply = value;
+      else if(name == "--singularity-points") o.singularity_points = value;
       else if(name == "--n") o.n = parse_symmetry_order(value);
       else if(name == "--weights") {
         if(value == "hodge") o.weighting = TC::Weighting::hodge_star;
@@ -251,9 +266,15 @@ Options parse_arguments(int argc, char** argv)
     const std::filesystem::path pb = std::filesystem::weakly_canonical(std::filesystem::absolute(b, ec2), ec2);
     return !ec1 && !ec2 ? pa == pb : a == b;
   };
-  if(same_file(o.connection, o.field))
-    throw Usage_error("the connection and field outputs are the same file '" + o.connection + "'");
-  for(const std::string* out : {&o.connection, &o.field}) {
+  std::vector<const std::string*> outputs = {&o.connection, &o.field};
+  for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points})
+    if(!extra->empty())
+      outputs.push_back(extra);
+  for(std::size_t a = 0; a < outputs.size(); ++a)
+    for(std::size_t b = a + 1; b < outputs.size(); ++b)
+      if(same_file(*outputs[a], *outputs[b]))
+        throw Usage_error("two outputs are the same file '" + *outputs[a] + "'");
+  for(const std::string* out : outputs) {
     if(same_file(*out, o.mesh))
       throw Usage_error("the output '" + *out + "' would overwrite the input mesh");
     if(!o.singularities.empty() && same_file(*out, o.singularities))
@@ -529,17 +550,31 @@ int run(const Options& o, Progress_printer& progress)
                                                          std::to_string(o.guidance_weight)) +
                                  ", n = " + std::to_string(o.n) + ", weights " + o.weights_name + "\n";
   const auto vertex_index = get(boost::vertex_index, mesh);
-  TC::write_files_atomically(
-    {{o.connection,
-      [&](std::ostream& os) {
-        os << provenance;
-        TC::write_connection(os, mesh, x, vertex_index, solver);
-      }},
-     {o.field, [&](std::ostream& os) {
-        os << provenance;
-        TC::write_field(os, mesh, field);
-      }}},
-    /* concurrently = */ true); // the writers only read the mesh, the maps and the solver
+  std::vector<std::pair<std::string, TC::File_writer>> files = {
+    {o.connection,
+     [&](std::ostream& os) {
+       os << provenance;
+       TC::write_connection(os, mesh, x, vertex_index, solver);
+     }},
+    {o.field, [&](std::ostream& os) {
+       os << provenance;
+       TC::write_field(os, mesh, field);
+     }}};
+  if(!o.vtk.empty())
+    files.push_back({o.vtk, [&](std::ostream& os) {
+                       TC::write_field_vtk(os, mesh, field, singularities, TC::parameters::symmetry_order(o.n));
+                     }});
+  if(!o.ply.empty())
+    files.push_back({o.ply, [&](std::ostream& os) {
+                       TC::write_field_ply(os, mesh, field, singularities, TC::parameters::symmetry_order(o.n));
+                     }});
+  if(!o.singularity_points.empty())
+    files.push_back({o.singularity_points, [&](std::ostream& os) {
+                       os << provenance;
+                       TC::write_singularity_points(os, mesh, singularities);
+                     }});
+  // all written or none; the writers only read the mesh, the maps and the solver
+  TC::write_files_atomically(files, /* concurrently = */ true);
   progress.end("writing files");
   const double t_write = seconds_since(t);
 

@@ -20,6 +20,7 @@
 #include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
+#include <CGAL/Trivial_connections/IO/viewer_files.h>
 
 #include <gtest/gtest.h>
 
@@ -382,6 +383,180 @@ void check_field_round_trip()
     EXPECT_EQ(back[f][2], expected[f].z());
   }
 }
+
+// The viewer files (VTK, PLY, singularity points) parsed back: the mesh, every direction of the n-field turned
+// by 2 pi k / n about the face normal, the singularity indices; the PLY is also read by CGAL's own reader.
+template <class Mesh>
+void check_viewer_files()
+{
+  Mesh mesh;
+  const TC::Mesh_input_order<Mesh> order = TC::triangle_soup_to_mesh(octahedron_points, octahedron_faces, mesh);
+  using face_descriptor = typename boost::graph_traits<Mesh>::face_descriptor;
+  using vertex_descriptor = typename boost::graph_traits<Mesh>::vertex_descriptor;
+  std::map<face_descriptor, Vector> field;
+  std::vector<std::array<double, 3>> normals;
+  const auto vpm = get(CGAL::vertex_point, mesh);
+  for(face_descriptor f : faces(mesh)) { // a unit tangent vector: the first edge turned by 0.3 rad
+    const auto h = halfedge(f, mesh);
+    const Point a = get(vpm, source(h, mesh)), b = get(vpm, target(h, mesh)), c = get(vpm, target(next(h, mesh), mesh));
+    Vector nrm = CGAL::cross_product(b - a, c - a);
+    nrm = nrm / std::sqrt(nrm.squared_length());
+    const Vector e = (b - a) / std::sqrt((b - a).squared_length());
+    field[f] = std::cos(0.3) * e + std::sin(0.3) * CGAL::cross_product(nrm, e);
+    normals.push_back({{nrm.x(), nrm.y(), nrm.z()}});
+  }
+  const std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> singularities = {
+    {order.vertices[0], TC::Singularity_index(1, 4)}, {order.vertices[5], TC::Singularity_index(-1, 2)}};
+  const int n = 4;
+  const auto map = boost::make_assoc_property_map(field);
+  std::vector<std::array<double, 3>> points;
+  for(vertex_descriptor v : vertices(mesh)) points.push_back({{get(vpm, v).x(), get(vpm, v).y(), get(vpm, v).z()}});
+  std::vector<std::array<std::size_t, 3>> triangles;
+  std::map<vertex_descriptor, std::size_t> number;
+  for(vertex_descriptor v : vertices(mesh)) number.emplace(v, number.size());
+  for(face_descriptor f : faces(mesh)) {
+    const auto h = halfedge(f, mesh);
+    triangles.push_back({{number[source(h, mesh)], number[target(h, mesh)], number[target(next(h, mesh), mesh)]}});
+  }
+  auto check_directions = [&](const std::vector<std::vector<std::array<double, 3>>>& d) {
+    ASSERT_EQ(d.size(), std::size_t(n));
+    std::size_t f = 0;
+    for(face_descriptor fd : faces(mesh)) {
+      const Vector v = field[fd];
+      EXPECT_EQ(d[0][f][0], v.x());
+      EXPECT_EQ(d[0][f][1], v.y());
+      EXPECT_EQ(d[0][f][2], v.z());
+      const auto& N = normals[f];
+      for(int k = 1; k < n; ++k) {
+        const auto& u = d[0][f];
+        const auto& w = d[std::size_t(k)][f];
+        const double cr[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        const double angle = std::atan2(cr[0] * N[0] + cr[1] * N[1] + cr[2] * N[2], u[0] * w[0] + u[1] * w[1] + u[2] * w[2]);
+        double expected = 2 * CGAL_PI * k / n;
+        if(expected > CGAL_PI) expected -= 2 * CGAL_PI;
+        EXPECT_NEAR(angle, expected, 1e-12) << "face " << f << ", direction " << k;
+        EXPECT_NEAR(std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]), 1., 1e-12);
+      }
+      ++f;
+    }
+  };
+  auto expected_index = [&](std::size_t v) {
+    return v == number[order.vertices[0]] ? 0.25 : v == number[order.vertices[5]] ? -0.5 : 0.;
+  };
+
+  { // VTK
+    std::ostringstream os;
+    TC::write_field_vtk(os, mesh, map, singularities, TC::parameters::symmetry_order(n));
+    std::istringstream is(os.str());
+    std::string line, word;
+    std::getline(is, line);
+    EXPECT_EQ(line, "# vtk DataFile Version 3.0");
+    std::getline(is, line);
+    std::getline(is, line);
+    EXPECT_EQ(line, "ASCII");
+    std::getline(is, line);
+    EXPECT_EQ(line, "DATASET POLYDATA");
+    std::size_t count = 0, size = 0;
+    is >> word >> count >> line;
+    EXPECT_EQ(word, "POINTS");
+    ASSERT_EQ(count, points.size());
+    for(const auto& p : points)
+      for(double x : p) { double y; is >> y; EXPECT_EQ(y, x); }
+    is >> word >> count >> size;
+    EXPECT_EQ(word, "POLYGONS");
+    ASSERT_EQ(count, triangles.size());
+    EXPECT_EQ(size, 4 * count);
+    for(const auto& t : triangles) {
+      std::size_t three, a, b, c;
+      is >> three >> a >> b >> c;
+      EXPECT_EQ(three, 3u);
+      EXPECT_EQ((std::array<std::size_t, 3>{{a, b, c}}), t);
+    }
+    is >> word >> count;
+    EXPECT_EQ(word, "CELL_DATA");
+    EXPECT_EQ(count, triangles.size());
+    std::vector<std::vector<std::array<double, 3>>> d(static_cast<std::size_t>(n));
+    for(int k = 0; k < n; ++k) {
+      std::string name, type;
+      is >> word >> name >> type;
+      EXPECT_EQ(word, "VECTORS");
+      EXPECT_EQ(name, "direction_" + std::to_string(k));
+      for(std::size_t f = 0; f < triangles.size(); ++f) {
+        std::array<double, 3> v;
+        is >> v[0] >> v[1] >> v[2];
+        d[std::size_t(k)].push_back(v);
+      }
+    }
+    check_directions(d);
+    is >> word >> count;
+    EXPECT_EQ(word, "POINT_DATA");
+    EXPECT_EQ(count, points.size());
+    std::getline(is, line);
+    std::getline(is, line);
+    EXPECT_EQ(line, "SCALARS singularity_index double 1");
+    std::getline(is, line);
+    EXPECT_EQ(line, "LOOKUP_TABLE default");
+    for(std::size_t v = 0; v < points.size(); ++v) { double k; is >> k; EXPECT_EQ(k, expected_index(v)); }
+    EXPECT_TRUE(bool(is));
+    is >> word;
+    EXPECT_TRUE(is.eof()) << "trailing data";
+  }
+  { // PLY: CGAL reads it, and its own properties are right
+    Temp_dir dir;
+    const std::string path = (dir.path() / "field.ply").string();
+    {
+      std::ofstream os(path);
+      TC::write_field_ply(os, mesh, map, singularities, TC::parameters::symmetry_order(n));
+    }
+    std::vector<Point> soup_points;
+    std::vector<std::vector<std::size_t>> soup_faces;
+    ASSERT_TRUE(CGAL::IO::read_polygon_soup(path, soup_points, soup_faces));
+    ASSERT_EQ(soup_points.size(), points.size());
+    ASSERT_EQ(soup_faces.size(), triangles.size());
+    for(std::size_t f = 0; f < triangles.size(); ++f)
+      EXPECT_EQ((std::array<std::size_t, 3>{{soup_faces[f][0], soup_faces[f][1], soup_faces[f][2]}}), triangles[f]);
+    std::ifstream is(path);
+    std::string line;
+    while(std::getline(is, line) && line != "end_header") {}
+    for(std::size_t v = 0; v < points.size(); ++v) {
+      double x, y, z, k;
+      is >> x >> y >> z >> k;
+      EXPECT_EQ(k, expected_index(v));
+    }
+    std::vector<std::vector<std::array<double, 3>>> d(static_cast<std::size_t>(n));
+    for(std::size_t f = 0; f < triangles.size(); ++f) {
+      std::size_t three, a, b, c;
+      is >> three >> a >> b >> c;
+      for(int k = 0; k < n; ++k) {
+        std::array<double, 3> v;
+        is >> v[0] >> v[1] >> v[2];
+        d[std::size_t(k)].push_back(v);
+      }
+    }
+    EXPECT_TRUE(bool(is));
+    check_directions(d);
+  }
+  { // singularity points
+    std::ostringstream os;
+    TC::write_singularity_points(os, mesh, singularities);
+    std::istringstream is(os.str());
+    std::string line;
+    std::getline(is, line);
+    EXPECT_EQ(line.substr(0, 1), "#");
+    for(const auto& s : singularities) {
+      double x, y, z;
+      std::string k;
+      is >> x >> y >> z >> k;
+      EXPECT_EQ(x, get(vpm, s.first).x());
+      EXPECT_EQ(y, get(vpm, s.first).y());
+      EXPECT_EQ(z, get(vpm, s.first).z());
+      EXPECT_EQ(k, s.second.to_string());
+    }
+  }
+}
+
+TEST(IoViewerFiles, VtkPlyAndPointsSurfaceMesh) { check_viewer_files<Surface_mesh>(); }
+TEST(IoViewerFiles, VtkPlyAndPointsPolyhedron) { check_viewer_files<Polyhedron>(); }
 
 TEST(IoFieldFile, RoundTripSurfaceMesh) { check_field_round_trip<Surface_mesh>(); }
 TEST(IoFieldFile, RoundTripPolyhedron) { check_field_round_trip<Polyhedron>(); }

@@ -9,7 +9,7 @@
 //   trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--constraints FILE]
 //                            [--align-boundary] [--guidance FILE] [--guidance-weight MU] [--n N] [--weights hodge|unit]
 //                            [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT] [--singularity-points OUT]
-//                            [--progress] [--help] [--version]
+//                            [--streamlines OUT] [--streamline-seeds K] [--progress] [--help] [--version]
 //
 // Exit status: 0 on success, 1 on an input error (mesh, singularities, solver, output files), 2 on a usage
 // error. On any error one line `trivial_connections: error: <message>` goes to stderr and no output file is
@@ -71,7 +71,8 @@ const char* const usage_text =
   "                           [--constraints FILE] [--align-boundary] [--guidance FILE]\n"
   "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
   "                           [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT]\n"
-  "                           [--singularity-points OUT] [--progress] [--help] [--version]\n"
+  "                           [--singularity-points OUT] [--streamlines OUT] [--streamline-seeds K]\n"
+  "                           [--progress] [--help] [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
@@ -105,6 +106,9 @@ const char* const usage_text =
   "                        directions (direction_0 ...), per vertex its singularity index\n"
   "  --ply OUT             the same as an ASCII PLY file (MeshLab): face properties dk_x dk_y dk_z\n"
   "  --singularity-points OUT  one line 'x y z k' per singular vertex\n"
+  "  --streamlines OUT     streamlines of the field as legacy VTK polylines (ParaView), traced from K seed\n"
+  "                        faces spread over the mesh (--streamline-seeds K, default 100); a ray stops at\n"
+  "                        a singularity, a boundary, where it meets itself, or after 50 sqrt(faces) faces\n"
   "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
   "                        is a terminal)\n"
   "  --help, -h            print this help and exit\n"
@@ -137,7 +141,8 @@ struct Options
   std::string weights_name = "hodge";
   std::string connection;
   std::string field;
-  std::string vtk, ply, singularity_points; // optional outputs for viewers
+  std::string vtk, ply, singularity_points, streamlines; // optional outputs for viewers
+  std::size_t streamline_seeds = 100;
 };
 
 int parse_symmetry_order(const std::string& text)
@@ -174,7 +179,7 @@ Options parse_arguments(int argc, char** argv)
   }
   bool seen_singularities = false, seen_boundary = false, seen_constraints = false, seen_guidance = false,
        seen_guidance_weight = false, seen_n = false, seen_weights = false, seen_connection = false, seen_field = false,
-       seen_vtk = false, seen_ply = false, seen_points = false;
+       seen_vtk = false, seen_ply = false, seen_points = false, seen_streamlines = false, seen_seeds = false;
   for(std::size_t i = 0; i < args.size(); ++i) {
     std::string a = args[i];
     if(a == "--progress") {
@@ -209,6 +214,8 @@ Options parse_arguments(int argc, char** argv)
       else if(name == "--vtk") seen = &seen_vtk;
       else if(name == "--ply") seen = &seen_ply;
       else if(name == "--singularity-points") seen = &seen_points;
+      else if(name == "--streamlines") seen = &seen_streamlines;
+      else if(name == "--streamline-seeds") seen = &seen_seeds;
       else
         throw Usage_error("unknown option '" + name + "' (see --help)");
       if(*seen)
@@ -236,6 +243,13 @@ Options parse_arguments(int argc, char** argv)
       else if(name == "--vtk") o.vtk = value;
       else if(name == "--ply") o.ply = value;
       else if(name == "--singularity-points") o.singularity_points = value;
+      else if(name == "--streamlines") o.streamlines = value;
+      else if(name == "--streamline-seeds") {
+        if(value.empty() || value.size() > 9 || value.find_first_not_of("0123456789") != std::string::npos ||
+           std::stoul(value) == 0)
+          throw Usage_error("--streamline-seeds expects a positive integer, got '" + value + "'");
+        o.streamline_seeds = std::stoul(value);
+      }
       else if(name == "--n") o.n = parse_symmetry_order(value);
       else if(name == "--weights") {
         if(value == "hodge") o.weighting = TC::Weighting::hodge_star;
@@ -267,7 +281,7 @@ Options parse_arguments(int argc, char** argv)
     return !ec1 && !ec2 ? pa == pb : a == b;
   };
   std::vector<const std::string*> outputs = {&o.connection, &o.field};
-  for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points})
+  for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points, &o.streamlines})
     if(!extra->empty())
       outputs.push_back(extra);
   for(std::size_t a = 0; a < outputs.size(); ++a)
@@ -573,6 +587,29 @@ int run(const Options& o, Progress_printer& progress)
                        os << provenance;
                        TC::write_singularity_points(os, mesh, singularities);
                      }});
+  std::vector<TC::Streamline<Mesh>> streamlines;
+  if(!o.streamlines.empty()) {
+    // K faces spread over those without a singular vertex (a seed there would give no line)
+    std::vector<char> singular(num_vertices(mesh), 0);
+    for(const auto& sv : singularities)
+      singular[std::size_t(sv.first)] = 1;
+    std::vector<face_descriptor> candidates, seeds;
+    for(face_descriptor f : order.faces) {
+      bool touches = false;
+      for(auto v : CGAL::vertices_around_face(halfedge(f, mesh), mesh))
+        touches = touches || singular[std::size_t(v)];
+      if(!touches)
+        candidates.push_back(f);
+    }
+    const std::size_t count = (std::min)(o.streamline_seeds, candidates.size());
+    for(std::size_t i = 0; i < count; ++i)
+      seeds.push_back(candidates[i * candidates.size() / count]);
+    // a line across the mesh crosses about sqrt(faces) faces: 50 times that bounds recurrent ones
+    const std::size_t bound = 50 * std::size_t(std::sqrt(double(order.faces.size()))) + 1000;
+    streamlines = TC::trace_streamlines(mesh, x, field, singularities, seeds,
+                                        TC::parameters::maximum_faces_per_ray(bound, TC::parameters::symmetry_order(o.n)));
+    files.push_back({o.streamlines, [&](std::ostream& os) { TC::write_streamlines_vtk(os, streamlines); }});
+  }
   // all written or none; the writers only read the mesh, the maps and the solver
   TC::write_files_atomically(files, /* concurrently = */ true);
   progress.end("writing files");

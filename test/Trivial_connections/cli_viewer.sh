@@ -8,7 +8,8 @@ cli="$1" out="$2" mesh="$3" sing="$4"
 rm -rf "$out"
 mkdir -p "$out"
 "$cli" "$mesh" --singularities "$sing" --n 4 --connection "$out/c.txt" --field "$out/f.txt" \
-  --vtk "$out/field.vtk" --ply "$out/field.ply" --singularity-points "$out/sing.txt" > "$out/report.txt"
+  --vtk "$out/field.vtk" --ply "$out/field.ply" --singularity-points "$out/sing.txt" \
+  --streamlines "$out/lines.vtk" --streamline-seeds 20 > "$out/report.txt"
 fail() { echo "cli_viewer.sh: $*" >&2; exit 1; }
 faces=$(grep -cv '^#' "$out/f.txt")
 [ "$(head -1 "$out/field.vtk")" = "# vtk DataFile Version 3.0" ] || fail "not a legacy VTK file"
@@ -19,7 +20,8 @@ grep -q "^SCALARS singularity_index double 1$" "$out/field.vtk" || fail "VTK: no
 grep -q "^element face $faces$" "$out/field.ply" || fail "PLY: not $faces faces"
 [ "$(grep -c '^property double d[0-3]_[xyz]$' "$out/field.ply")" = 12 ] || fail "PLY: not 4 directions"
 [ "$(grep -cv '^#' "$out/sing.txt")" = "$(grep -cvE '^[[:space:]]*(#|$)' "$sing")" ] || fail "points: not one per singularity"
-echo "ok: VTK, PLY and point file written ($faces faces)"
+grep -qE "^LINES (2[0-9]|[3-9][0-9]) [0-9]+$" "$out/lines.vtk" || fail "streamlines: not 20-99 polylines (20 seeds, two lines each for n = 4)"
+echo "ok: VTK, PLY, point and streamline files written ($faces faces)"
 # an output that cannot be written: nothing at all is left
 rm -f "$out"/c2.txt "$out"/f2.txt
 if "$cli" "$mesh" --singularities "$sing" --n 4 --connection "$out/c2.txt" --field "$out/f2.txt" \

@@ -8,6 +8,8 @@
 
 #include "test_support.h"
 
+#include <CGAL/Trivial_connections/streamlines.h>
+
 #include <CGAL/Trivial_connections/homology_generators.h>
 #include <CGAL/Trivial_connections/trivial_connection.h>
 
@@ -969,5 +971,129 @@ TEST(Partial_loop_periods, boundary_loop_of_names_the_loop_around_the_vertex)
     for(const auto& loop : solver.loops())
       boundary_loops += loop.kind == TC::Loop_kind::boundary ? 1 : 0;
     EXPECT_EQ(named.size(), boundary_loops);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Streamlines
+// ---------------------------------------------------------------------------------------------------------
+
+namespace {
+// Every segment of every streamline lies in its face (its midpoint inside the triangle, both ends on the
+// face's plane) along one of the field's n directions there; consecutive segments meet. Returns the
+// streamlines.
+template <class Mesh>
+std::vector<TC::Streamline<Mesh>> check_streamlines(const Mesh_view<Mesh>& view, const std::vector<double>& x,
+                                                    const std::vector<Vector>& field, const Singularities& sing, int n,
+                                                    std::size_t seed_count)
+{
+  std::vector<typename Mesh_view<Mesh>::face_descriptor> seeds;
+  for(std::size_t i = 0; i < seed_count; ++i) seeds.push_back(view.faces[i * std::size_t(view.nf()) / seed_count]);
+  std::vector<double> xs = x;
+  std::vector<Vector> fs = field;
+  const auto lines = TC::trace_streamlines(view.tm, view.halfedge_map_const(xs),
+                                           Indexed_map<typename Mesh_view<Mesh>::face_descriptor, Vector>{&view.fid, &fs},
+                                           descriptors(view, sing), seeds, TC::parameters::symmetry_order(n));
+  EXPECT_FALSE(lines.empty());
+  double worst_angle = 0, worst_inside = 0, worst_plane = 0;
+  for(const auto& line : lines) {
+    EXPECT_EQ(line.faces.size() + 1, line.points.size());
+    for(std::size_t i = 0; i + 1 < line.points.size(); ++i) {
+      const int f = view.fid.at(line.faces[i]);
+      const V3 a = line.points[i], b = line.points[i + 1];
+      const V3 m = 0.5 * (a + b);
+      // barycentric coordinates of the midpoint
+      const int h0 = view.face_he[f][0];
+      const V3 p0 = view.P[view.src[h0]], p1 = view.P[view.tgt[h0]], p2 = view.P[view.tgt[view.nxt[h0]]];
+      const double area = dot(cross(p1 - p0, p2 - p0), view.N[f]);
+      const double l0 = dot(cross(p1 - m, p2 - m), view.N[f]) / area, l1 = dot(cross(p2 - m, p0 - m), view.N[f]) / area;
+      worst_inside = std::max(worst_inside, std::max(0., -std::min({l0, l1, 1 - l0 - l1})));
+      worst_plane = std::max({worst_plane, std::abs(dot(a - p0, view.N[f])), std::abs(dot(b - p0, view.N[f]))});
+      const V3 u = V3{{field[f].x(), field[f].y(), field[f].z()}};
+      worst_angle = std::max(worst_angle, std::abs(wrap(signed_angle(u, b - a, view.N[f]), two_pi / n)));
+    }
+  }
+  // rays through a vertex cross the edge 1e-9 of its length away from it: the segment turns by about that
+  EXPECT_LT(worst_angle, 1e-7) << "a segment is not along the field";
+  EXPECT_LT(worst_inside, 1e-9) << "a segment leaves its face";
+  EXPECT_LT(worst_plane, 1e-9) << "a point is off its face's plane";
+  return lines;
+}
+} // namespace
+
+TEST(Streamlines, straight_lines_of_a_constant_field_on_a_flat_disk_end_on_the_boundary)
+{
+  const Surface_mesh m = disk(6, 16); // flat: the field without singularity is constant, its streamlines straight
+  const Mesh_view<Surface_mesh> view(m);
+  Solver<Surface_mesh> solver(m);
+  for(int n : {1, 4}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    const auto s = solve_and_check(view, solver, Singularities(), n);
+    const auto lines = check_streamlines(view, s.x, s.field, Singularities(), n, 10);
+    EXPECT_EQ(lines.size(), std::size_t(10 * (n == 1 ? 1 : 2)));
+    for(const auto& line : lines) {
+      const V3 a = line.points.front(), b = line.points.back(), d = unit(b - a);
+      double off = 0;
+      for(const V3& p : line.points) off = std::max(off, norm(cross(p - a, d)));
+      EXPECT_LT(off, 1e-7) << "not a straight line";
+      // both ends on the boundary circle (radius 1: the disk's border is a polygon inscribed in it)
+      EXPECT_GT(norm(a), 0.98);
+      EXPECT_GT(norm(b), 0.98);
+    }
+  }
+}
+
+TEST(Streamlines, follow_the_field_across_every_edge_and_stop_at_singularities)
+{
+  const Surface_mesh m = icosphere(3);
+  const Mesh_view<Surface_mesh> view(m);
+  Solver<Surface_mesh> solver(m);
+  for(int n : {1, 2, 4}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    const Singularities sing = plan_singularities(view, n);
+    const auto s = solve_and_check(view, solver, sing, n);
+    const auto lines = check_streamlines(view, s.x, s.field, sing, n, 25);
+    // a line stops on entering a face with a singular vertex: such faces are only at its ends
+    std::set<int> singular;
+    for(const auto& p : sing) singular.insert(p.first);
+    int inner = 0, ends = 0;
+    for(const auto& line : lines)
+      for(std::size_t i = 0; i < line.faces.size(); ++i) {
+        const int f = view.fid.at(line.faces[i]);
+        bool touches = false;
+        for(int h : view.face_he[f]) touches = touches || singular.count(view.src[h]) > 0;
+        if(!touches) continue;
+        (i == 0 || i + 1 == line.faces.size() ? ends : inner) += 1;
+      }
+    EXPECT_EQ(inner, 0) << "a streamline goes on through a face with a singular vertex";
+  }
+}
+
+TEST(Streamlines, radial_lines_run_from_the_boundary_to_the_singularity)
+{
+  // a flat disk with a +1 singularity at its centre: the field turned to be radial at one face is radial
+  // everywhere, and every streamline is a radius ending at the centre's faces and at the boundary
+  const Surface_mesh m = disk(6, 16);
+  const Mesh_view<Surface_mesh> view(m);
+  Solver<Surface_mesh> solver(m);
+  const Singularities sing = {{0, Index(1)}};
+  std::vector<double> x;
+  solver.solve(descriptors(view, sing), view.halfedge_map(x));
+  const int seed = view.nf() - 1;
+  const V3 e = view.frame(seed), r = unit(view.bary[seed]);
+  const double radial = std::atan2(dot(cross(e, r), view.N[seed]), dot(e, r));
+  std::vector<Vector> field;
+  solver.compute_field(view.halfedge_map_const(x), view.face_map(field),
+                       TC::parameters::seed_angle(radial, TC::parameters::seed_face(view.faces[seed])));
+  const auto lines = check_streamlines(view, x, field, sing, 1, 12);
+  const double ring = 1. / 6; // the first ring of vertices around the centre
+  for(const auto& line : lines) {
+    const V3 a = line.points.front(), b = line.points.back();
+    const double inner = std::min(norm(a), norm(b)), outer = std::max(norm(a), norm(b));
+    EXPECT_GT(outer, 0.98) << "a radius that does not reach the boundary";
+    EXPECT_LE(inner, ring + 1e-9) << "a radius that stops before the centre's faces";
+    double off = 0; // on the line through the centre
+    for(const V3& p : line.points) off = std::max(off, norm(cross(p, unit(b - a))));
+    EXPECT_LT(off, 1e-7) << "not a radius";
   }
 }

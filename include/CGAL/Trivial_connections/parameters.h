@@ -33,6 +33,7 @@ enum align_with_boundary_t { align_with_boundary };
 enum face_directions_t { face_directions };
 enum guided_faces_t { guided_faces };
 enum guidance_weight_t { guidance_weight };
+enum maximum_faces_per_ray_t { maximum_faces_per_ray };
 } // namespace tc_np
 
 /*!
@@ -88,6 +89,9 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(face_directions)
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(guided_faces)
 /// `double` mu > 0, default 1: the weight of the guidance term mu sum_g d_g^2; read by the constructor
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(guidance_weight)
+
+/// `std::size_t`: the faces a streamline ray may cross at most; read by `trace_streamlines()`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(maximum_faces_per_ray)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
 } // namespace parameters

@@ -8,6 +8,7 @@
 
 #include <CGAL/Trivial_connections/IO/connection_file.h>
 #include <CGAL/Trivial_connections/Singularity_index.h>
+#include <CGAL/Trivial_connections/streamlines.h>
 #include <CGAL/Trivial_connections/parameters.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -233,6 +234,47 @@ void write_singularity_points(std::ostream& os, const TriangleMesh& tm, const Si
     for(char c : s.second.to_string())
       out.character(c);
     out.character('\n');
+  }
+  out.flush();
+}
+
+/*!
+\ingroup PkgTrivialConnectionsIO
+Writes streamlines (from `trace_streamlines()`) as a legacy VTK file of polylines (ASCII `POLYDATA` with
+`LINES`), for ParaView.
+*/
+template <class TriangleMesh>
+void write_streamlines_vtk(std::ostream& os, const std::vector<Streamline<TriangleMesh>>& lines)
+{
+  internal::io::Number_writer out(os);
+  auto text = [&](const std::string& s) {
+    for(char c : s)
+      out.character(c);
+  };
+  std::size_t points = 0;
+  for(const auto& line : lines)
+    points += line.points.size();
+  text("# vtk DataFile Version 3.0\nstreamlines (CGAL Trivial Connections)\nASCII\nDATASET POLYDATA\nPOINTS " +
+       std::to_string(points) + " double\n");
+  for(const auto& line : lines)
+    for(const auto& p : line.points) {
+      out.number(p[0]);
+      out.character(' ');
+      out.number(p[1]);
+      out.character(' ');
+      out.number(p[2]);
+      out.character('\n');
+    }
+  text("LINES " + std::to_string(lines.size()) + " " + std::to_string(points + lines.size()) + "\n");
+  std::size_t first = 0;
+  for(const auto& line : lines) {
+    out.index(line.points.size());
+    for(std::size_t i = 0; i < line.points.size(); ++i) {
+      out.character(' ');
+      out.index(first + i);
+    }
+    out.character('\n');
+    first += line.points.size();
   }
   out.flush();
 }

@@ -1043,6 +1043,16 @@ TEST(Streamlines, straight_lines_of_a_constant_field_on_a_flat_disk_end_on_the_b
   }
 }
 
+TEST(Streamlines, on_a_Polyhedron_3)
+{
+  const Polyhedron m = to_polyhedron(warped(icosphere_soup(2)));
+  const Mesh_view<Polyhedron> view(m);
+  Solver<Polyhedron> solver(m);
+  const Singularities sing = plan_singularities(view, 4);
+  const auto s = solve_and_check(view, solver, sing, 4);
+  check_streamlines(view, s.x, s.field, sing, 4, 10);
+}
+
 TEST(Streamlines, follow_the_field_across_every_edge_and_stop_at_singularities)
 {
   const Surface_mesh m = icosphere(3);

@@ -15,7 +15,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <set>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -127,14 +126,14 @@ std::vector<Streamline<TriangleMesh>> trace_streamlines(const TriangleMesh& tm, 
   // backwards along a vector field follows minus the field): the points after p
   auto ray = [&](face_descriptor f, Vec p, Vec d, double sign, std::vector<Vec>& points,
                  std::vector<face_descriptor>& faces) {
-    std::set<std::pair<face_descriptor, int>> followed;
+    std::vector<std::unordered_set<face_descriptor>> followed(static_cast<std::size_t>(n)); // per direction index
     for(std::size_t step = 0; step < maximum_faces; ++step) {
       const Vec N = normal(f);
       // the direction's index among the field's n directions here, for the recurrence test
       const Vec base = internal::combine(sign, field_at(f), 0, field_at(f));
       const double angle = std::atan2(internal::dot3(internal::cross3(base, d), N), internal::dot3(base, d));
       const int k = int(std::lround(angle / unit)) % n;
-      if(!followed.insert({f, (k + n) % n}).second)
+      if(!followed[std::size_t((k + n) % n)].insert(f).second)
         return;
       // the edge met: p + t d = a + s (b - a), t > 0, s in [0, 1] (in the plane of f)
       halfedge_descriptor exit = GT::null_halfedge();

@@ -10,12 +10,9 @@
 #include <CGAL/Trivial_connections/exceptions.h>
 
 #include <array>
-#include <cerrno>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
-#include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <istream>
 #include <string>
@@ -75,7 +72,6 @@ inline std::vector<Face_direction> read_face_directions(std::istream& is, const 
     for(int c = 0; c < 3; ++c) {
       const std::string& text = f[std::size_t(c) + 1];
       char* end = nullptr;
-      errno = 0;
       const double value = std::strtod(text.c_str(), &end);
       if(end != text.c_str() + text.size() || !std::isfinite(value)) // an overflow gives infinity
         throw Invalid_input(Error_code::parse_error, where + "face " + std::to_string(d.face) + ": the coordinate '" +
@@ -110,16 +106,7 @@ Reads the directional constraint file `path` (see the stream overload; messages 
 inline std::vector<Face_direction> read_face_directions(const std::string& path,
                                                         std::size_t number_of_faces = unchecked_vertex_count)
 {
-  std::error_code ec;
-  if(std::filesystem::is_directory(path, ec))
-    throw Invalid_input(Error_code::io_error, "cannot read direction file '" + path + "': it is a directory");
-  errno = 0;
-  std::ifstream is(path);
-  if(!is) {
-    const int err = errno;
-    throw Invalid_input(Error_code::io_error, "cannot read direction file '" + path + "'" +
-                                                (err != 0 ? std::string(": ") + std::strerror(err) : std::string()));
-  }
+  std::ifstream is = internal::io::open_input_file(path, "direction file");
   return read_face_directions(is, path, number_of_faces);
 }
 

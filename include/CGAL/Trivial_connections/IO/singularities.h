@@ -88,6 +88,23 @@ void for_each_record(std::istream& is, const std::string& source_name, Record re
     throw Invalid_input(Error_code::io_error, source_name + ": read error after line " + std::to_string(line_number));
 }
 
+// The text file `path` open for reading, or Invalid_input(io_error) "cannot read <what> 'path': <reason>" (a
+// directory, or the system's reason)
+inline std::ifstream open_input_file(const std::string& path, const std::string& what)
+{
+  std::error_code ec;
+  if(std::filesystem::is_directory(path, ec))
+    throw Invalid_input(Error_code::io_error, "cannot read " + what + " '" + path + "': it is a directory");
+  errno = 0;
+  std::ifstream is(path);
+  if(!is) {
+    const int err = errno;
+    throw Invalid_input(Error_code::io_error, "cannot read " + what + " '" + path + "'" +
+                                                (err != 0 ? std::string(": ") + std::strerror(err) : std::string()));
+  }
+  return is;
+}
+
 } // namespace io
 } // namespace internal
 
@@ -161,16 +178,7 @@ Reads the singularity file `path` (see the stream overload; messages start with 
 inline std::vector<std::pair<std::size_t, Singularity_index>>
 read_singularities(const std::string& path, std::size_t number_of_vertices = unchecked_vertex_count)
 {
-  std::error_code ec;
-  if(std::filesystem::is_directory(path, ec))
-    throw Invalid_input(Error_code::io_error, "cannot read singularity file '" + path + "': it is a directory");
-  errno = 0;
-  std::ifstream is(path);
-  if(!is) {
-    const int err = errno;
-    throw Invalid_input(Error_code::io_error, "cannot read singularity file '" + path + "'" +
-                                                (err != 0 ? std::string(": ") + std::strerror(err) : std::string()));
-  }
+  std::ifstream is = internal::io::open_input_file(path, "singularity file");
   return read_singularities(is, path, number_of_vertices);
 }
 

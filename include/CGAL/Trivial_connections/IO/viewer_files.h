@@ -85,6 +85,30 @@ struct Viewer_data
   }
 };
 
+inline void write_text(Number_writer& out, const std::string& text)
+{
+  for(char c : text)
+    out.character(c);
+}
+
+// "x y z" and `end`
+inline void write_triple(Number_writer& out, const std::array<double, 3>& p, char end = '\n')
+{
+  out.number(p[0]);
+  out.character(' ');
+  out.number(p[1]);
+  out.character(' ');
+  out.number(p[2]);
+  out.character(end);
+}
+
+// the header of a legacy ASCII VTK POLYDATA file, up to the POINTS line (the points follow)
+inline void write_vtk_header(Number_writer& out, const std::string& title, std::size_t points)
+{
+  write_text(out, "# vtk DataFile Version 3.0\n" + title + " (CGAL Trivial Connections)\nASCII\nDATASET POLYDATA\nPOINTS " +
+                    std::to_string(points) + " double\n");
+}
+
 } // namespace io
 } // namespace internal
 
@@ -109,23 +133,10 @@ void write_field_vtk(std::ostream& os, const TriangleMesh& tm, FaceVectorMap fie
 {
   const internal::io::Viewer_data<TriangleMesh> data(tm, field, singularities, np);
   internal::io::Number_writer out(os);
-  auto text = [&](const char* s) {
-    for(; *s; ++s)
-      out.character(*s);
-  };
-  auto triple = [&](const std::array<double, 3>& p) {
-    out.number(p[0]);
-    out.character(' ');
-    out.number(p[1]);
-    out.character(' ');
-    out.number(p[2]);
-    out.character('\n');
-  };
-  text("# vtk DataFile Version 3.0\ndirection field (CGAL Trivial Connections)\nASCII\nDATASET POLYDATA\nPOINTS ");
-  out.index(data.points.size());
-  text(" double\n");
+  auto text = [&](const std::string& s) { internal::io::write_text(out, s); };
+  internal::io::write_vtk_header(out, "direction field", data.points.size());
   for(const auto& p : data.points)
-    triple(p);
+    internal::io::write_triple(out, p);
   text("POLYGONS ");
   out.index(data.triangles.size());
   out.character(' ');
@@ -148,7 +159,7 @@ void write_field_vtk(std::ostream& os, const TriangleMesh& tm, FaceVectorMap fie
     out.index(k);
     text(" double\n");
     for(const auto& v : data.directions[k])
-      triple(v);
+      internal::io::write_triple(out, v);
   }
   text("POINT_DATA ");
   out.index(data.points.size());
@@ -174,10 +185,7 @@ void write_field_ply(std::ostream& os, const TriangleMesh& tm, FaceVectorMap fie
 {
   const internal::io::Viewer_data<TriangleMesh> data(tm, field, singularities, np);
   internal::io::Number_writer out(os);
-  auto text = [&](const std::string& s) {
-    for(char c : s)
-      out.character(c);
-  };
+  auto text = [&](const std::string& s) { internal::io::write_text(out, s); };
   text("ply\nformat ascii 1.0\ncomment direction field (CGAL Trivial Connections): per face the n directions dk\n"
        "element vertex " + std::to_string(data.points.size()) +
        "\nproperty double x\nproperty double y\nproperty double z\nproperty double singularity_index\n"
@@ -187,10 +195,7 @@ void write_field_ply(std::ostream& os, const TriangleMesh& tm, FaceVectorMap fie
       text("property double d" + std::to_string(k) + "_" + axis + "\n");
   text("end_header\n");
   for(std::size_t v = 0; v < data.points.size(); ++v) {
-    for(double x : data.points[v]) {
-      out.number(x);
-      out.character(' ');
-    }
+    internal::io::write_triple(out, data.points[v], ' ');
     out.number(data.index[v]);
     out.character('\n');
   }
@@ -225,15 +230,8 @@ void write_singularity_points(std::ostream& os, const TriangleMesh& tm, const Si
   internal::io::Number_writer out(os);
   for(const auto& s : singularities) {
     const auto& p = get(vpm, s.first);
-    out.number(CGAL::to_double(p.x()));
-    out.character(' ');
-    out.number(CGAL::to_double(p.y()));
-    out.character(' ');
-    out.number(CGAL::to_double(p.z()));
-    out.character(' ');
-    for(char c : s.second.to_string())
-      out.character(c);
-    out.character('\n');
+    internal::io::write_triple(out, {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}, ' ');
+    internal::io::write_text(out, s.second.to_string() + "\n");
   }
   out.flush();
 }
@@ -247,25 +245,14 @@ template <class TriangleMesh>
 void write_streamlines_vtk(std::ostream& os, const std::vector<Streamline<TriangleMesh>>& lines)
 {
   internal::io::Number_writer out(os);
-  auto text = [&](const std::string& s) {
-    for(char c : s)
-      out.character(c);
-  };
   std::size_t points = 0;
   for(const auto& line : lines)
     points += line.points.size();
-  text("# vtk DataFile Version 3.0\nstreamlines (CGAL Trivial Connections)\nASCII\nDATASET POLYDATA\nPOINTS " +
-       std::to_string(points) + " double\n");
+  internal::io::write_vtk_header(out, "streamlines", points);
   for(const auto& line : lines)
-    for(const auto& p : line.points) {
-      out.number(p[0]);
-      out.character(' ');
-      out.number(p[1]);
-      out.character(' ');
-      out.number(p[2]);
-      out.character('\n');
-    }
-  text("LINES " + std::to_string(lines.size()) + " " + std::to_string(points + lines.size()) + "\n");
+    for(const auto& p : line.points)
+      internal::io::write_triple(out, p);
+  internal::io::write_text(out, "LINES " + std::to_string(lines.size()) + " " + std::to_string(points + lines.size()) + "\n");
   std::size_t first = 0;
   for(const auto& line : lines) {
     out.index(line.points.size());

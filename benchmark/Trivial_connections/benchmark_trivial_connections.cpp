@@ -380,6 +380,18 @@ Reference_result reference_factorization(std::size_t nv, const std::vector<Weigh
 
 // ---------------------------------------------------------------------------------------------------------
 
+// the edges of the reference Laplacian: the solver's interior edges, weighted 1/w_e
+template <class Solver>
+std::vector<Weighted_edge> laplacian_edges(const Mesh& mesh, const Solver& solver)
+{
+  std::vector<Weighted_edge> edges;
+  edges.reserve(num_edges(mesh));
+  for(auto e : CGAL::edges(mesh))
+    if(solver.is_interior(e))
+      edges.push_back({int(source(halfedge(e, mesh), mesh)), int(target(halfedge(e, mesh), mesh)), 1 / solver.weight(e)});
+  return edges;
+}
+
 template <class SolverTraits, class ReferenceSolver>
 void pipeline(benchmark::State& state, const Mesh_spec& spec)
 {
@@ -429,11 +441,7 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
       t_field = seconds_since(t0);
       peak = base >= 0 ? status_bytes("VmHWM") - base : -1;
 
-      edges.reserve(num_edges(mesh));
-      for(auto e : CGAL::edges(mesh))
-        if(solver.is_interior(e))
-          edges.push_back({int(source(halfedge(e, mesh), mesh)), int(target(halfedge(e, mesh), mesh)),
-                           1 / solver.weight(e)});
+      edges = laplacian_edges(mesh, solver);
     } // the solver is gone before the reference runs
     ref = reference_factorization<ReferenceSolver>(num_vertices(mesh), edges);
     if(!ref.ok)
@@ -537,11 +545,7 @@ void controls(benchmark::State& state, const Mesh_spec& spec)
       t0 = Clock::now();
       benchmark::DoNotOptimize(solver.solve(sing, x, TC::parameters::face_directions(directions, TC::parameters::symmetry_order(4))).energy);
       t_after = seconds_since(t0);
-      edges.reserve(num_edges(mesh));
-      for(auto e : CGAL::edges(mesh))
-        if(solver.is_interior(e))
-          edges.push_back({int(source(halfedge(e, mesh), mesh)), int(target(halfedge(e, mesh), mesh)),
-                           1 / solver.weight(e)});
+      edges = laplacian_edges(mesh, solver);
     }
     ref = reference_factorization<ReferenceSolver>(num_vertices(mesh), edges);
     if(!ref.ok)

@@ -775,23 +775,20 @@ private:
         }
       }
     }
-    for(int f : user_faces) {
-      if(constraint_of_face[f] >= 0)
-        throw Invalid_input(Error_code::invalid_constraint,
-                            "face " + std::to_string(f) +
-                              " is on the boundary, which the field is aligned with: it cannot have a target too",
-                            std::size_t(f));
-      units[t.component_of_face[f]].push_back(add_face(f, -1));
-    }
+    // user targets, then guides: each face a chain of its own
+    auto add_user_faces = [&](const std::vector<int>& faces, bool soft) {
+      for(int f : faces) {
+        if(constraint_of_face[f] >= 0)
+          throw Invalid_input(Error_code::invalid_constraint,
+                              "face " + std::to_string(f) + " is on the boundary, which the field is aligned with: " +
+                                (soft ? "it cannot be guided too" : "it cannot have a target too"),
+                              std::size_t(f));
+        units[t.component_of_face[f]].push_back(add_face(f, -1, soft));
+      }
+    };
+    add_user_faces(user_faces, false);
     m_first_guided = int(m_constrained.size());
-    for(int f : guided) {
-      if(constraint_of_face[f] >= 0)
-        throw Invalid_input(Error_code::invalid_constraint,
-                            "face " + std::to_string(f) +
-                              " is on the boundary, which the field is aligned with: it cannot be guided too",
-                            std::size_t(f));
-      units[t.component_of_face[f]].push_back(add_face(f, -1, true));
-    }
+    add_user_faces(guided, true);
     m_has_user_constraints = !user_faces.empty() || !guided.empty();
     m_seed_constraint.assign(t.components.size(), -1);
     if(m_constrained.empty())

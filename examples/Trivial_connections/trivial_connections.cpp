@@ -7,7 +7,7 @@
 // singularities on a triangle mesh, and the n-direction field it defines, and writes both to files.
 //
 //   trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--constraints FILE]
-//                            [--align-boundary] [--guidance FILE] [--guidance-weight MU] [--n N] [--weights hodge|unit]
+//                            [--triangulate] [--align-boundary] [--guidance FILE] [--guidance-weight MU] [--n N] [--weights hodge|unit]
 //                            [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT] [--singularity-points OUT]
 //                            [--streamlines OUT] [--streamline-seeds K] [--progress] [--help] [--version]
 //
@@ -67,7 +67,7 @@ namespace {
 const char* const program = "trivial_connections";
 
 const char* const usage_text =
-  "Usage: trivial_connections MESH [--singularities FILE] [--boundary-indices FILE]\n"
+  "Usage: trivial_connections MESH [--triangulate] [--singularities FILE] [--boundary-indices FILE]\n"
   "                           [--constraints FILE] [--align-boundary] [--guidance FILE]\n"
   "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
   "                           [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT]\n"
@@ -77,7 +77,11 @@ const char* const usage_text =
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
   "\n"
-  "  MESH                  triangle mesh: .off, .obj, .ply or .stl (oriented 2-manifold, boundary allowed)\n"
+  "  MESH                  triangle mesh: .off, .obj, .ply, .stl or .ts (oriented 2-manifold, boundary\n"
+  "                        allowed)\n"
+  "  --triangulate         split faces of more than three vertices into triangles (CGAL's PMP); face\n"
+  "                        indices (--constraints, --guidance, --field) then number the triangles: those of\n"
+  "                        a face are consecutive, in file order. Without it such faces are an error.\n"
   "  --singularities FILE  one line 'v k' per singular vertex: 0-based vertex index (file order) and index k,\n"
   "                        an integer or a fraction p/q that is a multiple of 1/N; '#' starts a comment.\n"
   "                        Default: no singularity (then every closed component must have genus 1).\n"
@@ -134,6 +138,7 @@ struct Options
   std::string boundary_indices;
   std::string constraints;
   bool align_boundary = false;
+  bool triangulate = false;
   std::string guidance;
   double guidance_weight = 1;
   int n = 1;
@@ -184,6 +189,12 @@ Options parse_arguments(int argc, char** argv)
     std::string a = args[i];
     if(a == "--progress") {
       o.progress = true;
+      continue;
+    }
+    if(a == "--triangulate") {
+      if(o.triangulate)
+        throw Usage_error("option --triangulate given twice");
+      o.triangulate = true;
       continue;
     }
     if(a == "--align-boundary") {
@@ -428,7 +439,15 @@ int run(const Options& o, Progress_printer& progress)
 
   Mesh mesh;
   progress.begin("reading mesh");
-  const TC::Mesh_input_order<Mesh> order = TC::read_triangle_mesh(o.mesh, mesh);
+  const TC::Mesh_input_order<Mesh> order = [&] {
+    try {
+      return TC::read_triangle_mesh(o.mesh, mesh, TC::parameters::triangulate(o.triangulate));
+    } catch(const TC::Invalid_input& e) {
+      if(e.code() != TC::Error_code::not_triangle_mesh || o.triangulate)
+        throw;
+      throw TC::Invalid_input(e.code(), std::string(e.what()) + " (--triangulate splits such faces)", e.where());
+    }
+  }();
   progress.end("reading mesh");
   const double t_read = seconds_since(t_start);
 
@@ -620,6 +639,15 @@ int run(const Options& o, Progress_printer& progress)
   out << "mesh: " << o.mesh << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh) << " faces, "
       << num_edges(mesh) << " edges (" << interior_edges << " interior), " << report.components.size()
       << (report.components.size() == 1 ? " component\n" : " components\n");
+  if(!order.source_faces.empty()) {
+    const std::size_t file_faces = order.source_faces.back() + 1;
+    std::size_t split = 0;
+    for(std::size_t t = 0; t < order.source_faces.size(); ++t)
+      split += (t == 0 || order.source_faces[t] != order.source_faces[t - 1]) &&
+               t + 1 < order.source_faces.size() && order.source_faces[t + 1] == order.source_faces[t];
+    out << "triangulated: " << split << " of the file's " << file_faces << " faces had more than three vertices, "
+        << order.source_faces.size() << " triangles\n";
+  }
   const std::size_t max_lines = 10;
   for(std::size_t c = 0; c < report.components.size() && c < max_lines; ++c) {
     const TC::Component_report& r = report.components[c];

@@ -1065,6 +1065,118 @@ TYPED_TEST(IoMeshReader, FastReaderRejectsMalformedFilesWithTheUsualErrors)
                TC::Error_code::inconsistent_orientation, {"orientation_fast.obj", "faces 0 and 1"});
 }
 
+// Faces of more than three vertices are split on request: into triangles inside the face (their areas add
+// up to the face's, which a wrong split of a non-convex face does not give), with the face's orientation,
+// the vertex numbering kept and source_faces naming each triangle's face.
+TYPED_TEST(IoMeshReader, TriangulatesFacesOfMoreThanThreeVerticesOnRequest)
+{
+  using Mesh = TypeParam;
+  Temp_dir dir;
+  // a unit cube of six quads (outward), plus an unused vertex, then an L-shaped hexagon and a triangle
+  // on a separate, flat component
+  std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0), Point(0, 0, 1),
+                               Point(1, 0, 1), Point(1, 1, 1), Point(0, 1, 1), Point(9, 9, 9)};
+  std::vector<std::vector<std::size_t>> polys = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                 {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  for(const Point& p : {Point(3, 0, 0), Point(5, 0, 0), Point(5, 1, 0), Point(4, 1, 0), Point(4, 2, 0),
+                        Point(3, 2, 0), Point(2, 0, 0)})
+    points.push_back(p);
+  polys.push_back({9, 10, 11, 12, 13, 14}); // L: area 3
+  polys.push_back({9, 14, 15});             // triangle (2,0)-(3,0)-(3,2) on its left: area 1
+  const std::string path = dir.write("polygons.off", to_off(points, polys));
+
+  expect_error([&] { Mesh m; TC::read_triangle_mesh(path, m); }, TC::Error_code::not_triangle_mesh,
+               {"polygons.off", "face 0", "4 vertices"});
+
+  Mesh mesh;
+  const TC::Mesh_input_order<Mesh> order = TC::read_triangle_mesh(path, mesh, TC::parameters::triangulate(true));
+  ASSERT_TRUE(CGAL::is_triangle_mesh(mesh));
+  ASSERT_EQ(order.vertices.size(), points.size());
+  ASSERT_EQ(std::size_t(num_faces(mesh)), 6 * 2 + 4 + 1);
+  ASSERT_EQ(order.faces.size(), order.source_faces.size());
+  EXPECT_TRUE(std::is_sorted(order.source_faces.begin(), order.source_faces.end()));
+  std::size_t v = 0;
+  for(auto vd : vertices(mesh))
+    EXPECT_EQ(get(CGAL::vertex_point, mesh, vd), points[v++]);
+
+  std::vector<double> area(polys.size(), 0.);
+  std::vector<std::size_t> count(polys.size(), 0);
+  for(std::size_t t = 0; t < order.faces.size(); ++t) {
+    const std::size_t f = order.source_faces[t];
+    ASSERT_LT(f, polys.size());
+    ++count[f];
+    std::vector<Point> corners;
+    for(auto h : CGAL::halfedges_around_face(halfedge(order.faces[t], mesh), mesh)) {
+      const std::size_t i = index_in<Mesh>(order.vertices, source(h, mesh));
+      EXPECT_NE(std::find(polys[f].begin(), polys[f].end(), i), polys[f].end()) << "triangle " << t;
+      corners.push_back(points[i]);
+    }
+    ASSERT_EQ(corners.size(), 3u);
+    const Vector n = CGAL::cross_product(corners[1] - corners[0], corners[2] - corners[0]);
+    // the face's own normal (Newell), which the triangle must share
+    Vector newell = CGAL::NULL_VECTOR;
+    for(std::size_t k = 0; k < polys[f].size(); ++k) {
+      const Point& a = points[polys[f][k]];
+      const Point& b = points[polys[f][(k + 1) % polys[f].size()]];
+      newell = newell + Vector((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+                               (a.x() - b.x()) * (a.y() + b.y()));
+    }
+    EXPECT_GT(n * newell, 0.) << "triangle " << t << " is flipped against face " << f;
+    area[f] += std::sqrt(n.squared_length()) / 2;
+  }
+  for(std::size_t f = 0; f < 6; ++f) {
+    EXPECT_EQ(count[f], 2u);
+    EXPECT_NEAR(area[f], 1., 1e-14);
+  }
+  EXPECT_EQ(count[6], 4u);
+  EXPECT_NEAR(area[6], 3., 1e-14);
+  EXPECT_EQ(count[7], 1u);
+  // the cube became a closed sphere: chi = 2 (8 - 18 + 12)
+  std::size_t border = 0;
+  for(auto h : halfedges(mesh))
+    border += is_border(h, mesh);
+  EXPECT_EQ(border, 5u + 2u); // the L and the triangle share the edge 9-14
+  EXPECT_EQ(std::size_t(num_edges(mesh)), 18u + 9u + 2u);
+
+  // a triangle-only file is read as before: source_faces stays empty
+  Mesh tet;
+  const auto tet_order =
+    TC::read_triangle_mesh(dir.write("tet.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n"
+                                                "3 1 2 3\n3 2 0 3\n"),
+                           tet, TC::parameters::triangulate(true));
+  EXPECT_TRUE(tet_order.source_faces.empty());
+  EXPECT_EQ(std::size_t(num_faces(tet)), 4u);
+
+  // faces that cannot be split: collinear corners, a repeated vertex; too few corners
+  const std::string line = "OFF\n4 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n";
+  expect_error([&] { Mesh m; TC::read_triangle_mesh(dir.write("flat.off", line + "4 0 1 2 3\n"), m,
+                                                    TC::parameters::triangulate(true)); },
+               TC::Error_code::degenerate_face, {"flat.off", "face 0", "cannot be triangulated"});
+  const std::string square = "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+  expect_error([&] { Mesh m; TC::read_triangle_mesh(dir.write("repeat.off", square + "5 0 1 2 1 3\n"), m,
+                                                    TC::parameters::triangulate(true)); },
+               TC::Error_code::degenerate_face, {"repeat.off", "face 0", "vertex 1 twice"});
+  expect_error([&] { Mesh m; TC::read_triangle_mesh(dir.write("range.off", square + "4 0 1 2 7\n"), m,
+                                                    TC::parameters::triangulate(true)); },
+               TC::Error_code::invalid_vertex, {"range.off", "face 0", "vertex 7"});
+}
+
+// GOCAD (.ts) goes through CGAL's reader, like PLY and STL
+TYPED_TEST(IoMeshReader, ReadsGocadTs)
+{
+  using Mesh = TypeParam;
+  Temp_dir dir;
+  const std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1)};
+  const std::vector<std::vector<std::size_t>> polys = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  const std::string path = dir.file("tet.ts");
+  ASSERT_TRUE(CGAL::IO::write_polygon_soup(path, points, polys, CGAL::parameters::stream_precision(17)));
+  Mesh mesh;
+  const auto order = TC::read_triangle_mesh(path, mesh);
+  expect_input_order(mesh, order, points, polys);
+  expect_error([&] { Mesh m; TC::read_triangle_mesh(dir.write("tet.vtp", "<VTKFile/>"), m); },
+               TC::Error_code::parse_error, {"unknown file extension '.vtp'", ".ts"});
+}
+
 TYPED_TEST(IoMeshReader, NonManifoldVerticesAreFoundByTheFanWalk)
 {
   using Mesh = TypeParam;

@@ -34,6 +34,7 @@ enum face_directions_t { face_directions };
 enum guided_faces_t { guided_faces };
 enum guidance_weight_t { guidance_weight };
 enum maximum_faces_per_ray_t { maximum_faces_per_ray };
+enum triangulate_t { triangulate };
 } // namespace tc_np
 
 /*!
@@ -92,6 +93,9 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(guidance_weight)
 
 /// `std::size_t`: the faces a streamline ray may cross at most; read by `trace_streamlines()`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(maximum_faces_per_ray)
+/// whether `read_triangle_mesh()` triangulates the faces of more than three vertices (`bool`, default `false`:
+/// such faces are an error)
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(triangulate)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
 } // namespace parameters

@@ -9,8 +9,11 @@
 #include <CGAL/disable_warnings.h>
 
 #include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/parameters.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh/Surface_mesh.h>
 #include <CGAL/assertions.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -54,7 +57,10 @@ namespace Trivial_connections {
 \ingroup PkgTrivialConnectionsIO
 The elements of a mesh built by `read_triangle_mesh()` or `triangle_soup_to_mesh()`, by input index:
 `vertices[i]` is vertex `i` of the file (also the `i`-th vertex of `vertices(tm)`), `faces[f]` is face `f`
-(also the `f`-th face of `faces(tm)`).
+(also the `f`-th face of `faces(tm)`). When `read_triangle_mesh()` triangulated faces of the file
+(`parameters::triangulate(true)`), `faces[t]` is the `t`-th triangle and `source_faces[t]` the face of the
+file it comes from (the triangles of a face are consecutive, faces in file order); otherwise `source_faces`
+is empty and triangles and faces of the file are the same.
 */
 template <class TriangleMesh>
 struct Mesh_input_order
@@ -63,6 +69,7 @@ struct Mesh_input_order
   using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
   std::vector<vertex_descriptor> vertices;
   std::vector<face_descriptor> faces;
+  std::vector<std::size_t> source_faces;
 };
 
 namespace internal {
@@ -919,6 +926,100 @@ bool fast_parse_obj(const char* p, const char* end, std::vector<Point>& points,
   return !points.empty() && !triangles.empty() && max_index <= std::uint64_t(points.size());
 }
 
+/*
+  Splits every polygon of more than three vertices into triangles with PMP::triangulate_face() (a quad along
+  its better diagonal, larger polygons by a constrained Delaunay triangulation in their plane), keeping the
+  polygon's orientation and the vertex indices. Triangles of a polygon are consecutive, polygons in order;
+  source[t] is the polygon of triangle t. Indices are checked first; polygons of fewer than three vertices are
+  left to the validation, which rejects them.
+*/
+template <class Point, class PolygonRange>
+void triangulate_polygons(const std::vector<Point>& points, const PolygonRange& polygons,
+                          std::vector<std::array<int, 3>>& triangles, std::vector<std::size_t>& source)
+{
+  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Patches = CGAL::Surface_mesh<typename Kernel::Point_3>;
+  using Patch_vertex = typename Patches::Vertex_index;
+  using Patch_face = typename Patches::Face_index;
+  const std::size_t nf = polygons.size();
+  check_soup_size(points.size(), nf);
+
+  // Each polygon on its own copies of its vertices: one disk per polygon, whatever the soup's connectivity.
+  Patches patches;
+  auto point_index = patches.template add_property_map<Patch_vertex, int>("v:tc_point", -1).first;
+  // by vertex: the faces split_face() creates have no property of their own, their vertices do
+  auto polygon_of = patches.template add_property_map<Patch_vertex, std::size_t>("v:tc_polygon", 0).first;
+  std::vector<Patch_face> to_split;
+  std::size_t f = 0;
+  for(const auto& polygon : polygons) {
+    for(const auto& index : polygon)
+      if(std::size_t(index) >= points.size())
+        throw_vertex_out_of_range(f, std::size_t(index), points.size());
+    if(polygon.size() > 3) {
+      std::vector<std::size_t> corners(polygon.begin(), polygon.end());
+      std::vector<std::size_t> sorted = corners;
+      std::sort(sorted.begin(), sorted.end());
+      const auto repeated = std::adjacent_find(sorted.begin(), sorted.end());
+      if(repeated != sorted.end())
+        throw Invalid_input(Error_code::degenerate_face, "face " + std::to_string(f) + " uses vertex " +
+                                                          std::to_string(*repeated) + " twice", f);
+      std::vector<Patch_vertex> corner_vertices;
+      for(std::size_t i : corners) {
+        const Point& p = points[i];
+        const Patch_vertex v = patches.add_vertex(typename Kernel::Point_3(p.x(), p.y(), p.z()));
+        put(point_index, v, int(i));
+        put(polygon_of, v, f);
+        corner_vertices.push_back(v);
+      }
+      to_split.push_back(patches.add_face(corner_vertices));
+    }
+    ++f;
+  }
+  for(const Patch_face pf : to_split)
+    if(!CGAL::Polygon_mesh_processing::triangulate_face(pf, patches)) {
+      const std::size_t bad = get(polygon_of, patches.target(patches.halfedge(pf)));
+      throw Invalid_input(Error_code::degenerate_face,
+                          "face " + std::to_string(bad) + " cannot be triangulated (it is degenerate)", bad);
+    }
+
+  // Triangles of each split polygon, gathered by polygon (new faces are appended, so sort by polygon).
+  std::vector<std::pair<std::size_t, std::array<int, 3>>> pieces;
+  for(const Patch_face pf : patches.faces()) {
+    std::array<int, 3> t;
+    std::size_t k = 0;
+    for(const Patch_vertex v : CGAL::vertices_around_face(patches.halfedge(pf), patches))
+      t[k++] = get(point_index, v);
+    CGAL_assertion(k == 3);
+    pieces.emplace_back(get(polygon_of, patches.target(patches.halfedge(pf))), t);
+  }
+  std::stable_sort(pieces.begin(), pieces.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+
+  triangles.clear();
+  source.clear();
+  auto piece = pieces.begin();
+  f = 0;
+  for(const auto& polygon : polygons) {
+    if(polygon.size() > 3) {
+      for(; piece != pieces.end() && piece->first == f; ++piece) {
+        triangles.push_back(piece->second);
+        source.push_back(f);
+      }
+    } else if(polygon.size() == 3) {
+      std::array<int, 3> t;
+      std::size_t k = 0;
+      for(const auto& index : polygon)
+        t[k++] = int(std::size_t(index));
+      triangles.push_back(t);
+      source.push_back(f);
+    } else {
+      throw Invalid_input(Error_code::not_triangle_mesh,
+                          "face " + std::to_string(f) + " has " + std::to_string(polygon.size()) + " vertices", f);
+    }
+    ++f;
+  }
+}
+
 } // namespace io
 } // namespace internal
 
@@ -950,21 +1051,36 @@ Mesh_input_order<TriangleMesh> triangle_soup_to_mesh(const PointRange& points, c
 
 /*!
 \ingroup PkgTrivialConnectionsIO
-Reads a triangle mesh from an OFF, OBJ, PLY or STL file (by extension, any letter case) with
-`CGAL::IO::read_polygon_soup()`, validates it and builds it in `tm` with `triangle_soup_to_mesh()`:
-vertex `i` of the file is the `i`-th vertex of `tm` and face `f` its `f`-th face, unused vertices included.
-Every message starts with `path: `.
+Reads a triangle mesh from an OFF, OBJ, PLY, STL or GOCAD (`.ts`) file (by extension, any letter case: the
+formats `CGAL::IO::read_polygon_mesh()` reads without VTK) with `CGAL::IO::read_polygon_soup()`, validates
+it and builds it in `tm` with `triangle_soup_to_mesh()`: vertex `i` of the file is the `i`-th vertex of `tm`
+and face `f` its `f`-th face, unused vertices included. Every message starts with `path: `.
+
+\cgalNamedParamsBegin
+  \cgalParamNBegin{triangulate}
+    \cgalParamDescription{whether faces of more than three vertices are split into triangles (with
+      `CGAL::Polygon_mesh_processing::triangulate_face()`: a quad along its better diagonal, a larger face by a
+      constrained Delaunay triangulation in its plane), keeping their orientation and the vertex numbering.
+      Triangle `t` of `tm` then comes from face `source_faces[t]` of the file; see `Mesh_input_order`.}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`false`: such a face is a `not_triangle_mesh` error}
+  \cgalParamNEnd
+\cgalNamedParamsEnd
 
 \pre `tm` is empty
 \throws Invalid_input
   - `io_error`: the file does not exist, is a directory or cannot be read;
   - `parse_error`: unknown or missing extension, or the file cannot be parsed (for OFF with the line);
   - `invalid_vertex`: a face uses a vertex index out of range (`where()`: the face);
-  - `empty_mesh`, `not_triangle_mesh`, `degenerate_face`, `non_manifold`, `inconsistent_orientation`:
-    as `triangle_soup_to_mesh()`.
+  - `not_triangle_mesh`: a face of more than three vertices without `triangulate(true)`, or of fewer than
+    three; `degenerate_face`: also a face that `triangulate(true)` cannot split (a zero normal) or that uses
+    a vertex twice;
+  - `empty_mesh`, `non_manifold`, `inconsistent_orientation`: as `triangle_soup_to_mesh()`, on the triangles
+    (faces are then numbered as the triangles of `tm`).
 */
-template <class TriangleMesh>
-Mesh_input_order<TriangleMesh> read_triangle_mesh(const std::string& path, TriangleMesh& tm)
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+Mesh_input_order<TriangleMesh> read_triangle_mesh(const std::string& path, TriangleMesh& tm,
+                                                  const NamedParameters& np = parameters::default_values())
 {
   using Point = typename boost::property_traits<
     typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::type>::value_type;
@@ -984,11 +1100,13 @@ Mesh_input_order<TriangleMesh> read_triangle_mesh(const std::string& path, Trian
     }
   }
   const std::string ext = internal::io::lower_extension(path);
-  if(ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
+  if(ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && ext != "ts")
     throw Invalid_input(Error_code::parse_error,
                         "cannot read mesh file '" + path + "': " +
                           (ext.empty() ? std::string("no file extension") : "unknown file extension '." + ext + "'") +
-                          " (supported: .off, .obj, .ply, .stl)");
+                          " (supported: .off, .obj, .ply, .stl, .ts)");
+  const bool triangulate =
+    CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::triangulate), false);
 
   if(ext == "off" || ext == "obj") {
     std::vector<Point> points;
@@ -1021,7 +1139,18 @@ Mesh_input_order<TriangleMesh> read_triangle_mesh(const std::string& path, Trian
     throw Invalid_input(Error_code::parse_error, "cannot parse '" + path + "' as a " + ext + " mesh file");
   }
   try {
-    return triangle_soup_to_mesh(points, polygons, tm);
+    const bool has_polygons = std::any_of(polygons.begin(), polygons.end(),
+                                          [](const auto& polygon) { return polygon.size() > 3; });
+    if(!triangulate || !has_polygons)
+      return triangle_soup_to_mesh(points, polygons, tm);
+    std::vector<std::array<int, 3>> triangles;
+    std::vector<std::size_t> source_faces;
+    internal::io::triangulate_polygons(points, polygons, triangles, source_faces);
+    const internal::io::Triangle_soup_connectivity soup =
+      internal::io::validate_triangles(points.size(), std::move(triangles));
+    Mesh_input_order<TriangleMesh> order = internal::io::build_mesh(points, soup, tm);
+    order.source_faces = std::move(source_faces);
+    return order;
   } catch(const Invalid_input& e) {
     throw Invalid_input(e.code(), path + ": " + e.what(), e.where());
   }

@@ -14,7 +14,7 @@ must show, so that a renderer drawing something plausible but wrong fails:
 Usage: check_render.py PROGRAM OUTDIR   (PROGRAM: the trivial_connections executable)
 Exit status: 0 success, 1 failure, 77 numpy or matplotlib missing (skip).
 """
-import json, math, subprocess, sys
+import importlib, json, math, subprocess, sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -30,7 +30,10 @@ def fail(msg):
 
 
 def run(cmd, cwd):
-    r = subprocess.run([str(c) for c in cmd], cwd=cwd, capture_output=True, text=True)
+    try:
+        r = subprocess.run([str(c) for c in cmd], cwd=cwd, capture_output=True, text=True)
+    except OSError as e:
+        fail(f"cannot run {cmd[0]}: {e.strerror or e}")
     return r.returncode, r.stdout, r.stderr
 
 
@@ -82,8 +85,8 @@ def read_png(path):
 
 def render(field, png, out, extra=()):
     stats = png.with_suffix(".json")
-    cmd = [sys.executable, RENDER, field, "-o", png, "--size", W, H, "--view", *VIEW, "--stats", stats, *extra]
-    must_run(cmd, out)
+    must_run([sys.executable, RENDER, field, "-o", png, "--size", W, H, "--view", *VIEW,
+              "--stats", stats, *extra], out)
     return json.loads(stats.read_text()), read_png(png)
 
 
@@ -93,7 +96,7 @@ def main():
         return 2
     try:
         import numpy as np
-        import matplotlib.image  # noqa: F401
+        importlib.import_module("matplotlib.image")    # used by read_png
     except ImportError as e:
         print(f"check_render.py: SKIP: {e} (run with a python that has numpy and matplotlib)")
         return 77
@@ -132,8 +135,9 @@ def main():
     cols, rows = np.flatnonzero(covered[H // 2]), np.flatnonzero(covered[:, W // 2])
     cx, cy = (cols[0] + cols[-1] + 1) / 2, (rows[0] + rows[-1] + 1) / 2
     radius = (cols[-1] + 1 - cols[0]) / 2
-    if abs(cx - W / 2) > 0.05 * W or abs(cy - H / 2) > 0.05 * H or abs((rows[-1] + 1 - rows[0]) / 2 - radius) > 0.05 * radius:
-        fail(f"the sphere is not a centred disc: centre ({cx}, {cy}), extents {cols[[0, -1]]} {rows[[0, -1]]}")
+    round_disc = abs((rows[-1] + 1 - rows[0]) / 2 - radius) < 0.05 * radius
+    if abs(cx - W / 2) > 0.05 * W or abs(cy - H / 2) > 0.05 * H or not round_disc:
+        fail(f"the sphere is not a centred disc: columns {cols[[0, -1]]}, rows {rows[[0, -1]]}")
     red = (img[:, :, 0] > 0.55) & (img[:, :, 1] < 0.35) & (img[:, :, 2] < 0.35)
     yy, xx = np.mgrid[0:H, 0:W] + 0.5
 
@@ -186,7 +190,8 @@ def main():
         png.unlink(missing_ok=True)
         rc, _, err = run([sys.executable, RENDER, src, "-o", png], out)
         if rc != 1 or not err.startswith(f"render_field.py: {src}: "):
-            fail(f"{src.name}: exit status {rc}, stderr {err!r}; expected 1 and 'render_field.py: {src}: ...'")
+            fail(f"{src.name}: exit status {rc}, stderr {err!r}; "
+                 f"expected 1 and 'render_field.py: {src}: ...'")
         if png.exists() or list(out.glob(".render_field.*")):
             fail(f"{src.name}: a picture was written despite the error")
 

@@ -43,8 +43,11 @@ public:
     if(g > 1) { m_num /= g; m_den /= g; }
   }
 
+  /// `p` of the reduced fraction `p/q` (the sign is carried by `p`)
   std::int64_t numerator() const { return m_num; }
+  /// `q > 0` of the reduced fraction `p/q`
   std::int64_t denominator() const { return m_den; }
+  /// `p / q` as a `double`
   double to_double() const { return double(m_num) / double(m_den); }
 
   /// `true` iff `n * (*this)` is an integer
@@ -76,23 +79,28 @@ public:
     return Singularity_index(p, q);
   }
 
+  /// exact sum (reduced)
   friend Singularity_index operator+(const Singularity_index& a, const Singularity_index& b)
   {
     const std::int64_t g = std::gcd(a.m_den, b.m_den);
     return Singularity_index(a.m_num * (b.m_den / g) + b.m_num * (a.m_den / g), (a.m_den / g) * b.m_den);
   }
+  /// exact opposite
   friend Singularity_index operator-(const Singularity_index& a)
   {
     return Singularity_index(-a.m_num, a.m_den);
   }
+  /// exact difference (reduced)
   friend Singularity_index operator-(const Singularity_index& a, const Singularity_index& b)
   {
     return a + (-b);
   }
+  /// equality of the rational numbers (both are kept reduced)
   friend bool operator==(const Singularity_index& a, const Singularity_index& b)
   {
     return a.m_num == b.m_num && a.m_den == b.m_den;
   }
+  /// `!(a == b)`
   friend bool operator!=(const Singularity_index& a, const Singularity_index& b) { return !(a == b); }
 
   /// `"p"` or `"p/q"`
@@ -100,6 +108,7 @@ public:
   {
     return m_den == 1 ? std::to_string(m_num) : std::to_string(m_num) + "/" + std::to_string(m_den);
   }
+  /// writes `to_string()`
   friend std::ostream& operator<<(std::ostream& os, const Singularity_index& k) { return os << k.to_string(); }
 
 private:

@@ -33,8 +33,8 @@ for a boundary loop `H_L` is its geodesic curvature `kappa_B` (exact, not wrappe
 */
 struct Loop_report
 {
-  Loop_kind kind = Loop_kind::generator;
-  std::size_t component = 0;
+  Loop_kind kind = Loop_kind::generator; ///< boundary loop or homology generator
+  std::size_t component = 0;             ///< index of the loop's component
   std::int64_t period = 0;          ///< the integer (n times the index, for a boundary loop)
   Singularity_index index;          ///< `period / n`: the index of a boundary loop (also filled for generators)
   bool prescribed = false;          ///< given by the user rather than chosen by the solver
@@ -50,8 +50,9 @@ transport along the path, the connection satisfies `T + theta_from - theta_to + 
 */
 struct Constraint_report
 {
-  std::size_t component = 0;
-  std::size_t from_face = 0, to_face = 0;
+  std::size_t component = 0;   ///< index of the component (in `Solve_report::components`) that has the path
+  std::size_t from_face = 0;   ///< face index (`faces(tm)` order) where the path starts
+  std::size_t to_face = 0;     ///< face index where it ends
   std::size_t length = 0;   ///< number of edges the path crosses
   std::int64_t period = 0;  ///< chosen by the solver, minimising the energy with the loop integers
   /// `|T + theta_from - theta_to + X - 2 pi period / n - (d_to - d_from)|`, with `d` the mismatch of a guided
@@ -67,8 +68,8 @@ integers), measured counter-clockwise about the face normal.
 */
 struct Guidance_report
 {
-  std::size_t face = 0;
-  double mismatch = 0;
+  std::size_t face = 0;   ///< face index (`faces(tm)` order) of the guided face
+  double mismatch = 0;    ///< `d_g`: the field's angle minus the guide's, in radians
 };
 
 /*!
@@ -89,10 +90,10 @@ Topology of one connected component (faces connected through edges).
 */
 struct Component_report
 {
-  std::size_t number_of_faces = 0;
+  std::size_t number_of_faces = 0;          ///< faces of the component
   std::int64_t euler_characteristic = 0;   ///< `V - E + F` of the component
   std::int64_t genus = 0;                  ///< `(2 - chi - b) / 2`
-  std::size_t number_of_boundary_loops = 0;
+  std::size_t number_of_boundary_loops = 0; ///< `b`, the boundary loops of the component
   Singularity_index vertex_index_sum;      ///< sum of the prescribed interior-vertex indices
 };
 
@@ -102,7 +103,7 @@ What `Trivial_connection_solver::solve()` returns.
 */
 struct Solve_report
 {
-  int symmetry_order = 1;
+  int symmetry_order = 1;              ///< `n` of the solve
   double energy = 0;                    ///< `sum_e w_e x_e^2` over interior edges
   /// with guided faces: `mu sum_g d_g^2` (`guidance_weight` mu, `Guidance_report::mismatch` d_g); the solve
   /// minimises `energy + guidance_energy`
@@ -118,7 +119,7 @@ struct Solve_report
   std::vector<Constraint_report> constraints;
   double max_constraint_residual = 0;   ///< max of the `Constraint_report::residual`
   std::vector<Guidance_report> guidance; ///< one per guided face, in the order given to the constructor
-  std::vector<Component_report> components;
+  std::vector<Component_report> components; ///< one per connected component, in the order of `Trivial_connection_solver::component()`
 };
 
 } // namespace Trivial_connections

@@ -58,9 +58,9 @@ fan counter-clockwise (an interior edge joining two of its vertices is crossed t
 template <class HalfedgeDescriptor>
 struct Dual_loop
 {
-  Loop_kind kind = Loop_kind::generator;
-  std::size_t component = 0;
-  std::vector<HalfedgeDescriptor> halfedges;
+  Loop_kind kind = Loop_kind::generator;     ///< boundary loop or homology generator
+  std::size_t component = 0;                 ///< index of the loop's component
+  std::vector<HalfedgeDescriptor> halfedges; ///< the halfedges crossed, in order (see above)
 };
 
 namespace internal {
@@ -119,17 +119,26 @@ class Trivial_connection_solver
   using Sparse = Eigen::SparseMatrix<double>;
 
 public:
-  using Geom_traits = typename Types::Geom_traits;
-  using Solver_traits = typename Types::Solver_traits;
-  using Vector_3 = typename Geom_traits::Vector_3;
+  /// \name Types
+  /// @{
+  using Geom_traits = typename Types::Geom_traits;     ///< `GeomTraits`, or the point type's kernel
+  using Solver_traits = typename Types::Solver_traits; ///< `SolverTraits`, or `Default_solver_traits`
+  using Vector_3 = typename Geom_traits::Vector_3;     ///< the kernel's vector type (field directions)
+  /// the mesh's vertex type
   using vertex_descriptor = typename Graph_traits::vertex_descriptor;
+  /// the mesh's halfedge type
   using halfedge_descriptor = typename Graph_traits::halfedge_descriptor;
+  /// the mesh's edge type
   using edge_descriptor = typename Graph_traits::edge_descriptor;
+  /// the mesh's face type
   using face_descriptor = typename Graph_traits::face_descriptor;
-  using Loop = Dual_loop<halfedge_descriptor>;
+  using Loop = Dual_loop<halfedge_descriptor>;         ///< a loop of `loops()`
+  /// @}
 
   /*!
   Prepares everything that depends on the mesh only. `tm` is never modified and must outlive the solver.
+  \param tm the triangle mesh
+  \param np an optional sequence of named parameters among the ones listed below
   \cgalNamedParamsBegin
     \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
     \cgalParamNBegin{geom_traits} \cgalParamDefault{a default-constructed `Geom_traits`} \cgalParamNEnd
@@ -260,7 +269,9 @@ public:
     m_progress = nullptr; // the callback may not outlive the constructor call
   }
 
+  /// not copyable: it holds the factorization and refers to the mesh
   Trivial_connection_solver(const Trivial_connection_solver&) = delete;
+  /// not copyable
   Trivial_connection_solver& operator=(const Trivial_connection_solver&) = delete;
 
   /// \name Mesh information
@@ -275,6 +286,7 @@ public:
   {
     return std::size_t(m_topology.component_of_face[get(m_mesh.face_index, f)]);
   }
+  /// `true` iff `e` has a face on both sides (only interior edges carry an angle `x_e`)
   bool is_interior(edge_descriptor e) const { return !is_border(e, m_tm); }
   /// `w_e` of an interior edge. \pre `is_interior(e)`
   double weight(edge_descriptor e) const
@@ -318,7 +330,9 @@ public:
   /// Levi-Civita holonomy `H_L` of `loops()[l]`: the exact geodesic curvature of a boundary loop, the
   /// holonomy wrapped to `(-pi, pi]` for a generator
   double levi_civita_holonomy(std::size_t l) const { return m_loop_holonomy[l]; }
+  /// the weights of the energy (the `weighting` named parameter of the constructor)
   Weighting weighting() const { return m_weighting; }
+  /// the kernel instance the geometry was computed with
   const Geom_traits& geom_traits() const { return m_traits; }
   /// @}
 
@@ -360,6 +374,7 @@ public:
          (a `Singularity_index`); vertices not listed have index 0
   \param x a writable property map `halfedge_descriptor -> double`: receives `x(h)` for both halfedges of
          every interior edge (`x(opposite(h)) = -x(h)`), and 0 for the halfedges of border edges
+  \param np an optional sequence of named parameters among the ones listed below
   \cgalNamedParamsBegin
     \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd
     \cgalParamNBegin{loop_periods}
@@ -526,6 +541,7 @@ public:
   transport followed by the rotation `x(h)`. For an n-direction field it is one of the n directions.
   \param x a readable property map `halfedge_descriptor -> double` holding a connection (from `solve()`)
   \param field a writable property map `face_descriptor -> Vector_3`
+  \param np an optional sequence of named parameters among the ones listed below
   \cgalNamedParamsBegin
     \cgalParamNBegin{seed_face} \cgalParamType{`face_descriptor`} \cgalParamDefault{the first face} \cgalParamNEnd
     \cgalParamNBegin{seed_angle}

@@ -80,13 +80,17 @@ Programmer errors (violated preconditions) are `CGAL_precondition`s instead.
 class Invalid_input : public std::runtime_error
 {
 public:
+  /// `where()` of an error that concerns no particular vertex, face or loop
   static constexpr std::size_t no_location = (std::numeric_limits<std::size_t>::max)();
 
+  /// an error of kind `code`, described by `message`, at index `where`
   Invalid_input(Error_code code, const std::string& message, std::size_t where = no_location)
     : std::runtime_error(message), m_code(code), m_where(where)
   {}
 
+  /// which error it is
   Error_code code() const { return m_code; }
+  /// the index of the vertex, face or loop concerned (in the mesh's iteration order), or `no_location`
   std::size_t where() const { return m_where; }
 
 private:

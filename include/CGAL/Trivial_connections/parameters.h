@@ -48,6 +48,10 @@ members: `symmetry_order(4).vertex_point_map(vpm)`.
 namespace parameters {
 using namespace CGAL::parameters;
 
+#ifdef DOXYGEN_RUNNING
+// what the reference manual shows for each named parameter
+#define CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(NAME) template <class T> unspecified_type NAME(const T& value);
+#else
 #define CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(NAME)                                           \
   template <class T>                                                                             \
   CGAL::Named_function_parameters<T, tc_np::NAME##_t> NAME(const T& v)                           \
@@ -62,6 +66,7 @@ using namespace CGAL::parameters;
     return CGAL::Named_function_parameters<T, tc_np::NAME##_t,                                   \
                                            CGAL::Named_function_parameters<NP_T, NP_Tag, NP_Base>>(v, np); \
   }
+#endif
 
 /// `Weighting::hodge_star` (default) or `Weighting::unit`; read by the solver's constructor
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(weighting)

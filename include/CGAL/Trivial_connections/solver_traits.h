@@ -45,6 +45,7 @@ class Cholmod_supernodal_factorization
   : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>
 {
 public:
+  /// a supernodal factorization that keeps the given order (`nmethods = 1`, natural ordering)
   Cholmod_supernodal_factorization()
   {
     cholmod().nmethods = 1;

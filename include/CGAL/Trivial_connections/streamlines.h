@@ -30,7 +30,8 @@ in face `faces[i]` along one of the field's directions there.
 template <class TriangleMesh>
 struct Streamline
 {
-  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<double, 3>> points; ///< the polyline's points, on the surface
+  /// `faces[i]` holds the segment from `points[i]` to `points[i+1]` (one fewer than `points`)
   std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor> faces;
 };
 
@@ -69,10 +70,12 @@ recurrent curve), or after `maximum_faces_per_ray` faces (default: n times the n
 mesh, which only a recurrent curve can reach). A ray that meets an edge within
 `1e-9` of its length from a vertex crosses it that far from the vertex instead, and the steps of less than
 `1e-8` of an edge that such a pass makes are merged into the segment before.
+\param tm the triangle mesh the connection and the field were computed on
 \param x the connection (from `solve()`)
 \param field the field (from `compute_field()` with the same connection)
 \param singularities a range of pairs whose `first` is a singular `vertex_descriptor` (as given to `solve()`)
 \param seeds a range of `face_descriptor`
+\param np an optional sequence of named parameters among the ones listed below
 \cgalNamedParamsBegin
   \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
   \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd

@@ -34,8 +34,12 @@ Solve_report compute_trivial_connection(const TriangleMesh& tm, const Singularit
 \ingroup PkgTrivialConnectionsRef
 One-shot computation of the connection and of the direction field it defines
 (`Trivial_connection_solver::solve()` then `Trivial_connection_solver::compute_field()`).
-`np` may also hold `seed_face` and `seed_angle`.
+\param tm the triangle mesh
+\param singularities as for `Trivial_connection_solver::solve()`
+\param x a writable property map `halfedge_descriptor -> double`, receives the connection
 \param field a writable property map `face_descriptor -> Vector_3` of the geometric traits
+\param np the named parameters of the solver's constructor, of `Trivial_connection_solver::solve()` and of
+       `Trivial_connection_solver::compute_field()` (`seed_face`, `seed_angle`)
 \throws Invalid_input as the constructor and `solve()`
 */
 template <class TriangleMesh, class SingularityRange, class HalfedgeAngleMap, class FaceVectorMap,

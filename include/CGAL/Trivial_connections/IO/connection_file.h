@@ -158,8 +158,8 @@ One line of a connection file: the angle `x` of the halfedge `i -> j` and the we
 */
 struct Connection_entry
 {
-  double x = 0;
-  double w = 0;
+  double x = 0; ///< `x(h)` of the halfedge `i -> j`, in radians
+  double w = 0; ///< the energy weight `w_e` of its edge
 };
 
 /*!

@@ -30,8 +30,8 @@ have there (not necessarily tangent: the solver projects it onto the face).
 */
 struct Face_direction
 {
-  std::size_t face = 0;
-  std::array<double, 3> direction = {{0, 0, 0}};
+  std::size_t face = 0;                           ///< 0-based face index, in file order
+  std::array<double, 3> direction = {{0, 0, 0}};  ///< the direction `x y z` as written (not yet projected)
 };
 
 /*!

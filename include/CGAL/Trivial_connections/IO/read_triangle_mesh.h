@@ -65,11 +65,13 @@ is empty and triangles and faces of the file are the same.
 template <class TriangleMesh>
 struct Mesh_input_order
 {
+  /// the mesh's vertex type
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+  /// the mesh's face type
   using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
-  std::vector<vertex_descriptor> vertices;
-  std::vector<face_descriptor> faces;
-  std::vector<std::size_t> source_faces;
+  std::vector<vertex_descriptor> vertices; ///< vertex `i` of the file
+  std::vector<face_descriptor> faces;      ///< face (or triangle) `f`
+  std::vector<std::size_t> source_faces;   ///< the face of the file each triangle comes from, when triangulated
 };
 
 namespace internal {

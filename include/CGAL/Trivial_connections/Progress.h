@@ -30,6 +30,9 @@ enum class Phase {
 };
 
 /// a short lower-case name of the phase (`"factorization"`, ...)
+/// \param p the phase
+/// \returns its name (a string literal; `"mesh setup"` and `"loop metric"` contain a space), or `"unknown"`
+///          for a value that is not one of the enumerators
 inline const char* phase_name(Phase p)
 {
   switch(p) {

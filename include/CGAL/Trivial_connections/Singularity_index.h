@@ -29,7 +29,10 @@ public:
   /// the index 0
   Singularity_index() : m_num(0), m_den(1) {}
 
-  /// the index `p/q`; throws `Invalid_input` (`invalid_index`) if `q == 0`
+  /// the index `p/q`; throws `Invalid_input` (`invalid_index`) if `q == 0`, or if `|p|` or `|q|` is not below
+  /// `2^62` (so that sums and products of two indices cannot overflow)
+  /// \param p the numerator, of any sign
+  /// \param q the denominator, non-zero, of any sign
   Singularity_index(std::int64_t p, std::int64_t q = 1) : m_num(p), m_den(q)
   {
     if(q == 0)
@@ -44,19 +47,29 @@ public:
   }
 
   /// `p` of the reduced fraction `p/q` (the sign is carried by `p`)
+  /// \returns the numerator `p`
   std::int64_t numerator() const { return m_num; }
   /// `q > 0` of the reduced fraction `p/q`
+  /// \returns the denominator `q`, positive
   std::int64_t denominator() const { return m_den; }
   /// `p / q` as a `double`
+  /// \returns `double(p) / double(q)`
   double to_double() const { return double(m_num) / double(m_den); }
 
   /// `true` iff `n * (*this)` is an integer
+  /// \param n the symmetry order of an n-direction field
+  /// \returns `true` iff `n > 0` and `q` divides `n` (`false` for `n <= 0`)
   bool is_multiple_of_one_over(int n) const { return n > 0 && n % m_den == 0; }
 
   /// `n * (*this)`; \pre `is_multiple_of_one_over(n)`
+  /// \param n the symmetry order
+  /// \returns the integer `n p / q`
   std::int64_t times(int n) const { return m_num * (n / m_den); }
 
   /// parses `"p"` or `"p/q"` (optional sign, decimal digits only); throws `Invalid_input` (`parse_error`)
+  /// \param text the whole text to parse, without spaces: an optional sign (`+` or `-`) and at most 18 digits
+  ///        for `p`, then optionally `/` and at most 18 digits (no sign) for a non-zero `q`
+  /// \returns the index `p/q`, reduced
   static Singularity_index parse(const std::string& text)
   {
     const std::string::size_type slash = text.find('/');
@@ -80,35 +93,53 @@ public:
   }
 
   /// exact sum (reduced)
+  /// \param a the first index
+  /// \param b the second index
+  /// \returns `a + b`
   friend Singularity_index operator+(const Singularity_index& a, const Singularity_index& b)
   {
     const std::int64_t g = std::gcd(a.m_den, b.m_den);
     return Singularity_index(a.m_num * (b.m_den / g) + b.m_num * (a.m_den / g), (a.m_den / g) * b.m_den);
   }
   /// exact opposite
+  /// \param a the index
+  /// \returns `-a`
   friend Singularity_index operator-(const Singularity_index& a)
   {
     return Singularity_index(-a.m_num, a.m_den);
   }
   /// exact difference (reduced)
+  /// \param a the first index
+  /// \param b the index subtracted
+  /// \returns `a - b`
   friend Singularity_index operator-(const Singularity_index& a, const Singularity_index& b)
   {
     return a + (-b);
   }
   /// equality of the rational numbers (both are kept reduced)
+  /// \param a the first index
+  /// \param b the second index
+  /// \returns `true` iff `a` and `b` are the same rational number
   friend bool operator==(const Singularity_index& a, const Singularity_index& b)
   {
     return a.m_num == b.m_num && a.m_den == b.m_den;
   }
   /// `!(a == b)`
+  /// \param a the first index
+  /// \param b the second index
+  /// \returns `true` iff `a` and `b` are different rational numbers
   friend bool operator!=(const Singularity_index& a, const Singularity_index& b) { return !(a == b); }
 
   /// `"p"` or `"p/q"`
+  /// \returns `"p"` when `q == 1`, `"p/q"` otherwise (reduced, the sign on `p`), as read by `parse()`
   std::string to_string() const
   {
     return m_den == 1 ? std::to_string(m_num) : std::to_string(m_num) + "/" + std::to_string(m_den);
   }
   /// writes `to_string()`
+  /// \param os the output stream
+  /// \param k the index written
+  /// \returns `os`
   friend std::ostream& operator<<(std::ostream& os, const Singularity_index& k) { return os << k.to_string(); }
 
 private:

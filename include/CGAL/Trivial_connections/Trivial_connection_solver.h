@@ -278,23 +278,33 @@ public:
   /// @{
 
   /// per component: its boundary loops, then its 2g generators; the order of `Solve_report::loops`
+  /// \returns the non-contractible dual loops whose integers are free, components in the order of `components()`
   const std::vector<Loop>& loops() const { return m_loops; }
   /// topology of each connected component (`vertex_index_sum` is 0 here)
+  /// \returns one report per connected component, in the order of the component indices of `component()`
   const std::vector<Component_report>& components() const { return m_components; }
   /// the component of a face
+  /// \param f a face of the mesh
+  /// \returns the 0-based index of its connected component, a position in `components()`
   std::size_t component(face_descriptor f) const
   {
     return std::size_t(m_topology.component_of_face[get(m_mesh.face_index, f)]);
   }
   /// `true` iff `e` has a face on both sides (only interior edges carry an angle `x_e`)
+  /// \param e an edge of the mesh
+  /// \returns whether `e` is an interior edge
   bool is_interior(edge_descriptor e) const { return !is_border(e, m_tm); }
   /// `w_e` of an interior edge. \pre `is_interior(e)`
+  /// \param e an interior edge of the mesh
+  /// \returns the weight `w_e` of `e` in the energy, for the `weighting()` of the solver
   double weight(edge_descriptor e) const
   {
     CGAL_precondition(is_interior(e));
     return m_geometry.weight[m_geometry.edge_of_corner[m_mesh.corner_of_edge(e, m_tm)]];
   }
   /// interior vertex: `2 pi - sum of its corner angles`; boundary vertex: `pi - sum`; isolated vertex: 0
+  /// \param v a vertex of the mesh
+  /// \returns the angle defect of `v`, in radians
   double angle_defect(vertex_descriptor v) const
   {
     const int i = int(get(m_mesh.vertex_index, v));
@@ -305,6 +315,8 @@ public:
   `(-pi, pi]`: a direction at angle `t` (counter-clockwise from `halfedge(face(h))`) arrives at angle
   `t + transport_angle(h)` (counter-clockwise from `halfedge(face(opposite(h)))`), before the rotation by
   the connection. \pre `h` is a halfedge of an interior edge
+  \param h a halfedge of an interior edge of the mesh
+  \returns the transport angle of `h`, in radians, in `(-pi, pi]`
   */
   double transport_angle(halfedge_descriptor h) const
   {
@@ -314,6 +326,8 @@ public:
   }
   /// the position in `loops()` of the boundary loop through `v`; empty when `v` is not a boundary vertex of
   /// the mesh (an interior vertex, an isolated one, or not a vertex of the mesh)
+  /// \param v a vertex descriptor
+  /// \returns the 0-based index in `loops()` of the boundary loop through `v`, or `std::nullopt`
   std::optional<std::size_t> boundary_loop_of(vertex_descriptor v) const
   {
     const std::size_t i = std::size_t(get(m_mesh.vertex_index, v));
@@ -329,10 +343,14 @@ public:
   }
   /// Levi-Civita holonomy `H_L` of `loops()[l]`: the exact geodesic curvature of a boundary loop, the
   /// holonomy wrapped to `(-pi, pi]` for a generator
+  /// \param l the 0-based position of the loop in `loops()`, `l < loops().size()`
+  /// \returns `H_L`, in radians
   double levi_civita_holonomy(std::size_t l) const { return m_loop_holonomy[l]; }
   /// the weights of the energy (the `weighting` named parameter of the constructor)
+  /// \returns the weighting the solver was built with
   Weighting weighting() const { return m_weighting; }
   /// the kernel instance the geometry was computed with
+  /// \returns the geometric traits given as `geom_traits` to the constructor, or the default-constructed one
   const Geom_traits& geom_traits() const { return m_traits; }
   /// @}
 
@@ -346,6 +364,10 @@ public:
   the factor (see the user manual). With other backends the system is assembled and factored again.
   \throws Invalid_input as the constructor for these parameters: the solver is then unchanged; and
   `solver_failure`, after which the solver is left without constrained or guided faces (but aligned if it was)
+  \tparam NamedParameters a sequence of named parameters
+  \param np a sequence of named parameters: `constrained_faces` and `guided_faces` are read (ranges of
+         `face_descriptor`, as for the constructor), any other is ignored
+  \returns whether the system was factored again, and the number of links and forward substitutions
   */
   template <class NamedParameters = parameters::Default_named_parameters>
   Constraint_update set_constraints(const NamedParameters& np = parameters::default_values())
@@ -394,6 +416,8 @@ public:
           `duplicate_singularity`, `index_not_multiple`, `poincare_hopf_violated`, `invalid_loop_periods`,
           `invalid_constraint` (directions missing, or zero, not finite or normal to their face),
           `solver_failure`
+  \returns the energy, the residuals, the integer of every loop and link (chosen or prescribed) and the
+           topology of every component (with the sum of its vertex indices)
   */
   template <class SingularityRange, class HalfedgeAngleMap,
             class NamedParameters = parameters::Default_named_parameters>

@@ -44,6 +44,9 @@ enum class Error_code {
 /*!
 \ingroup PkgTrivialConnectionsRef
 Short, stable name of an error code, e.g. `"poincare_hopf_violated"`.
+\param c the error code
+\returns the name of the enumerator `c` (a string literal), or `"unknown"` for a value that is not one of
+         the enumerators
 */
 inline const char* error_code_name(Error_code c)
 {
@@ -84,13 +87,18 @@ public:
   static constexpr std::size_t no_location = (std::numeric_limits<std::size_t>::max)();
 
   /// an error of kind `code`, described by `message`, at index `where`
+  /// \param code which error it is
+  /// \param message the one-line message returned by `what()`
+  /// \param where the 0-based index of the vertex, face or loop concerned, or `no_location`
   Invalid_input(Error_code code, const std::string& message, std::size_t where = no_location)
     : std::runtime_error(message), m_code(code), m_where(where)
   {}
 
   /// which error it is
+  /// \returns the `code` given to the constructor
   Error_code code() const { return m_code; }
   /// the index of the vertex, face or loop concerned (in the mesh's iteration order), or `no_location`
+  /// \returns the `where` given to the constructor
   std::size_t where() const { return m_where; }
 
 private:

@@ -28,6 +28,12 @@ closes one loop. A loop is the sequence of halfedges it crosses: `h_i` is crosse
 around each vertex and each boundary loop they span all closed dual loops. Boundary loops themselves are
 not generators: see `Trivial_connection_solver::loops()`. Linear time in the mesh size plus the total
 length of the loops.
+\tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph` with triangle faces
+\tparam NamedParameters a sequence of named parameters
+\param tm the triangle mesh
+\param np an optional sequence of named parameters among the ones listed below
+\returns the generators, each as the sequence of the halfedges it crosses (see above), grouped by connected
+         component: the generators of `Trivial_connection_solver::loops()` on the same mesh, in the same order
 \cgalNamedParamsBegin
   \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
   \cgalParamNBegin{geom_traits} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd

@@ -69,37 +69,66 @@ using namespace CGAL::parameters;
 #endif
 
 /// `Weighting::hodge_star` (default) or `Weighting::unit`; read by the solver's constructor
+/// \param value the `Weighting` of the energy
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(weighting)
 /// n of the n-direction field (`int`, default 1); read by `solve()`
+/// \param value n, an `int` (`solve()` requires `n >= 1`)
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(symmetry_order)
 /// prescribed integers of the loops (`std::vector<long long>`, one per loop of `loops()`); read by `solve()`
+/// \param value one integer per loop, in the order of `Trivial_connection_solver::loops()`: a
+///        `std::vector<std::int64_t>`, or a `std::vector<std::optional<std::int64_t>>` whose empty entries
+///        are chosen by the solver
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(loop_periods)
 /// the face the field is seeded from (a `face_descriptor`); read by `compute_field()`
+/// \param value a `face_descriptor` of the mesh
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(seed_face)
 /// angle of the field in the seed face, counter-clockwise from `halfedge(seed_face)` (`double`, default 0)
+/// \param value the angle, in radians
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(seed_angle)
 /// a `Progress_callback` (or any callable `void(Phase, double)`); read by the constructor, `solve()` and
 /// `compute_field()`
+/// \param value the callback, called as `value(phase, fraction)`
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(progress)
 
 /// faces whose field direction is prescribed (a range of `face_descriptor`); read by the solver's constructor
+/// \param value a range of `face_descriptor` of the mesh, each listed once
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(constrained_faces)
 /// `bool`, default `false`: the field follows the boundary on every boundary face; read by the constructor
+/// \param value `true` to align the field with the boundary
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(align_with_boundary)
 /// a readable property map `face_descriptor -> Vector_3`: the target direction of every constrained face and
 /// the guide of every guided face; read by `solve()` and `compute_field()`
+/// \param value a readable property map with `face_descriptor` as key type and the kernel's `Vector_3` as
+///        value type
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(face_directions)
 
 /// faces on which the field is drawn towards a direction given to each `solve()` (a range of
 /// `face_descriptor`, soft guidance); read by the solver's constructor
+/// \param value a range of `face_descriptor` of the mesh, each listed once and none of them constrained
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(guided_faces)
 /// `double` mu > 0, default 1: the weight of the guidance term mu sum_g d_g^2; read by the constructor
+/// \param value mu, a positive and finite `double`
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(guidance_weight)
 
 /// `std::size_t`: the faces a streamline ray may cross at most; read by `trace_streamlines()`
+/// \param value the maximum number of faces of one ray
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(maximum_faces_per_ray)
 /// whether `read_triangle_mesh()` triangulates the faces of more than three vertices (`bool`, default `false`:
 /// such faces are an error)
+/// \param value `true` to triangulate such faces
+/// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(triangulate)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER

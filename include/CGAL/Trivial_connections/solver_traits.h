@@ -53,6 +53,7 @@ public:
     cholmod().postorder = 0;
   }
   /// the factor, or null before a successful factorization
+  /// \returns CHOLMOD's factor of the last factorization (owned by this object), or `nullptr`
   const cholmod_factor* factor() const { return m_cholmodFactor; }
 };
 

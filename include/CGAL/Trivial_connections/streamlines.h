@@ -76,6 +76,9 @@ mesh, which only a recurrent curve can reach). A ray that meets an edge within
 \param singularities a range of pairs whose `first` is a singular `vertex_descriptor` (as given to `solve()`)
 \param seeds a range of `face_descriptor`
 \param np an optional sequence of named parameters among the ones listed below
+\returns the streamlines, seed after seed in the order of `seeds`: per seed face (none for one with a singular
+         vertex) one line per pair of opposite directions for even n (n/2 lines), one per direction for odd n
+         (n lines), in counter-clockwise order from `get(field, f)`; a line of fewer than two points is dropped
 \cgalNamedParamsBegin
   \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
   \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd

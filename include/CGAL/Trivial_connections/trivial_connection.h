@@ -18,6 +18,14 @@ One-shot version of `Trivial_connection_solver::solve()`: builds the solver and 
 (`vertex_point_map`, `geom_traits`, `weighting`, `symmetry_order`, `loop_periods`).
 To solve several singularity sets on the same mesh, keep a `Trivial_connection_solver` instead: it
 factors once.
+\param tm the triangle mesh
+\param singularities as for `Trivial_connection_solver::solve()`: a range of pairs of a `vertex_descriptor`
+       (`first`) and its `Singularity_index` (`second`)
+\param x a writable property map with `halfedge_descriptor` as key type and `double` as value type:
+       receives the connection, as in `Trivial_connection_solver::solve()`
+\param np a sequence of named parameters of the solver's constructor and of
+       `Trivial_connection_solver::solve()`
+\returns the report of the solve
 \throws Invalid_input as the constructor and `solve()`
 */
 template <class TriangleMesh, class SingularityRange, class HalfedgeAngleMap,
@@ -40,6 +48,7 @@ One-shot computation of the connection and of the direction field it defines
 \param field a writable property map `face_descriptor -> Vector_3` of the geometric traits
 \param np the named parameters of the solver's constructor, of `Trivial_connection_solver::solve()` and of
        `Trivial_connection_solver::compute_field()` (`seed_face`, `seed_angle`)
+\returns the report of the solve
 \throws Invalid_input as the constructor and `solve()`
 */
 template <class TriangleMesh, class SingularityRange, class HalfedgeAngleMap, class FaceVectorMap,

@@ -129,6 +129,9 @@ calling thread): they must then not modify anything they share. The result is th
 
 A rename can still fail in the final phase (e.g. the directory was removed meanwhile): the remaining
 temporary files are then removed and `Invalid_input(io_error)` is thrown; targets renamed before stay written.
+\param files the files to write, in order: pairs of a target path and the `File_writer` that writes its
+       whole content to the stream it is given
+\param concurrently whether the writers run at the same time on separate threads
 \pre the targets are pairwise different
 */
 inline void write_files_atomically(const std::vector<std::pair<std::string, File_writer>>& files,
@@ -190,6 +193,8 @@ inline void write_files_atomically(const std::vector<std::pair<std::string, File
 /*!
 \ingroup PkgTrivialConnectionsIO
 Writes one file completely or not at all (see `write_files_atomically()`).
+\param path the target file
+\param writer writes the whole content of the file to the stream it is given
 */
 inline void write_file_atomically(const std::string& path, const File_writer& writer)
 {

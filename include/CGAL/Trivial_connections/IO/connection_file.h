@@ -119,6 +119,11 @@ which is as precise as 17 significant digits. Border edges are not written.
 \tparam VertexIndexMap a readable property map `vertex_descriptor -> std::size_t` (the file's vertex indices)
 \tparam EdgeWeight either callable as `double(edge_descriptor)` or an object with a member
         `double weight(edge_descriptor)`, such as a `Trivial_connection_solver`
+\param os the output stream
+\param tm the triangle mesh
+\param x the connection, e.g. from `Trivial_connection_solver::solve()`
+\param vertex_index the 0-based index written for each vertex
+\param weight gives the weight `w_e` of each interior edge `e`
 */
 template <class TriangleMesh, class HalfedgeAngleMap, class VertexIndexMap, class EdgeWeight>
 void write_connection(std::ostream& os, const TriangleMesh& tm, HalfedgeAngleMap x, VertexIndexMap vertex_index,
@@ -166,6 +171,9 @@ struct Connection_entry
 \ingroup PkgTrivialConnectionsIO
 Reads a connection file written by `write_connection()`: lines `i j x w` (`w` optional, then 0), `#`
 comments and blank lines ignored. Returns the map `(i, j) -> (x, w)` as written in the file.
+\param is the stream to read
+\param source_name the name used in error messages (e.g. the file name)
+\returns the entry of every line, keyed by its vertex indices `(i, j)` in the order of the line (not sorted)
 \throws Invalid_input `parse_error` (message `source_name:line: ...`) for a malformed line or an edge listed
         twice (in either direction); `io_error` if the stream cannot be read
 */

@@ -43,6 +43,7 @@ lines are ignored. Returned in file order.
 \param is the stream to read
 \param source_name the name used in error messages (e.g. the file name)
 \param number_of_faces when given, a face index `>= number_of_faces` is rejected
+\returns the face and direction of every line, in file order
 
 \throws Invalid_input with a message `source_name:line: ...`:
   - `parse_error`: a line without exactly four fields, a face index that is not a non-negative integer, a
@@ -101,6 +102,9 @@ inline std::vector<Face_direction> read_face_directions(std::istream& is, const 
 /*!
 \ingroup PkgTrivialConnectionsIO
 Reads the directional constraint file `path` (see the stream overload; messages start with `path:line:`).
+\param path the file to read
+\param number_of_faces when given, a face index `>= number_of_faces` is rejected
+\returns the face and direction of every line, in file order
 \throws Invalid_input `io_error` if the file cannot be opened or read, and the errors of the stream overload
 */
 inline std::vector<Face_direction> read_face_directions(const std::string& path,

@@ -29,6 +29,9 @@ coordinates of `get(field, f)`. Numbers are written with the shortest representa
 exactly (`std::to_chars`), as precise as 17 significant digits.
 \tparam FaceVectorMap a readable property map `face_descriptor -> Vector_3` (any type with `x()`, `y()`, `z()`
         convertible by `CGAL::to_double`)
+\param os the output stream
+\param tm the triangle mesh
+\param field the field, e.g. from `Trivial_connection_solver::compute_field()`
 */
 template <class TriangleMesh, class FaceVectorMap>
 void write_field(std::ostream& os, const TriangleMesh& tm, FaceVectorMap field)
@@ -53,6 +56,9 @@ void write_field(std::ostream& os, const TriangleMesh& tm, FaceVectorMap field)
 Reads a field file written by `write_field()`: one vector per non-comment, non-blank line, in file order.
 \throws Invalid_input `parse_error` (message `source_name:line: ...`) for a line without exactly three numbers;
         `io_error` if the stream cannot be read
+\param is the stream to read
+\param source_name the name used in error messages (e.g. the file name)
+\returns the vectors `(x, y, z)` of the lines, in file order (face order for a file of `write_field()`)
 */
 inline std::vector<std::array<double, 3>> read_field(std::istream& is, const std::string& source_name)
 {

@@ -1039,6 +1039,11 @@ the faces around every vertex form one fan. Runs in linear time (plus small per-
 \tparam PointRange a range of values assignable to the mesh's points
 \tparam PolygonRange a random-access range of ranges of integer indices (0-based)
 
+\param points the points of the soup
+\param polygons the faces of the soup, each the 0-based indices in `points` of its vertices, in order
+\param tm the empty mesh that receives the result
+\returns the vertices and faces of `tm` by input index (`source_faces` is empty)
+
 \throws Invalid_input `empty_mesh`, `invalid_vertex`, `not_triangle_mesh`, `degenerate_face`, `non_manifold`,
         `inconsistent_orientation`; `where()` is the face (vertex for a non-manifold vertex) concerned
 */
@@ -1057,6 +1062,14 @@ Reads a triangle mesh from an OFF, OBJ, PLY, STL or GOCAD (`.ts`) file (by exten
 formats `CGAL::IO::read_polygon_mesh()` reads without VTK) with `CGAL::IO::read_polygon_soup()`, validates
 it and builds it in `tm` with `triangle_soup_to_mesh()`: vertex `i` of the file is the `i`-th vertex of `tm`
 and face `f` its `f`-th face, unused vertices included. Every message starts with `path: `.
+
+\tparam TriangleMesh as for `triangle_soup_to_mesh()`
+\tparam NamedParameters a sequence of named parameters
+\param path the file to read; its extension gives the format
+\param tm the empty mesh that receives the result
+\param np an optional sequence of named parameters among the ones listed below
+\returns the vertices and faces of `tm` by index in the file, and the face of the file each triangle comes from
+         when faces were triangulated
 
 \cgalNamedParamsBegin
   \cgalParamNBegin{triangulate}

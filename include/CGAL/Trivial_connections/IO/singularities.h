@@ -123,6 +123,7 @@ of a line is a comment; blank lines are ignored. The pairs are returned in file 
 \param is the stream to read
 \param source_name the name used in error messages (e.g. the file name)
 \param number_of_vertices when given, a vertex index `>= number_of_vertices` is rejected
+\returns the pairs (vertex index, index) of the lines, in file order
 
 \throws Invalid_input with a message `source_name:line: ...`:
   - `parse_error`: a line without exactly two fields, a vertex index that is not a non-negative integer,
@@ -173,6 +174,9 @@ read_singularities(std::istream& is, const std::string& source_name,
 /*!
 \ingroup PkgTrivialConnectionsIO
 Reads the singularity file `path` (see the stream overload; messages start with `path:line:`).
+\param path the file to read
+\param number_of_vertices when given, a vertex index `>= number_of_vertices` is rejected
+\returns the pairs (vertex index, index) of the lines, in file order
 \throws Invalid_input `io_error` if the file cannot be opened or read, and the errors of the stream overload
 */
 inline std::vector<std::pair<std::size_t, Singularity_index>>
@@ -186,6 +190,9 @@ read_singularities(const std::string& path, std::size_t number_of_vertices = unc
 \ingroup PkgTrivialConnectionsIO
 Writes singularities in the format read by `read_singularities()`: a `#` header line, then one line `v k`
 per element of `singularities`, a range of pairs (`first`: vertex index, `second`: `Singularity_index`).
+\param os the output stream
+\param singularities a range of pairs whose `first` is a 0-based vertex index (written with `operator<<`) and
+       whose `second` is a `Singularity_index`; written in the order of the range
 */
 template <class SingularityRange>
 void write_singularities(std::ostream& os, const SingularityRange& singularities)

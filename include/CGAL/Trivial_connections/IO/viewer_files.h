@@ -119,8 +119,11 @@ the points of `vertices(tm)` and the triangles of `faces(tm)` in that order; per
 `direction_0` ... `direction_{n-1}`, the field's vector turned by `2 pi k / n` about the face normal (all the
 directions of an n-direction field, for glyphs); per vertex (`POINT_DATA`) the scalar `singularity_index`
 (0 on regular vertices).
+\param os the output stream
+\param tm the triangle mesh
 \param field a readable property map `face_descriptor -> Vector_3` (from `compute_field()`)
 \param singularities a range of pairs (`vertex_descriptor`, `Singularity_index`), as given to `solve()`
+\param np an optional sequence of named parameters among the ones listed below
 \cgalNamedParamsBegin
   \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
   \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd
@@ -177,6 +180,15 @@ Writes the mesh with its direction field as an ASCII PLY file (MeshLab, ParaView
 `x y z singularity_index`, face properties `vertex_indices` and, per direction k of the n-direction field,
 `dk_x dk_y dk_z` (the field's vector turned by `2 pi k / n` about the face normal), in the order of
 `vertices(tm)` and `faces(tm)`. Same parameters as `write_field_vtk()`.
+\param os the output stream
+\param tm the triangle mesh
+\param field a readable property map `face_descriptor -> Vector_3` (from `compute_field()`)
+\param singularities a range of pairs (`vertex_descriptor`, `Singularity_index`), as given to `solve()`
+\param np an optional sequence of named parameters among the ones listed below
+\cgalNamedParamsBegin
+  \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
+  \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd
+\cgalNamedParamsEnd
 */
 template <class TriangleMesh, class FaceVectorMap, class SingularityRange,
           class NamedParameters = parameters::Default_named_parameters>
@@ -219,6 +231,13 @@ void write_field_ply(std::ostream& os, const TriangleMesh& tm, FaceVectorMap fie
 \ingroup PkgTrivialConnectionsIO
 Writes the singular vertices as a small point file: a `#` header, then one line `x y z k` per singularity
 (its position and index `k` as `p` or `p/q`), in the order of the range.
+\param os the output stream
+\param tm the triangle mesh
+\param singularities a range of pairs (`vertex_descriptor` of `tm`, `Singularity_index`), as given to `solve()`
+\param np an optional sequence of named parameters among the ones listed below
+\cgalNamedParamsBegin
+  \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
+\cgalNamedParamsEnd
 */
 template <class TriangleMesh, class SingularityRange, class NamedParameters = parameters::Default_named_parameters>
 void write_singularity_points(std::ostream& os, const TriangleMesh& tm, const SingularityRange& singularities,
@@ -240,6 +259,8 @@ void write_singularity_points(std::ostream& os, const TriangleMesh& tm, const Si
 \ingroup PkgTrivialConnectionsIO
 Writes streamlines (from `trace_streamlines()`) as a legacy VTK file of polylines (ASCII `POLYDATA` with
 `LINES`), for ParaView.
+\param os the output stream
+\param lines the streamlines, written as one polyline each, in order
 */
 template <class TriangleMesh>
 void write_streamlines_vtk(std::ostream& os, const std::vector<Streamline<TriangleMesh>>& lines)

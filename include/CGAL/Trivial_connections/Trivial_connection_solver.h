@@ -101,8 +101,9 @@ from the others and Poincare-Hopf, which is checked exactly beforehand. The mini
 \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph` with triangle faces
 \tparam GeomTraits a kernel with `Point_3`, `Vector_3`, `Compute_x_3` (y, z), `Collinear_3`,
         `Construct_vector_3`. The default is the kernel of the vertex point map's value type.
-\tparam SolverTraits a model of `SparseLinearAlgebraWithFactorTraits_d` whose `Matrix` is constructible from
-        `Eigen::SparseMatrix<double>` and has `eigen_object()` (as `CGAL::Eigen_sparse_matrix`). The default is
+\tparam SolverTraits a model of `TrivialConnectionSolverTraits`: `SparseLinearAlgebraWithFactorTraits_d` whose
+        `Matrix` is constructible from `Eigen::SparseMatrix<double>` and has `eigen_object()` (as
+        `CGAL::Eigen_sparse_matrix`). The default is
         `Default_solver_traits` (Eigen's `SimplicialLDLT`); `Cholmod_solver_traits` is faster on large meshes.
         The matrix handed to the backend is already in a fill-reducing order with the rows of the loop
         integers last; with these two traits the metric of the loop integers is read from the factor, with

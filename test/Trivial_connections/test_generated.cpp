@@ -22,6 +22,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <optional>
 #include <vector>
@@ -466,6 +467,87 @@ TEST(Prefactored_solver, gives_the_same_answers_as_fresh_solvers)
                   std::abs(a2.field[f].z() - a3.field[f].z()), 1e-12);
     }
   }
+}
+
+/*
+  Thread safety: one prefactored solver, solve() and compute_field() called from four threads at once, each
+  thread cycling through singularity sets of different n, give exactly the answers of the same calls made one
+  after the other. With the package's backends the substitutions only read the factor; with a backend it
+  does not know (Eigen's LDLT with its own ordering) the solver serialises the backend's solves.
+*/
+template <class Traits>
+void expect_concurrent_solves_like_sequential_ones()
+{
+  for(const std::string name : {"torus", "genus2", "annulus", "two_spheres"}) {
+    SCOPED_TRACE(name);
+    const Surface_mesh sm = to_surface_mesh(generated(name).soup);
+    const Mesh_view<Surface_mesh> view(sm);
+    const std::vector<std::pair<Singularities, int>> tasks = {{designed_singularities(name, view, 4), 4},
+                                                              {designed_singularities(name, view, 2), 2},
+                                                              {designed_singularities(name, view, 1), 1}};
+    TC::Trivial_connection_solver<Surface_mesh, CGAL::Default, Traits> solver(sm);
+    struct Answer
+    {
+      std::vector<double> x;
+      std::vector<K::Vector_3> field;
+      std::vector<std::int64_t> periods;
+    };
+    auto answer = [&](std::size_t t) {
+      Answer a;
+      const TC::Solve_report r = solver.solve(descriptors(view, tasks[t].first), view.halfedge_map(a.x),
+                                              TC::parameters::symmetry_order(tasks[t].second));
+      solver.compute_field(view.halfedge_map_const(a.x), view.face_map(a.field));
+      for(const TC::Loop_report& l : r.loops)
+        a.periods.push_back(l.period);
+      return a;
+    };
+    std::vector<Answer> sequential;
+    for(std::size_t t = 0; t < tasks.size(); ++t)
+      sequential.push_back(answer(t));
+
+    const int threads = 4, rounds = 6;
+    std::vector<std::vector<Answer>> concurrent(threads);
+    std::vector<std::string> errors(threads);
+    std::vector<std::thread> pool;
+    for(int i = 0; i < threads; ++i)
+      pool.emplace_back([&, i] {
+        try {
+          for(int r = 0; r < rounds; ++r)
+            concurrent[i].push_back(answer(std::size_t(i + r) % tasks.size()));
+        } catch(const std::exception& e) {
+          errors[i] = e.what();
+        }
+      });
+    for(std::thread& t : pool)
+      t.join();
+    for(int i = 0; i < threads; ++i) {
+      ASSERT_EQ(errors[i], "") << "thread " << i;
+      ASSERT_EQ(concurrent[i].size(), std::size_t(rounds));
+      for(int r = 0; r < rounds; ++r) {
+        const Answer& got = concurrent[i][r];
+        const Answer& expected = sequential[std::size_t(i + r) % tasks.size()];
+        EXPECT_EQ(got.periods, expected.periods) << "thread " << i << ", round " << r;
+        ASSERT_EQ(got.x.size(), expected.x.size());
+        std::size_t differing = 0;
+        for(std::size_t h = 0; h < got.x.size(); ++h)
+          differing += got.x[h] != expected.x[h];
+        for(std::size_t f = 0; f < got.field.size(); ++f)
+          differing += got.field[f] != expected.field[f];
+        EXPECT_EQ(differing, 0u) << "thread " << i << ", round " << r << ": values not bitwise identical";
+      }
+    }
+  }
+}
+
+TEST(Thread_safety, concurrent_solves_on_one_solver_give_the_sequential_answers)
+{
+  expect_concurrent_solves_like_sequential_ones<TC::Default_solver_traits>();
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  expect_concurrent_solves_like_sequential_ones<TC::Cholmod_solver_traits>();
+#endif
+  // a backend without factor access: its solves run under the solver's lock
+  expect_concurrent_solves_like_sequential_ones<
+    CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>>();
 }
 
 /*

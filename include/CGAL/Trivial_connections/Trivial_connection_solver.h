@@ -34,8 +34,10 @@
 #include <cmath>
 #include <cstdint>
 #include <future>
+#include <iomanip>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -1657,6 +1659,7 @@ private:
   void factor()
   {
     notify(Phase::factorization, 0);
+    m_substitutions_available = false;
     if(m_rows == 0) {
       notify(Phase::factorization, 1);
       return;
@@ -1665,6 +1668,7 @@ private:
     if(!m_solver.factor(*m_system, d))
       throw Invalid_input(Error_code::solver_failure,
                           "the sparse factorization of the constraint system failed");
+    m_substitutions_available = internal::Factor_substitutions<Solver_traits>::available(m_solver);
     if(internal::Substitutions_need_only_the_factor<Solver_traits>::value)
       Sparse().swap(m_system->eigen_object()); // released: the solves read the factor alone
     notify(Phase::factorization, 1);
@@ -1682,17 +1686,36 @@ private:
     double guidance_energy = 0; // mu sum_g d_g^2
   };
 
-  // M^-1 b (rows in their own order), to be checked by the caller
+  // M^-1 b (rows in their own order), to be checked by the caller. Safe to run from several threads at once:
+  // the substitutions of the package's backends read the factor only; another backend's solve may use
+  // scratch memory of its own, so it runs under a lock.
   Eigen::VectorXd unchecked_solve(const Eigen::VectorXd& b)
   {
     if(b.size() == 0)
       return b;
     if(m_bordered_mode)
       return bordered_solve(b);
+    if(m_substitutions_available) {
+      using Substitutions = internal::Factor_substitutions<Solver_traits>;
+      Eigen::VectorXd z = m_permutation * b;
+      if constexpr(Substitutions::leading_columns) {
+        Substitutions::forward(m_solver, z, z.size());
+        Substitutions::scale(m_solver, z);
+        Substitutions::backward(m_solver, z, z.size());
+      } else {
+        Substitutions::forward(m_solver, z);
+        Substitutions::scale(m_solver, z);
+        Substitutions::backward(m_solver, z);
+      }
+      return m_permutation.transpose() * z;
+    }
     typename Solver_traits::Vector rhs(b.size()), sol(b.size());
     rhs = m_permutation * b;
-    if(!m_solver.linear_solver(rhs, sol))
-      throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
+    {
+      std::lock_guard<std::mutex> lock(m_backend_mutex);
+      if(!m_solver.linear_solver(rhs, sol))
+        throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
+    }
     return m_permutation.transpose() * Eigen::VectorXd(sol);
   }
 
@@ -1703,25 +1726,42 @@ private:
   Eigen::VectorXd checked_connection(const Eigen::VectorXd& b, Eigen::VectorXd& lambda, Constraint_sums& sums)
   {
     const double scale = 1 + b.template lpNorm<Eigen::Infinity>();
-    Eigen::VectorXd xe;
-    connection_and_sums(lambda, xe, sums);
-    Eigen::VectorXd residual = b - row_sums(sums);
-    double res = residual.template lpNorm<Eigen::Infinity>();
-    if(!(res <= 1e-13 * scale)) {
-      lambda += unchecked_solve(residual);
-      connection_and_sums(lambda, xe, sums);
-      res = (b - row_sums(sums)).template lpNorm<Eigen::Infinity>();
+    Eigen::VectorXd xe = connection_of(lambda);
+    std::vector<double> slack = slacks(lambda);
+    sums_of(xe, slack, sums);
+    double res = (b - row_sums(sums)).template lpNorm<Eigen::Infinity>();
+    // Refined in x itself: x += W^-1 A^T M^-1 (b - A x). Recomputing x from refined multipliers would divide
+    // their rounding errors by the smallest weights again, which on needle triangles is the residual itself.
+    for(int step = 0; step < 3 && std::isfinite(res) && res > 1e-13 * scale; ++step) {
+      const Eigen::VectorXd delta = unchecked_solve(b - row_sums(sums));
+      Eigen::VectorXd refined_x = xe + connection_of(delta);
+      std::vector<double> refined_slack = slacks(delta);
+      for(std::size_t g = 0; g < slack.size(); ++g)
+        refined_slack[g] += slack[g];
+      Constraint_sums refined;
+      sums_of(refined_x, refined_slack, refined);
+      const double refined_res = (b - row_sums(refined)).template lpNorm<Eigen::Infinity>();
+      if(!(refined_res < res))
+        break;
+      lambda += delta;
+      xe.swap(refined_x);
+      slack.swap(refined_slack);
+      sums = std::move(refined);
+      res = refined_res;
     }
-    if(!std::isfinite(res) || !xe.allFinite() || res > 1e-8 * scale)
-      throw Invalid_input(Error_code::solver_failure,
-                          "the linear solve is inaccurate (residual " + std::to_string(res) + ")");
+    if(!std::isfinite(res) || !xe.allFinite() || res > 1e-8 * scale) {
+      std::ostringstream message;
+      message << "the linear solve is inaccurate (constraint residual " << std::scientific << std::setprecision(2)
+              << res << ")";
+      throw Invalid_input(Error_code::solver_failure, message.str());
+    }
     return xe;
   }
 
   // x = W^-1 A^T lambda, without A: each interior edge gets the multipliers of the stars it enters (+ at
   // its target's node, - at its source's; the difference vanishes when both are one boundary loop) and of
-  // the generators that cross it. Then the sums the constraints read from x, in the same pass.
-  void connection_and_sums(const Eigen::VectorXd& lambda, Eigen::VectorXd& xe, Constraint_sums& sums) const
+  // the generators that cross it.
+  Eigen::VectorXd connection_of(const Eigen::VectorXd& lambda) const
   {
     const internal::Mesh_topology& t = m_topology;
     const int ne = m_geometry.number_of_interior_edges();
@@ -1730,22 +1770,33 @@ private:
       if(m_row_of_node[node] >= 0)
         multiplier[node] = lambda[m_row_of_node[node]];
     const std::size_t slots = m_row_of_loop.size();
-    xe.setZero(ne); // first the generators' (and paths') part, then the stars' part and the sums in one pass
+    Eigen::VectorXd xe = Eigen::VectorXd::Zero(ne); // first the generators' (and paths') part, then the stars'
     for(std::size_t l = 0; l < slots; ++l)
       if(is_crossing_slot(l)) {
         const double g = lambda[m_row_of_loop[l]];
         for(int p = m_loop_edge_start[l]; p < m_loop_edge_start[l + 1]; ++p)
           xe[edge_of_code(m_loop_edges[p])] += sign_of_code(m_loop_edges[p]) * g;
       }
+    for(int e = 0; e < ne; ++e) {
+      const int a = m_edge_nodes[e][0], c = m_edge_nodes[e][1];
+      xe[e] = (xe[e] + multiplier[c] - multiplier[a]) / m_geometry.weight[e];
+    }
+    return xe;
+  }
 
+  // The sums the constraints read from a connection x and the guided faces' slacks, and the energies.
+  void sums_of(const Eigen::VectorXd& xe, const std::vector<double>& slack, Constraint_sums& sums) const
+  {
+    const internal::Mesh_topology& t = m_topology;
+    const int ne = m_geometry.number_of_interior_edges();
+    const std::size_t slots = m_row_of_loop.size();
     // x(i) enters target(i)'s star, -x(i) = x(opposite(i)) enters source(i)'s star
     std::vector<double> node_sum(std::size_t(t.number_of_nodes), 0.);
     double energy = 0;
     for(int e = 0; e < ne; ++e) {
       const int a = m_edge_nodes[e][0], c = m_edge_nodes[e][1];
-      const double w = m_geometry.weight[e], x = (xe[e] + multiplier[c] - multiplier[a]) / w;
-      xe[e] = x;
-      energy += w * x * x;
+      const double x = xe[e];
+      energy += m_geometry.weight[e] * x * x;
       if(a != c) {
         node_sum[c] += x;
         node_sum[a] -= x;
@@ -1765,7 +1816,7 @@ private:
     }
     sums.node.swap(node_sum);
     // the guided faces' slacks: row j of the links reads sum x + s_from - s_to
-    sums.slack = slacks(lambda);
+    sums.slack = slack;
     sums.guidance_energy = 0;
     for(std::size_t g = 0; g < sums.slack.size(); ++g) {
       sums.guidance_energy += m_guidance_weight * sums.slack[g] * sums.slack[g];
@@ -2366,6 +2417,8 @@ private:
   };
   std::vector<Loop_metric> m_loop_metric;
   bool m_loop_rows_in_factor = false; // the metric was read from the factor, whose substitutions are available
+  bool m_substitutions_available = false; // Factor_substitutions read the factor (thread-safe solves)
+  std::mutex m_backend_mutex; // serialises the solves of backends without Factor_substitutions
   std::vector<Factored_link> m_factored_links; // the links in the factor
   std::vector<Loop_metric> m_factor_metric;    // the metric of the factor's free rows
   std::vector<Bordered_row> m_bordered;        // links outside the factor (after set_constraints())

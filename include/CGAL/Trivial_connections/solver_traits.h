@@ -337,10 +337,18 @@ struct Factor_substitutions<CGAL::Eigen_solver_traits<Cholmod_supernodal_factori
   static void backward(Traits& traits, Eigen::VectorXd& v) { solve(traits, CHOLMOD_Lt, v); }
 
 private:
+  // With a cholmod_common of its own: the solver's one holds scratch memory, and these substitutions may run
+  // from several threads at once (they only read the factor).
   template <class Traits>
   static void solve(Traits& traits, int system, Eigen::VectorXd& v)
   {
     Cholmod_supernodal_factorization& solver = traits.solver();
+    struct Common
+    {
+      cholmod_common c;
+      Common() { cholmod_start(&c); }
+      ~Common() { cholmod_finish(&c); }
+    } common;
     cholmod_dense b;
     b.nrow = std::size_t(v.size());
     b.ncol = 1;
@@ -349,11 +357,11 @@ private:
     b.z = nullptr;
     b.xtype = CHOLMOD_REAL;
     b.dtype = CHOLMOD_DOUBLE;
-    cholmod_dense* x = cholmod_solve(system, const_cast<cholmod_factor*>(solver.factor()), &b, &solver.cholmod());
+    cholmod_dense* x = cholmod_solve(system, const_cast<cholmod_factor*>(solver.factor()), &b, &common.c);
     if(x == nullptr)
       throw std::bad_alloc();
     std::copy(static_cast<const double*>(x->x), static_cast<const double*>(x->x) + v.size(), v.data());
-    cholmod_free_dense(&x, &solver.cholmod());
+    cholmod_free_dense(&x, &common.c);
   }
 };
 

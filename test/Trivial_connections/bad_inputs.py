@@ -1,0 +1,173 @@
+"""The bad-input corpus of the program: every case is written by this script (no third-party file), run
+through the program, and must give its exact exit status and the words that say what is wrong, on one
+line of stderr, with no output file left behind; the accepted edge cases must give finite outputs.
+Used by ctest (bad_input_corpus). The corpus stays in OUT_DIR/corpus/CASE/ for inspection.
+Usage: bad_inputs.py PROGRAM OUT_DIR
+Exit status 0 when every case behaves, 1 otherwise (each failure is listed).
+"""
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+program, out = sys.argv[1], os.path.abspath(sys.argv[2])
+corpus = os.path.join(out, "corpus")
+shutil.rmtree(corpus, ignore_errors=True)
+os.makedirs(corpus)
+
+TET_V = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+TET_F = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n"
+TET = "OFF\n4 4 0\n" + TET_V + TET_F
+# a flat square of 2 x 2 quads split into 8 triangles: vertex 4 is the only interior vertex
+DISK = ("OFF\n9 8 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n0 2 0\n1 2 0\n2 2 0\n"
+        "3 0 1 4\n3 0 4 3\n3 1 2 5\n3 1 5 4\n3 3 4 7\n3 3 7 6\n3 4 5 8\n3 4 8 7\n")
+TWO_TETS = ("OFF\n8 8 0\n" + TET_V + "5 0 0\n6 0 0\n5 1 0\n5 0 1\n" + TET_F +
+            "3 4 6 5\n3 4 5 7\n3 5 6 7\n3 6 4 7\n")
+
+failures = []
+
+
+def case(name, files, args, status, words=(), outputs=("c.txt", "f.txt")):
+    """Writes `files` (name -> content) into the case's folder, runs the program with `args` (file names
+    are replaced by their paths) and --connection/--field outputs there, and checks the outcome."""
+    folder = os.path.join(corpus, name)
+    os.makedirs(folder)
+    for f, content in files.items():
+        with open(os.path.join(folder, f), "w") as h:
+            h.write(content)
+    argv = [program] + [os.path.join(folder, a) if a in files else a for a in args]
+    out_paths = [os.path.join(folder, o) for o in outputs]
+    if outputs:
+        argv += ["--connection", out_paths[0], "--field", out_paths[1]]
+    run = subprocess.run(argv, capture_output=True, text=True, timeout=120)
+    err = run.stderr.strip()
+    problems = []
+    if run.returncode != status:
+        problems.append("exit status %d, expected %d" % (run.returncode, status))
+    if status != 0:
+        if len(err.splitlines()) != 1:
+            problems.append("stderr is not one line: %r" % err)
+        for w in words:
+            if w not in err:
+                problems.append("message lacks %r" % w)
+        left = [p for p in out_paths if os.path.exists(p)] + \
+               [f for f in os.listdir(folder) if f.startswith(".") or ".tmp" in f]
+        if left:
+            problems.append("files left behind: %s" % left)
+    else:
+        for p in out_paths:
+            for line in open(p):
+                if line.startswith("#"):
+                    continue
+                if any(not math.isfinite(float(t)) for t in line.split()):
+                    problems.append("%s has a non-finite value: %s" % (os.path.basename(p), line.strip()))
+                    break
+    if problems:
+        failures.append("%s: %s (stderr: %s)" % (name, "; ".join(problems), err))
+    else:
+        print("ok %-32s %s" % (name, err if err else "accepted"))
+
+
+# ---- meshes
+case("empty_mesh", {"m.off": "OFF\n0 0 0\n"}, ["m.off"], 1, ["m.off", "no face"])
+case("vertices_without_faces", {"m.off": "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"}, ["m.off"], 1,
+     ["no face", "3 vertices, 0 faces"])
+case("quad_face", {"m.off": "OFF\n5 4 0\n" + TET_V + "1 1 1\n3 0 2 1\n4 0 1 4 3\n3 1 2 3\n3 2 0 3\n"},
+     ["m.off"], 1, ["face 1 has 4 vertices", "--triangulate"])
+case("two_vertex_face", {"m.off": "OFF\n4 2 0\n" + TET_V + "3 0 2 1\n2 0 1\n"}, ["m.off"], 1, ["face 1", "2 vertices"])
+case("non_manifold_edge", {"m.off": "OFF\n6 3 0\n" + TET_V + "1 1 1\n-1 0 0\n3 0 1 2\n3 1 0 3\n3 0 1 4\n"},
+     ["m.off"], 1, ["non-manifold edge", "shared by 3 faces"])
+case("non_manifold_vertex", {"m.off": "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n"},
+     ["m.off"], 1, ["non-manifold vertex 0", "2 separate fans"])
+case("inconsistent_orientation", {"m.off": "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 2 3\n"},
+     ["m.off"], 1, ["inconsistent orientation", "faces 0 and 1"])
+case("zero_area_face", {"m.off": "OFF\n4 4 0\n0 0 0\n1 0 0\n2 0 0\n0 0 1\n" + TET_F}, ["m.off"], 1,
+     ["face 0 is degenerate", "zero area"])
+case("repeated_vertex_in_face", {"m.off": "OFF\n4 4 0\n" + TET_V + "3 0 2 1\n3 0 1 3\n3 1 1 3\n3 2 0 3\n"},
+     ["m.off"], 1, ["face 2", "same vertex"])
+# two vertices at the same place, one face using both: a zero-length edge
+case("duplicate_vertex_in_a_face", {"m.off": "OFF\n4 2 0\n0 0 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 3\n"},
+     ["m.off"], 1, ["face 0 is degenerate"])
+for bad in ("nan", "inf", "-inf", "1e999"):
+    case("coordinate_" + bad.replace("-", "minus_"), {"m.off": "OFF\n4 4 0\n0 0 0\n1 0 0\n0 %s 0\n0 0 1\n" % bad + TET_F},
+         ["m.off"], 1, ["m.off:5", "vertex 2", "not a finite number"])
+case("vertex_index_out_of_range", {"m.off": "OFF\n4 4 0\n" + TET_V + "3 0 2 1\n3 0 1 3\n3 1 2 7\n3 2 0 3\n"},
+     ["m.off"], 1, ["face 2", "vertex 7", "4 vertices"])
+case("truncated_mesh", {"m.off": "OFF\n4 4 0\n0 0 0\n1 0 0\n"}, ["m.off"], 1, ["unexpected end of file", "4 vertices"])
+case("garbage_mesh", {"m.off": "this is not a mesh\n"}, ["m.off"], 1, ["m.off"])
+case("garbage_obj", {"m.obj": "v 0 0 0\nv 1 0 zero\nf 1 2 3\n"}, ["m.obj"], 1, ["m.obj"])
+case("missing_mesh", {}, [os.path.join(out, "no_such_mesh.off")], 1, ["no_such_mesh.off", "no such file"])
+case("mesh_is_a_directory", {}, [out], 1, ["it is a directory"])
+case("unknown_extension", {"m.xyz": TET}, ["m.xyz"], 1, ["unknown file extension '.xyz'"])
+
+# ---- singularities (tetrahedron: closed, chi = 2; disk: vertex 4 interior, the others on the boundary)
+case("poincare_hopf_violated", {"m.off": TET, "s.sing": "0 1\n"}, ["m.off", "--singularities", "s.sing"], 1,
+     ["Poincare-Hopf", "sum to 1, expected 2"])
+case("poincare_hopf_per_component", {"m.off": TWO_TETS, "s.sing": "0 1\n1 1\n4 1\n5 1\n6 1\n"},
+     ["m.off", "--singularities", "s.sing"], 1, ["Poincare-Hopf", "component 1", "expected 2"])
+case("index_not_a_multiple", {"m.off": TET, "s.sing": "0 1\n1 1/3\n2 2/3\n"},
+     ["m.off", "--singularities", "s.sing", "--n", "4"], 1, ["1/3", "not a multiple of 1/4"])
+case("singularity_on_boundary", {"m.off": DISK, "s.sing": "0 1\n"}, ["m.off", "--singularities", "s.sing"], 1,
+     ["vertex 0", "boundary"])
+case("singularity_on_missing_vertex", {"m.off": TET, "s.sing": "9 2\n"}, ["m.off", "--singularities", "s.sing"], 1,
+     ["s.sing:1", "vertex 9 does not exist", "4 vertices"])
+case("singularity_on_isolated_vertex", {"m.off": "OFF\n5 4 0\n" + TET_V + "7 7 7\n" + TET_F, "s.sing": "4 1\n0 1\n"},
+     ["m.off", "--singularities", "s.sing"], 1, ["vertex 4", "no face"])
+case("duplicate_singularity_line", {"m.off": TET, "s.sing": "0 1\n# again\n0 1\n"},
+     ["m.off", "--singularities", "s.sing"], 1, ["s.sing:3", "vertex 0 is listed twice", "lines 1 and 3"])
+case("singularity_garbage", {"m.off": TET, "s.sing": "hello world\n"}, ["m.off", "--singularities", "s.sing"], 1,
+     ["s.sing:1"])
+case("singularity_truncated_line", {"m.off": TET, "s.sing": "0 1\n1\n"}, ["m.off", "--singularities", "s.sing"], 1,
+     ["s.sing:2", "found 1 field"])
+case("singularity_huge_index", {"m.off": TET, "s.sing": "0 99999999999999999999\n"},
+     ["m.off", "--singularities", "s.sing"], 1, ["s.sing:1", "malformed singularity index"])
+case("singularity_huge_vertex", {"m.off": TET, "s.sing": "99999999999999999999999 1\n"},
+     ["m.off", "--singularities", "s.sing"], 1, ["s.sing:1"])
+case("singularity_zero_denominator", {"m.off": TET, "s.sing": "0 1/0\n"}, ["m.off", "--singularities", "s.sing"], 1,
+     ["s.sing:1", "zero denominator"])
+case("singularity_negative_vertex", {"m.off": TET, "s.sing": "-1 2\n"}, ["m.off", "--singularities", "s.sing"], 1,
+     ["s.sing:1", "negative vertex index"])
+case("singularity_file_missing", {"m.off": TET}, ["m.off", "--singularities", os.path.join(out, "none.sing")], 1,
+     ["none.sing"])
+case("singularity_file_is_a_directory", {"m.off": TET}, ["m.off", "--singularities", out], 1, [out])
+
+# ---- constraint files (more in cli_errors.sh)
+case("constraint_garbage", {"m.off": TET, "c.dirs": "x y z w\n", "s.sing": "0 1\n1 1\n"},
+     ["m.off", "--singularities", "s.sing", "--constraints", "c.dirs"], 1, ["c.dirs:1"])
+case("constraint_truncated_line", {"m.off": TET, "c.dirs": "0 1 0\n", "s.sing": "0 1\n1 1\n"},
+     ["m.off", "--singularities", "s.sing", "--constraints", "c.dirs"], 1, ["c.dirs:1", "four fields"])
+case("constraint_huge_number", {"m.off": TET, "c.dirs": "0 1e999 0 0\n", "s.sing": "0 1\n1 1\n"},
+     ["m.off", "--singularities", "s.sing", "--constraints", "c.dirs"], 1, ["c.dirs:1", "not a finite number"])
+case("constraint_missing_face", {"m.off": TET, "c.dirs": "4 1 0 0\n", "s.sing": "0 1\n1 1\n"},
+     ["m.off", "--singularities", "s.sing", "--constraints", "c.dirs"], 1, ["c.dirs:1", "face 4 does not exist"])
+
+# ---- usage errors: exit status 2
+for value, words in (("0", ["--n must be at least 1"]), ("-4", ["--n must be at least 1"]),
+                     ("abc", ["--n expects a positive integer"]), ("99999999999", ["--n is too large"])):
+    case("symmetry_order_" + value.replace("-", "minus_"), {"m.off": TET}, ["m.off", "--n", value], 2, words)
+case("unknown_option", {"m.off": TET}, ["m.off", "--frobnicate"], 2, ["unknown option '--frobnicate'"])
+case("option_without_value", {"m.off": TET}, ["m.off", "--connection"], 2, ["needs a value"], outputs=())
+case("no_mesh", {}, [], 2, ["no mesh given"], outputs=())
+
+# ---- outputs that cannot be written: nothing at all is left
+case("output_in_missing_directory", {"m.off": TET, "s.sing": "0 1\n1 1\n"},
+     ["m.off", "--singularities", "s.sing", "--vtk", os.path.join(out, "no_dir", "f.vtk")], 1,
+     ["cannot write", "no_dir"])
+case("output_is_a_directory", {"m.off": TET, "s.sing": "0 1\n1 1\n"},
+     ["m.off", "--singularities", "s.sing", "--vtk", corpus], 1, ["cannot write"])
+
+# ---- accepted edge cases: finite outputs
+case("isolated_vertex_is_ignored", {"m.off": "OFF\n5 4 0\n" + TET_V + "7 7 7\n" + TET_F, "s.sing": "0 1\n1 1\n"},
+     ["m.off", "--singularities", "s.sing"], 0)
+# a vertex duplicated at the same place and used by different faces: a crack, i.e. a boundary, not an error
+case("duplicate_vertex_makes_a_crack", {"m.off": "OFF\n5 4 0\n" + TET_V + "0 0 0\n3 0 2 1\n3 4 1 3\n3 1 2 3\n3 2 0 3\n"},
+     ["m.off"], 0)
+case("flat_disk_no_singularity", {"m.off": DISK}, ["m.off"], 0)
+
+if failures:
+    print("\n%d of the cases failed:" % len(failures))
+    for f in failures:
+        print("  " + f)
+    sys.exit(1)
+print("all cases behave")

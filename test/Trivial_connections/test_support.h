@@ -512,7 +512,9 @@ struct Mesh_view
       const int h0 = hid.at(halfedge(faces[f], tm)), h1 = nxt[h0], h2 = nxt[h1];
       face_he.push_back({{h0, h1, h2}});
       const V3 &a = P[src[h0]], &b = P[src[h1]], &c = P[src[h2]];
-      N.push_back(unit(cross(b - a, c - a)));
+      // from the two edges of the largest angle (opposite the longest edge): exact to rounding on needles too
+      const double la = dot(c - b, c - b), lb = dot(a - c, a - c), lc = dot(b - a, b - a);
+      N.push_back(unit(la >= lb && la >= lc ? cross(b - a, c - a) : lb >= lc ? cross(c - b, a - b) : cross(a - c, b - c)));
       bary.push_back((1. / 3) * (a + b + c));
       for(int k = 0; k < 3; ++k) {
         const int h = face_he[f][k], hp = face_he[f][(k + 2) % 3];

@@ -83,9 +83,21 @@ struct Mesh_geometry
   template <class TriangleMesh>
   static void frame(const Mesh_arrays<TriangleMesh>& m, int f, Vec3& ex, Vec3& ey)
   {
-    const Vec3& p0 = m.points[m.corner_vertex[3 * f]];
-    const Vec3 e01 = sub(m.points[m.corner_vertex[3 * f + 1]], p0);
-    const Vec3 n = cross(e01, sub(m.points[m.corner_vertex[3 * f + 2]], p0));
+    const Vec3* p[3] = {&m.points[m.corner_vertex[3 * f]], &m.points[m.corner_vertex[3 * f + 1]],
+                        &m.points[m.corner_vertex[3 * f + 2]]};
+    const Vec3 e01 = sub(*p[1], *p[0]);
+    // the normal from the two edges of the largest angle (the corner opposite the longest edge): at a needle's
+    // sharp corner the two edges are nearly parallel and their cross product loses its digits
+    int k = 0;
+    double longest = -1;
+    for(int i = 0; i < 3; ++i) {
+      const double l = dot(sub(*p[(i + 2) % 3], *p[(i + 1) % 3]), sub(*p[(i + 2) % 3], *p[(i + 1) % 3]));
+      if(l > longest) {
+        longest = l;
+        k = i;
+      }
+    }
+    const Vec3 n = cross(sub(*p[(k + 1) % 3], *p[k]), sub(*p[(k + 2) % 3], *p[k]));
     ex = scaled(e01, 1 / norm(e01));
     ey = cross(scaled(n, 1 / norm(n)), ex);
   }

@@ -97,6 +97,28 @@ case("vertex_index_out_of_range", {"m.off": "OFF\n4 4 0\n" + TET_V + "3 0 2 1\n3
 case("truncated_mesh", {"m.off": "OFF\n4 4 0\n0 0 0\n1 0 0\n"}, ["m.off"], 1, ["unexpected end of file", "4 vertices"])
 case("garbage_mesh", {"m.off": "this is not a mesh\n"}, ["m.off"], 1, ["m.off"])
 case("garbage_obj", {"m.obj": "v 0 0 0\nv 1 0 zero\nf 1 2 3\n"}, ["m.obj"], 1, ["m.obj"])
+# found by the fuzzer (test/fuzz/findings): files CGAL's readers must not see
+case("off_negative_index", {"m.off": "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n"}, ["m.off"], 1,
+     ["m.off:6", "face 0", "vertex -1"])
+case("off_face_size_beyond_its_line", {"m.off": "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000 0 1 2\n"}, ["m.off"], 1,
+     ["m.off:6", "face 0", "expected 1000000000 vertex indices"])
+case("off_face_size_overflows", {"m.off": "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n9999999999999999999 0 1 2\n"},
+     ["m.off"], 1, ["m.off:6", "face 0"])
+case("off_huge_vertex_count", {"m.off": "\nOFF\n1088749890\n3 5"}, ["m.off"], 1, ["m.off"])
+case("ply_element_count_negative", {"m.ply": "ply\nformat ascii 1.0\nelement foo -1\nend_header\n"}, ["m.ply"], 1,
+     ["m.ply:3", "non-negative integer"])
+case("ply_element_without_property", {"m.ply": "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n"}, ["m.ply"], 1,
+     ["m.ply:4", "no property"])
+case("ply_property_before_element", {"m.ply": "ply\nformat ascii 1.0\nproperty double x\nend_header\n"}, ["m.ply"], 1,
+     ["m.ply:3", "a property before any element"])
+case("ply_without_end_header", {"m.ply": "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\n"}, ["m.ply"], 1,
+     ["no end_header"])
+# faces that CGAL's triangulation cannot take (it asserts, or crashes without assertions)
+case("triangulate_self_crossing_pentagon", {"m.obj": "v 0 0 1\nv 0 1 1\nv 1 0 0\nv 1 1 1\nv 1 1 0\nf 1 2 3 4 5\n"},
+     ["m.obj", "--triangulate"], 1, ["face 0 cannot be triangulated", "crosses itself"])
+case("triangulate_coincident_corners",
+     {"m.obj": "v 0 0 0\nv 0 0 1\nv 0 1 0\nv 0 1 1\nv 1 0 0\nv 7 8 6\nv 0 0 0\nv 1 0 6\nf 1 3 4 8 7\n"},
+     ["m.obj", "--triangulate"], 1, ["face 0 cannot be triangulated"])
 case("missing_mesh", {}, [os.path.join(out, "no_such_mesh.off")], 1, ["no_such_mesh.off", "no such file"])
 case("mesh_is_a_directory", {}, [out], 1, ["it is a directory"])
 case("unknown_extension", {"m.xyz": TET}, ["m.xyz"], 1, ["unknown file extension '.xyz'"])

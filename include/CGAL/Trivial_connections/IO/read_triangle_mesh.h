@@ -11,11 +11,13 @@
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/parameters.h>
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh/Surface_mesh.h>
 #include <CGAL/assertions.h>
+#include <CGAL/exceptions.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/properties.h>
 
@@ -605,7 +607,7 @@ inline void diagnose_off(const std::string& path)
     }
   }
   if(nf == 0)
-    throw Invalid_input(Error_code::empty_mesh, path + ": the mesh has no face (" + std::to_string(nv) + " vertices)");
+    throw Invalid_input(Error_code::empty_mesh, path + ": the mesh has no face (" + std::to_string(nv) + " vertices, 0 faces)");
 }
 
 // Same for OBJ: a vertex without three finite coordinates, a face index out of range, no face at all.
@@ -641,7 +643,7 @@ inline void diagnose_obj(const std::string& path)
     }
   }
   if(nf == 0)
-    throw Invalid_input(Error_code::empty_mesh, path + ": the mesh has no face (" + std::to_string(nv) + " vertices)");
+    throw Invalid_input(Error_code::empty_mesh, path + ": the mesh has no face (" + std::to_string(nv) + " vertices, 0 faces)");
 }
 
 /*
@@ -722,6 +724,62 @@ private:
 };
 
 // the characters std::isspace accepts in the "C" locale (what the iostreams of CGAL's readers skip)
+// The header of a PLY file (up to end_header): CGAL's reader loops forever on an element without properties
+// and fails badly on a property before any element, so such headers are refused first, with their line.
+inline void diagnose_ply_header(const std::string& path)
+{
+  std::ifstream is(path, std::ios::binary);
+  if(!is)
+    return;
+  std::string line;
+  std::size_t line_number = 0;
+  bool element_open = false, element_has_property = false, format_seen = false;
+  auto fail = [&](const std::string& what) {
+    throw Invalid_input(Error_code::parse_error, path + ":" + std::to_string(line_number) + ": " + what);
+  };
+  while(std::getline(is, line)) {
+    ++line_number;
+    if(!line.empty() && line.back() == '\r')
+      line.pop_back();
+    const std::vector<std::string> t = tokens_of(line);
+    if(line_number == 1) {
+      if(t.size() != 1 || t[0] != "ply")
+        fail("not a PLY file (the first line must be 'ply')");
+      continue;
+    }
+    if(t.empty() || t[0] == "comment" || t[0] == "obj_info")
+      continue;
+    if(t[0] == "format") {
+      if(t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
+        fail("expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
+      format_seen = true;
+    } else if(t[0] == "element") {
+      long long count = -1;
+      if(t.size() != 3 || !parse_integer(t[2], count) || count < 0)
+        fail("expected 'element NAME COUNT' with a count that is a non-negative integer");
+      if(element_open && !element_has_property)
+        fail("the element before this line has no property");
+      element_open = true;
+      element_has_property = false;
+    } else if(t[0] == "property") {
+      if(!element_open)
+        fail("a property before any element");
+      if(t.size() < 3 || (t[1] == "list" && t.size() != 5))
+        fail("expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
+      element_has_property = true;
+    } else if(t[0] == "end_header") {
+      if(!format_seen)
+        fail("end of the header without a format line");
+      if(element_open && !element_has_property)
+        fail("the last element of the header has no property");
+      return;
+    } else {
+      fail("unexpected '" + t[0] + "' in the header");
+    }
+  }
+  throw Invalid_input(Error_code::parse_error, path + ": the PLY header has no end_header line");
+}
+
 inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
 
 inline const char* skip_blanks(const char* p, const char* end)
@@ -929,6 +987,72 @@ bool fast_parse_obj(const char* p, const char* end, std::vector<Point>& points,
 }
 
 /*
+  Whether the polygon, projected onto the plane of its Newell normal, is simple (no two edges meet except
+  consecutive ones at their common corner): what a constrained Delaunay triangulation in that plane needs.
+  CGAL's triangulate_face() asserts, or crashes with assertions off, on faces that are not. Exact predicates
+  on the projected points.
+*/
+template <class Point>
+bool projects_to_a_simple_polygon(const std::vector<Point>& points, const std::vector<std::size_t>& corners)
+{
+  using K2 = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const std::size_t m = corners.size();
+  double n[3] = {0, 0, 0};
+  for(std::size_t k = 0; k < m; ++k) {
+    const Point& a = points[corners[k]];
+    const Point& b = points[corners[(k + 1) % m]];
+    const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
+    const double bx = CGAL::to_double(b.x()), by = CGAL::to_double(b.y()), bz = CGAL::to_double(b.z());
+    n[0] += (ay - by) * (az + bz);
+    n[1] += (az - bz) * (ax + bx);
+    n[2] += (ax - bx) * (ay + by);
+  }
+  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if(!(length > 0) || !std::isfinite(length))
+    return false;
+  for(double& c : n)
+    c /= length;
+  // u: perpendicular to n, along the axis n is furthest from; v = n x u
+  double u[3] = {0, 0, 0};
+  const int axis = std::abs(n[0]) <= std::abs(n[1]) && std::abs(n[0]) <= std::abs(n[2]) ? 0
+                   : std::abs(n[1]) <= std::abs(n[2])                                   ? 1
+                                                                                        : 2;
+  u[axis] = 1;
+  const double d = u[0] * n[0] + u[1] * n[1] + u[2] * n[2];
+  for(int i = 0; i < 3; ++i)
+    u[i] -= d * n[i];
+  const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  for(double& c : u)
+    c /= lu;
+  const double v[3] = {n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]};
+  std::vector<K2::Point_2> q;
+  for(std::size_t i : corners) {
+    const double p[3] = {CGAL::to_double(points[i].x()), CGAL::to_double(points[i].y()), CGAL::to_double(points[i].z())};
+    q.emplace_back(p[0] * u[0] + p[1] * u[1] + p[2] * u[2], p[0] * v[0] + p[1] * v[1] + p[2] * v[2]);
+  }
+  for(std::size_t i = 0; i < m; ++i) {
+    const K2::Segment_2 s(q[i], q[(i + 1) % m]);
+    if(s.is_degenerate())
+      return false;
+    for(std::size_t j = i + 1; j < m; ++j) {
+      const K2::Segment_2 t(q[j], q[(j + 1) % m]);
+      const bool next = j == i + 1, previous = (j + 1) % m == i;
+      if(next || previous) {
+        // consecutive edges share one corner: they must not overlap beyond it
+        const K2::Point_2& shared = next ? q[j] : q[i];
+        const K2::Point_2& other_s = next ? q[i] : q[(i + 1) % m];
+        const K2::Point_2& other_t = next ? q[(j + 1) % m] : q[j];
+        if(CGAL::collinear(other_s, shared, other_t) && !CGAL::collinear_are_strictly_ordered_along_line(other_s, shared, other_t))
+          return false;
+      } else if(CGAL::do_intersect(s, t)) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+/*
   Splits every polygon of more than three vertices into triangles with PMP::triangulate_face() (a quad along
   its better diagonal, larger polygons by a constrained Delaunay triangulation in their plane), keeping the
   polygon's orientation and the vertex indices. Triangles of a polygon are consecutive, polygons in order;
@@ -965,6 +1089,10 @@ void triangulate_polygons(const std::vector<Point>& points, const PolygonRange& 
       if(repeated != sorted.end())
         throw Invalid_input(Error_code::degenerate_face, "face " + std::to_string(f) + " uses vertex " +
                                                           std::to_string(*repeated) + " twice", f);
+      if(polygon.size() > 4 && !projects_to_a_simple_polygon(points, corners))
+        throw Invalid_input(Error_code::degenerate_face,
+                            "face " + std::to_string(f) +
+                              " cannot be triangulated (seen along its normal, its boundary crosses itself)", f);
       std::vector<Patch_vertex> corner_vertices;
       for(std::size_t i : corners) {
         const Point& p = points[i];
@@ -977,12 +1105,20 @@ void triangulate_polygons(const std::vector<Point>& points, const PolygonRange& 
     }
     ++f;
   }
-  for(const Patch_face pf : to_split)
-    if(!CGAL::Polygon_mesh_processing::triangulate_face(pf, patches)) {
-      const std::size_t bad = get(polygon_of, patches.target(patches.halfedge(pf)));
-      throw Invalid_input(Error_code::degenerate_face,
-                          "face " + std::to_string(bad) + " cannot be triangulated (it is degenerate)", bad);
+  for(const Patch_face pf : to_split) {
+    const std::size_t bad = get(polygon_of, patches.target(patches.halfedge(pf)));
+    bool split = false;
+    try {
+      split = CGAL::Polygon_mesh_processing::triangulate_face(pf, patches);
+    } catch(const CGAL::Failure_exception&) {
+      // CGAL's triangulation asserts on some faces that are far from planar or have coincident corners
+      split = false;
     }
+    if(!split)
+      throw Invalid_input(Error_code::degenerate_face,
+                          "face " + std::to_string(bad) + " cannot be triangulated (it is degenerate, or far from planar)",
+                          bad);
+  }
 
   // Triangles of each split polygon, gathered by polygon (new faces are appended, so sort by polygon).
   std::vector<std::pair<std::size_t, std::array<int, 3>>> pieces;
@@ -1144,15 +1280,24 @@ Mesh_input_order<TriangleMesh> read_triangle_mesh(const std::string& path, Trian
     }
   }
 
+  // Our own diagnosis first: it names the line of a malformed file, and CGAL's readers must not see some
+  // malformed files (they trust counts, read negative indices, and hang on some PLY headers).
+  if(ext == "off")
+    internal::io::diagnose_off(path);
+  else if(ext == "obj")
+    internal::io::diagnose_obj(path);
+  else if(ext == "ply")
+    internal::io::diagnose_ply_header(path);
   std::vector<Point> points;
   std::vector<boost::container::small_vector<std::size_t, 3>> polygons;
-  if(!CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false))) {
-    if(ext == "off")
-      internal::io::diagnose_off(path);
-    else if(ext == "obj")
-      internal::io::diagnose_obj(path);
-    throw Invalid_input(Error_code::parse_error, "cannot parse '" + path + "' as a " + ext + " mesh file");
+  bool read = false;
+  try {
+    read = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+  } catch(const std::length_error&) {
+    read = false; // a count too large for a vector
   }
+  if(!read)
+    throw Invalid_input(Error_code::parse_error, "cannot parse '" + path + "' as a " + ext + " mesh file");
   try {
     const bool has_polygons = std::any_of(polygons.begin(), polygons.end(),
                                           [](const auto& polygon) { return polygon.size() > 3; });

@@ -119,6 +119,10 @@ case("triangulate_self_crossing_pentagon", {"m.obj": "v 0 0 1\nv 0 1 1\nv 1 0 0\
 case("triangulate_coincident_corners",
      {"m.obj": "v 0 0 0\nv 0 0 1\nv 0 1 0\nv 0 1 1\nv 1 0 0\nv 7 8 6\nv 0 0 0\nv 1 0 6\nf 1 3 4 8 7\n"},
      ["m.obj", "--triangulate"], 1, ["face 0 cannot be triangulated"])
+# an icosahedron with one vertex 1e16 away (found by the fuzzer): double precision cannot carry its geometry to
+# a residual of 1e-9, which is refused instead of returning a connection that is not trivial to 1e-9
+case("ill_conditioned_far_vertex", {"m.off": 'OFF\n12 20 0\n-1 2.618033988749895 0\n1 1.618033988749895 0\n-1 -2.618033977499790 0\n1 -1.618033988749895 08749895 0\n-1 -1.618033977499790 0\n1 -1.618033988749895 0\n0 -1 10618033988749895\n0 1 1.618033988749895\n0 -1 -1.618033988749895\n0 1 -1.618033988749895\n1.61895 0 -1\n-1.618033988749895 0 1\n3 0 11 5\n3 0 5 1\n3 0 1 7\n3 0 7 10\n3 0 10 11\n3 1 5 9\n3 5 11 4\n3 11 10 2\n3 10 7 6\n3 7 1 8\n3 3 9 4\n3 3 4 2\n3 3 2 6\n3 3 6 8\n3 3 8 9\n3 4 9 5\n3 2 4 11\n3 6 2 10\n3 8 6 7\n3 9 8 1\n', "s.sing": '# vertex index\n0 2/5\n1 2/5\n2 2/5\n3 2/5\n4 2/5\n'},
+     ["m.off", "--singularities", "s.sing", "--n", "5"], 1, ["too ill-conditioned", "residual"])
 case("missing_mesh", {}, [os.path.join(out, "no_such_mesh.off")], 1, ["no_such_mesh.off", "no such file"])
 case("mesh_is_a_directory", {}, [out], 1, ["it is a directory"])
 case("unknown_extension", {"m.xyz": TET}, ["m.xyz"], 1, ["unknown file extension '.xyz'"])

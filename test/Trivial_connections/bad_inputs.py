@@ -115,7 +115,7 @@ case("ply_without_end_header", {"m.ply": "ply\nformat ascii 1.0\nelement vertex 
      ["no end_header"])
 # faces that CGAL's triangulation cannot take (it asserts, or crashes without assertions)
 case("triangulate_self_crossing_pentagon", {"m.obj": "v 0 0 1\nv 0 1 1\nv 1 0 0\nv 1 1 1\nv 1 1 0\nf 1 2 3 4 5\n"},
-     ["m.obj", "--triangulate"], 1, ["face 0 cannot be triangulated", "crosses itself"])
+     ["m.obj", "--triangulate"], 1, ["face 0 cannot be triangulated"])
 case("triangulate_coincident_corners",
      {"m.obj": "v 0 0 0\nv 0 0 1\nv 0 1 0\nv 0 1 1\nv 1 0 0\nv 7 8 6\nv 0 0 0\nv 1 0 6\nf 1 3 4 8 7\n"},
      ["m.obj", "--triangulate"], 1, ["face 0 cannot be triangulated"])
@@ -123,6 +123,12 @@ case("triangulate_coincident_corners",
 # a residual of 1e-9, which is refused instead of returning a connection that is not trivial to 1e-9
 case("ill_conditioned_far_vertex", {"m.off": 'OFF\n12 20 0\n-1 2.618033988749895 0\n1 1.618033988749895 0\n-1 -2.618033977499790 0\n1 -1.618033988749895 08749895 0\n-1 -1.618033977499790 0\n1 -1.618033988749895 0\n0 -1 10618033988749895\n0 1 1.618033988749895\n0 -1 -1.618033988749895\n0 1 -1.618033988749895\n1.61895 0 -1\n-1.618033988749895 0 1\n3 0 11 5\n3 0 5 1\n3 0 1 7\n3 0 7 10\n3 0 10 11\n3 1 5 9\n3 5 11 4\n3 11 10 2\n3 10 7 6\n3 7 1 8\n3 3 9 4\n3 3 4 2\n3 3 2 6\n3 3 6 8\n3 3 8 9\n3 4 9 5\n3 2 4 11\n3 6 2 10\n3 8 6 7\n3 9 8 1\n', "s.sing": '# vertex index\n0 2/5\n1 2/5\n2 2/5\n3 2/5\n4 2/5\n'},
      ["m.off", "--singularities", "s.sing", "--n", "5"], 1, ["too ill-conditioned", "residual"])
+# CGAL's triangulate_face() reports success on this non-planar pentagon but leaves a larger face (an ASan
+# stack-buffer-overflow in the package until it checked), and loops forever with assertions off: refused as
+# far from planar
+case("triangulate_leaves_a_larger_face",
+     {"m.obj": "v 0 0 0\nv 0 0 2\nv 0 1 0\nv 0 1 1\nv 2 0 0\nv 1 0 1\nv 1 1 0\nv 1 1 1\nf 1 5 2 3 8\n"},
+     ["m.obj", "--triangulate"], 1, ["face 0 cannot be triangulated"])
 case("missing_mesh", {}, [os.path.join(out, "no_such_mesh.off")], 1, ["no_such_mesh.off", "no such file"])
 case("mesh_is_a_directory", {}, [out], 1, ["it is a directory"])
 case("unknown_extension", {"m.xyz": TET}, ["m.xyz"], 1, ["unknown file extension '.xyz'"])
@@ -190,6 +196,9 @@ case("isolated_vertex_is_ignored", {"m.off": "OFF\n5 4 0\n" + TET_V + "7 7 7\n" 
 case("duplicate_vertex_makes_a_crack", {"m.off": "OFF\n5 4 0\n" + TET_V + "0 0 0\n3 0 2 1\n3 4 1 3\n3 1 2 3\n3 2 0 3\n"},
      ["m.off"], 0)
 case("flat_disk_no_singularity", {"m.off": DISK}, ["m.off"], 0)
+# huge indices: 2 pi k is rounded to ~1e-8 for k = 1e7, which the solver must accept (a relative allowance)
+case("huge_indices_are_solved", {"m.off": TET, "s.sing": "0 10000000\n1 -9999998\n"},
+     ["m.off", "--singularities", "s.sing"], 0)
 
 if failures:
     print("\n%d of the cases failed:" % len(failures))

@@ -1455,7 +1455,7 @@ private:
           ++crossing_start[std::size_t(edge_of_code(m_loop_edges[p])) + 1];
     for(int e = 0; e < ne; ++e)
       crossing_start[e + 1] += crossing_start[e];
-    std::vector<std::pair<int, double>> crossings(std::size_t(crossing_start[ne]));
+    std::vector<std::pair<int, double>> crossings((std::size_t(crossing_start[ne]))); // not a declaration (clang)
     {
       std::vector<int> next(crossing_start.begin(), crossing_start.end() - 1);
       for(std::size_t l = 0; l < slots; ++l)
@@ -1749,9 +1749,10 @@ private:
       sums = std::move(refined);
       res = refined_res;
     }
-    // the package promises holonomy residuals below 1e-9 rad: a mesh whose geometry double precision cannot
-    // carry that far (coordinates spanning some 15 orders of magnitude) is refused rather than half solved
-    if(!std::isfinite(res) || !xe.allFinite() || res > 1e-9) {
+    // the package promises holonomy residuals below 1e-9 rad (plus the rounding of 2 pi k for huge indices): a
+    // mesh whose geometry double precision cannot carry that far (coordinates spanning some 15 orders of
+    // magnitude) is refused rather than half solved
+    if(!std::isfinite(res) || !xe.allFinite() || res > 1e-9 + 1e-14 * (scale - 1)) {
       std::ostringstream message;
       message << "the linear solve is inaccurate: constraint residual " << std::scientific << std::setprecision(2)
               << res << " rad after refinement (more than 1e-9; the mesh's geometry is too ill-conditioned for "

@@ -1025,6 +1025,23 @@ bool projects_to_a_simple_polygon(const std::vector<Point>& points, const std::v
   for(double& c : u)
     c /= lu;
   const double v[3] = {n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]};
+  // far from planar: CGAL's triangulation of such a face can loop forever (found by fuzzing), so a corner
+  // more than 5% of the face's size away from its mean plane is refused
+  double centre[3] = {0, 0, 0}, size = 0;
+  for(std::size_t i : corners) {
+    centre[0] += CGAL::to_double(points[i].x()) / double(m);
+    centre[1] += CGAL::to_double(points[i].y()) / double(m);
+    centre[2] += CGAL::to_double(points[i].z()) / double(m);
+  }
+  double height = 0;
+  for(std::size_t i : corners) {
+    const double p[3] = {CGAL::to_double(points[i].x()) - centre[0], CGAL::to_double(points[i].y()) - centre[1],
+                         CGAL::to_double(points[i].z()) - centre[2]};
+    size = (std::max)(size, std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]));
+    height = (std::max)(height, std::abs(p[0] * n[0] + p[1] * n[1] + p[2] * n[2]));
+  }
+  if(!(height <= 0.05 * size))
+    return false;
   std::vector<K2::Point_2> q;
   for(std::size_t i : corners) {
     const double p[3] = {CGAL::to_double(points[i].x()), CGAL::to_double(points[i].y()), CGAL::to_double(points[i].z())};
@@ -1092,7 +1109,8 @@ void triangulate_polygons(const std::vector<Point>& points, const PolygonRange& 
       if(polygon.size() > 4 && !projects_to_a_simple_polygon(points, corners))
         throw Invalid_input(Error_code::degenerate_face,
                             "face " + std::to_string(f) +
-                              " cannot be triangulated (seen along its normal, its boundary crosses itself)", f);
+                              " cannot be triangulated (it is far from planar, or seen along its normal its boundary"
+                            " crosses itself)", f);
       std::vector<Patch_vertex> corner_vertices;
       for(std::size_t i : corners) {
         const Point& p = points[i];
@@ -1125,10 +1143,17 @@ void triangulate_polygons(const std::vector<Point>& points, const PolygonRange& 
   for(const Patch_face pf : patches.faces()) {
     std::array<int, 3> t;
     std::size_t k = 0;
-    for(const Patch_vertex v : CGAL::vertices_around_face(patches.halfedge(pf), patches))
-      t[k++] = get(point_index, v);
-    CGAL_assertion(k == 3);
-    pieces.emplace_back(get(polygon_of, patches.target(patches.halfedge(pf))), t);
+    for(const Patch_vertex v : CGAL::vertices_around_face(patches.halfedge(pf), patches)) {
+      if(k < 3)
+        t[k] = get(point_index, v);
+      ++k;
+    }
+    const std::size_t polygon = get(polygon_of, patches.target(patches.halfedge(pf)));
+    if(k != 3) // triangulate_face() reported success but left a larger face (non-planar faces, found by fuzzing)
+      throw Invalid_input(Error_code::degenerate_face,
+                          "face " + std::to_string(polygon) + " cannot be triangulated (it is far from planar)",
+                          polygon);
+    pieces.emplace_back(polygon, t);
   }
   std::stable_sort(pieces.begin(), pieces.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });

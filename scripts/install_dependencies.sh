@@ -1,26 +1,30 @@
 #!/usr/bin/env bash
 # Installs the Debian (bookworm) packages the project needs, only those that are missing.
-# Usage: bash scripts/install_dependencies.sh [--no-cholmod] [--doc]
+# Usage: bash scripts/install_dependencies.sh [--no-cholmod] [--doc] [--fuzz]
 #   --no-cholmod   skip libsuitesparse-dev (CHOLMOD, the program's recommended sparse backend; the library
 #                  itself is header-only and defaults to Eigen's SimplicialLDLT)
 #   --doc          also doxygen, to build the documentation (cmake --build build --target doc)
+#   --fuzz         also clang and libFuzzer's runtime, for the fuzz harness (scripts/run_fuzzer.sh)
 set -euo pipefail
 pkgs=(build-essential cmake libcgal-dev libeigen3-dev libboost-graph-dev
       libgtest-dev googletest libbenchmark-dev python3 python3-numpy python3-matplotlib)
 cholmod=1
 doc=0
+fuzz=0
 for arg in "$@"; do
   case "$arg" in
     --cholmod) ;; # installed by default now; kept for old command lines
     --no-cholmod) cholmod=0 ;;
     --doc) doc=1 ;;
-    -h|--help) sed -n '2,6p' "$0"; exit 0 ;;
+    --fuzz) fuzz=1 ;;
+    -h|--help) sed -n '2,7p' "$0"; exit 0 ;;
     *) echo "install_dependencies.sh: unknown argument '$arg'" >&2; exit 2 ;;
   esac
 done
 
 if [ "$cholmod" = 1 ]; then pkgs+=(libsuitesparse-dev); fi
 if [ "$doc" = 1 ]; then pkgs+=(doxygen); fi
+if [ "$fuzz" = 1 ]; then pkgs+=(clang libclang-rt-14-dev); fi
 
 missing=()
 for p in "${pkgs[@]}"; do

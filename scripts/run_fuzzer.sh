@@ -2,7 +2,7 @@
 # Builds and runs the libFuzzer harness test/fuzz/fuzz_input.cpp (the program's input path: mesh bytes +
 # singularity bytes -> a clean error or a field that passes the invariant checks) for a bounded time.
 # Usage: bash scripts/run_fuzzer.sh [SECONDS]      (default 180)
-#   Installs what is missing (clang, libFuzzer's runtime, CGAL, Eigen, cmake) with apt, configures and builds
+#   Installs what is missing (install_dependencies.sh --fuzz: clang, libFuzzer's runtime), configures and builds
 #   build-fuzz/ (clang, -fsanitize=fuzzer,address,undefined), writes the seed corpus made by
 #   test/fuzz/make_seed_corpus.py to build-fuzz/seeds, fuzzes with the working corpus build-fuzz/corpus
 #   (kept between runs), and writes a one-line summary (executions, coverage, result) to
@@ -21,24 +21,7 @@ esac
 build=$root/build-fuzz
 
 # ---- dependencies (Debian bookworm): only what is missing
-pkgs=(cmake make clang libclang-rt-14-dev libcgal-dev libeigen3-dev libboost-graph-dev python3)
-missing=()
-for p in "${pkgs[@]}"; do
-  if ! dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null | grep -qx installed; then
-    missing+=("$p")
-  fi
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then
-    if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
-      echo "run_fuzzer.sh: missing packages (${missing[*]}) and not root" >&2; exit 1
-    fi
-  fi
-  echo "run_fuzzer.sh: installing ${missing[*]}"
-  $SUDO apt-get update </dev/null
-  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}" </dev/null
-fi
+bash "$root/scripts/install_dependencies.sh" --no-cholmod --fuzz
 python=/usr/bin/python3 # Debian's (a python3 earlier on PATH may be a pyenv shim)
 [ -x "$python" ] || python=python3
 

@@ -113,6 +113,22 @@ case("ply_property_before_element", {"m.ply": "ply\nformat ascii 1.0\nproperty d
      ["m.ply:3", "a property before any element"])
 case("ply_without_end_header", {"m.ply": "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\n"}, ["m.ply"], 1,
      ["no end_header"])
+case("off_counts_line_extra_numbers", {"m.off": "OFF\n3 1 0 0 0 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 1 2\n"}, ["m.off"], 1,
+     ["m.off:2", "three integers on one line"])
+case("off_binary", {"m.off": "OFF BINARY\n\x00\x00\x00\x03\x00\x00\x00\x01\x00\x00\x00\x00"}, ["m.off"], 1,
+     ["m.off:1", "binary OFF is not supported"])
+case("off_homogeneous", {"m.off": "4OFF\n3 1 0\n0 0 0 1\n1 0 0 1\n0 1 0 1\n1000000000 0 1 2\n"}, ["m.off"], 1,
+     ["m.off:1", "'4OFF'", "not supported"])
+case("off_n_dimensional", {"m.off": "nOFF\n3\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 1 2\n"}, ["m.off"], 1,
+     ["m.off:1", "'nOFF'", "not supported"])
+PLY_HEAD = ("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+            "element face 4\nproperty list uint int vertex_indices\nend_header\n")
+case("ply_list_size_beyond_the_file", {"m.ply": PLY_HEAD + TET_V + "4000000000 0 1 2\n"}, ["m.ply"], 1,
+     ["m.ply", "element 'face' item 0", "4000000000 items, more than the file holds"])
+case("ply_float_vertex_indices", {"m.ply": PLY_HEAD.replace("uint int", "uchar float") + TET_V}, ["m.ply"], 1,
+     ["m.ply", "'vertex_indices' is not a list of integers"])
+case("ply_truncated_body", {"m.ply": PLY_HEAD + TET_V + "3 0 2 1\n"}, ["m.ply"], 1,
+     ["m.ply", "element 'face' item 1", "unexpected end of file"])
 # faces that CGAL's triangulation cannot take (it asserts, or crashes without assertions)
 case("triangulate_self_crossing_pentagon", {"m.obj": "v 0 0 1\nv 0 1 1\nv 1 0 0\nv 1 1 1\nv 1 1 0\nf 1 2 3 4 5\n"},
      ["m.obj", "--triangulate"], 1, ["face 0 cannot be triangulated"])
@@ -199,6 +215,9 @@ case("flat_disk_no_singularity", {"m.off": DISK}, ["m.off"], 0)
 # huge indices: 2 pi k is rounded to ~1e-8 for k = 1e7, which the solver must accept (a relative allowance)
 case("huge_indices_are_solved", {"m.off": TET, "s.sing": "0 10000000\n1 -9999998\n"},
      ["m.off", "--singularities", "s.sing"], 0)
+# integer coordinates in PLY (valid PLY; CGAL's own reader dereferences a null pointer on them)
+case("ply_integer_coordinates", {"m.ply": PLY_HEAD.replace("float", "int") + TET_V + TET_F, "s.sing": "0 1\n1 1\n"},
+     ["m.ply", "--singularities", "s.sing"], 0)
 
 if failures:
     print("\n%d of the cases failed:" % len(failures))

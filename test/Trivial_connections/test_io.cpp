@@ -31,6 +31,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -995,7 +996,7 @@ TYPED_TEST(IoMeshReader, FastReaderGivesCGALsMeshOnObjAndCommentedOff)
   expect_fast_reader_matches_cgal<Mesh>(dir.write("grid.obj", obj.str()));
 }
 
-TYPED_TEST(IoMeshReader, FilesOutsideTheFastPathStillReadThroughCGAL)
+TYPED_TEST(IoMeshReader, FilesOutsideTheFastPathGiveCGALsMesh)
 {
   using Mesh = TypeParam;
   Temp_dir dir;
@@ -1012,6 +1013,176 @@ TYPED_TEST(IoMeshReader, FilesOutsideTheFastPathStillReadThroughCGAL)
     const TC::Mesh_input_order<Mesh> oc = read_through_cgal(path, cgal);
     expect_same_mesh(fast, of, cgal, oc);
   }
+}
+
+// A binary PLY of `points` (float32 coordinates, as CGAL reads them) and triangles (uchar sizes, int32
+// indices), little or big endian; `extra` adds a double property per vertex and an `edge` element, which the
+// readers must read past.
+std::string binary_ply(const std::vector<Point>& points, const std::vector<std::vector<std::size_t>>& polys,
+                       bool big_endian, bool extra)
+{
+  std::string s = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                  " 1.0\ncomment made by the test\nelement vertex " + std::to_string(points.size()) +
+                  "\nproperty float x\nproperty float y\nproperty float z\n" + (extra ? "property double quality\n" : "") +
+                  "element face " + std::to_string(polys.size()) + "\nproperty list uchar int vertex_indices\n" +
+                  (extra ? "element edge 1\nproperty int vertex1\nproperty int vertex2\n" : "") + "end_header\n";
+  const std::uint16_t one = 1;
+  const bool host_little = *reinterpret_cast<const unsigned char*>(&one) == 1;
+  auto put = [&](const auto value) {
+    char b[sizeof(value)];
+    std::memcpy(b, &value, sizeof(value));
+    if(host_little == big_endian)
+      std::reverse(b, b + sizeof(value));
+    s.append(b, sizeof(value));
+  };
+  for(const Point& p : points) {
+    put(float(p.x()));
+    put(float(p.y()));
+    put(float(p.z()));
+    if(extra)
+      put(double(0.5));
+  }
+  for(const auto& f : polys) {
+    put(std::uint8_t(f.size()));
+    for(std::size_t v : f)
+      put(std::int32_t(v));
+  }
+  if(extra) {
+    put(std::int32_t(0));
+    put(std::int32_t(1));
+  }
+  return s;
+}
+
+// OFF and PLY are read by the package's own readers: what CGAL reads correctly they read the same (the
+// variants and encodings CGAL's test data uses), and what CGAL's readers trust or crash on they refuse.
+TYPED_TEST(IoMeshReader, OwnOffAndPlyReadersGiveCGALsMesh)
+{
+  using Mesh = TypeParam;
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polys;
+  grid_soup(5, 7, points, polys);
+  for(Point& p : points) // float-exact coordinates, so that the float32 PLY files hold them exactly
+    p = Point(float(p.x()), float(p.y()), float(p.z()));
+  std::ostringstream ascii;
+  ascii.precision(9);
+  ascii << "ply\r\nformat ascii 1.0\r\nelement vertex " << points.size()
+        << "\r\nproperty double nx\r\nproperty float x\r\nproperty float y\r\nproperty float z\r\n"
+        << "property uchar red\r\nelement face " << polys.size()
+        << "\r\nproperty list uchar int vertex_indices\r\nproperty uchar flags\r\nend_header\r\n";
+  for(const Point& p : points)
+    ascii << "0.25 " << p.x() << ' ' << p.y() << "\n " << p.z() << " 255\n"; // ASCII PLY ignores lines
+  for(const auto& f : polys)
+    ascii << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << " 7\n";
+  std::ostringstream noff;
+  noff.precision(17);
+  noff << "NOFF\n" << points.size() << ' ' << polys.size() << " 0\n";
+  for(const Point& p : points)
+    noff << p.x() << ' ' << p.y() << ' ' << p.z() << " 0 0 1\n";
+  for(const auto& f : polys)
+    noff << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << " 0.5 0.5 0.5\n";
+  Temp_dir dir;
+  for(const auto& [name, content] : std::vector<std::pair<std::string, std::string>>{
+        {"ascii.ply", ascii.str()},
+        {"little.ply", binary_ply(points, polys, false, false)},
+        {"big.ply", binary_ply(points, polys, true, false)},
+        {"little_extra.ply", binary_ply(points, polys, false, true)},
+        {"big_extra.ply", binary_ply(points, polys, true, true)},
+        {"normals.off", noff.str()}}) {
+    SCOPED_TRACE(name);
+    const std::string path = dir.write(name, content);
+    Mesh ours, cgal;
+    const TC::Mesh_input_order<Mesh> oo = TC::read_triangle_mesh(path, ours);
+    const TC::Mesh_input_order<Mesh> oc = read_through_cgal(path, cgal);
+    expect_same_mesh(ours, oo, cgal, oc);
+    expect_input_order(ours, oo, points, polys);
+  }
+  // beyond CGAL's reader (which asserts, or dereferences a null pointer, on integer coordinates, and reads no
+  // face from a list of uchar indices): any numeric coordinate type, any integer index type
+  const std::string int_ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty int x\nproperty short y\n"
+                              "property uchar z\nelement face 4\nproperty list ushort uchar vertex_index\nend_header\n"
+                              "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
+  Mesh m;
+  const TC::Mesh_input_order<Mesh> o = TC::read_triangle_mesh(dir.write("integers.ply", int_ply), m);
+  expect_input_order(m, o, {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1)},
+                     {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}});
+}
+
+TYPED_TEST(IoMeshReader, OwnOffAndPlyReadersRefuseWhatCGALsTrust)
+{
+  using Mesh = TypeParam;
+  Temp_dir dir;
+  auto read = [&](const std::string& name, const std::string& content) { return reader_of<Mesh>(dir, name, content); };
+  const std::string four = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const std::string tet = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
+  // OFF: variants that CGAL reads with facet sizes it trusts (the fuzzer's findings)
+  expect_error(read("binary.off", std::string("OFF BINARY\n\0\0\0\4\0\0\0\4\0\0\0\0", 23)),
+               TC::Error_code::parse_error, {"binary.off:1", "binary OFF is not supported"});
+  expect_error(read("homogeneous.off", "4OFF\n4 4 0\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n" + tet),
+               TC::Error_code::parse_error, {"homogeneous.off:1", "'4OFF'", "not supported"});
+  expect_error(read("ndim.off", "nOFF\n3\n4 4 0\n" + four + tet), TC::Error_code::parse_error,
+               {"ndim.off:1", "'nOFF'", "not supported"});
+  expect_error(read("skel.off", "SKEL\n4 0\n" + four), TC::Error_code::parse_error, {"skel.off:1", "keyword OFF"});
+  expect_error(read("no_keyword.off", "4 4 0\n" + four + tet), TC::Error_code::parse_error,
+               {"no_keyword.off:1", "keyword OFF"});
+  // the counts: exactly three on their line (CGAL read the rest of a longer line as vertex 0)
+  expect_error(read("counts6.off", "OFF\n4 4 0 0 0 0\n" + four + tet), TC::Error_code::parse_error,
+               {"counts6.off:2", "three integers on one line"});
+  expect_error(read("counts2.off", "OFF\n4 4\n" + four + tet), TC::Error_code::parse_error,
+               {"counts2.off:2", "three integers on one line"});
+  expect_error(read("facet_size.off", "COFF\n4 4 0\n" + four + "1000000000 0 1 2\n" + tet),
+               TC::Error_code::parse_error, {"facet_size.off:7", "face 0", "expected 1000000000 vertex indices"});
+  expect_error(read("negative_size.off", "NOFF\n4 4 0\n" + four + "-1 0 1 2\n" + tet), TC::Error_code::parse_error,
+               {"negative_size.off:7", "face 0", "number of its vertices"});
+
+  // PLY
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 4\n";
+  const std::string body = four + tet;
+  EXPECT_NO_THROW(read("tet.ply", header + "property list uchar int vertex_indices\nend_header\n" + body)());
+  expect_error(read("list_size.ply", header + "property list uint int vertex_indices\nend_header\n" + four +
+                                       "4000000000 0 1 2\n" + tet),
+               TC::Error_code::parse_error, {"list_size.ply", "element 'face' item 0", "4000000000 items, more than the file holds"});
+  {
+    std::string bin = "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n";
+    bin += std::string("\xff\xff\xff\x0f\0\0\0\0", 8);
+    expect_error(read("binary_list_size.ply", bin), TC::Error_code::parse_error,
+                 {"element 'face' item 0", "268435455 items, more than the file holds"});
+  }
+  expect_error(read("cut.ply", header + "property list uchar int vertex_indices\nend_header\n" + four +
+                                 "3 0 2 1\n3 0 1 3\n3 1 2 3\n"),
+               TC::Error_code::parse_error, {"cut.ply", "element 'face' item 3", "unexpected end of file", "4 items"});
+  expect_error(read("cut_list.ply", header + "property list uchar int vertex_indices\nend_header\n" + four + "3 0 2 1\n3 0"),
+               TC::Error_code::parse_error, {"cut_list.ply", "element 'face' item 1", "3 items, more than the file holds"});
+  expect_error(read("float_list.ply", header + "property list uchar float vertex_indices\nend_header\n" + body),
+               TC::Error_code::parse_error, {"float_list.ply", "'vertex_indices' is not a list of integers"});
+  expect_error(read("float_size.ply", header + "property list float int vertex_indices\nend_header\n" + body),
+               TC::Error_code::parse_error, {"float_size.ply:8", "size type of a list", "'float'"});
+  expect_error(read("no_indices.ply", header + "property int flags\nend_header\n" + four + "0\n0\n0\n0\n"),
+               TC::Error_code::parse_error, {"no_indices.ply", "no list property vertex_indices"});
+  expect_error(read("no_z.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                                "0 0\n1 0\n0 1\n0 0\n" + tet),
+               TC::Error_code::parse_error, {"no_z.ply", "x, y and z"});
+  expect_error(read("negative.ply", header + "property list uchar int vertex_indices\nend_header\n" + four +
+                                      "3 0 -2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n"),
+               TC::Error_code::parse_error, {"negative.ply", "item 0", "negative vertex index"});
+  expect_error(read("out_of_type.ply", header + "property list uchar int vertex_indices\nend_header\n" + four +
+                                         "300 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n"),
+               TC::Error_code::parse_error, {"out_of_type.ply", "'300' is not a value of the property's integer type"});
+  for(const std::string bad : {"nan", "inf", "1e999"}) {
+    SCOPED_TRACE(bad);
+    expect_error(read("nonfinite.ply", header + "property list uchar int vertex_indices\nend_header\n0 0 0\n1 " + bad +
+                                         " 0\n0 1 0\n0 0 1\n" + tet),
+                 TC::Error_code::parse_error, {"nonfinite.ply", "element 'vertex' item 1", "y is not a finite number"});
+  }
+  expect_error(read("range.ply", header + "property list uchar int vertex_indices\nend_header\n" + four +
+                                   "3 0 2 1\n3 0 1 3\n3 1 2 9\n3 2 0 3\n"),
+               TC::Error_code::invalid_vertex, {"range.ply", "face 2", "vertex 9"});
+  expect_error(read("empty.ply", ""), TC::Error_code::parse_error, {"empty.ply", "empty"});
+  expect_error(read("unknown_type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n0\n"),
+               TC::Error_code::parse_error, {"unknown_type.ply:4", "unknown property type 'float128'"});
 }
 
 TYPED_TEST(IoMeshReader, FastReaderRejectsMalformedFilesWithTheUsualErrors)

@@ -15,8 +15,8 @@
 //   HEADER         the bytes before the first '\n' (which must come within the first 16 bytes, else the
 //                  input is ignored):
 //                    [0] mesh format: 'O' OFF, 'J' OBJ, 'P' PLY, 'S' STL (either case); any other byte b
-//                        selects format b % 4 in that order. OFF and OBJ take the package's fast parser
-//                        (and CGAL's reader as fall-back), PLY and STL CGAL's reader.
+//                        selects format b % 4 in that order. OFF, OBJ and PLY take the package's
+//                        readers (OBJ then CGAL's), STL CGAL's reader.
 //                    [1] symmetry order n: '1'..'6', any other byte b gives 1 + b % 6; missing: n = 1.
 //                    [2..] flags: 'u' unit weights (default Hodge star), 't' triangulate faces of more than
 //                        three vertices (the program's --triangulate); other bytes are ignored.
@@ -48,9 +48,7 @@
 // every interior edge, by the solver's transport angle in face frames and by our own unfolding). Residuals
 // are bounded by 1e-9 times the magnitudes the residual sums (see check_solution()).
 //
-// Environment: TC_FUZZ_VERBOSE=1 prints how each input ended; TC_FUZZ_KNOWN_BUGS=1 runs the inputs that
-// reach an open finding (test/fuzz/findings/open-*), which are skipped otherwise (open_finding());
-// TC_FUZZ_RESIDUAL=X replaces the 1e-9 residual bound (exploration only); TC_FUZZ_TMPDIR the directory of the
+// Environment: TC_FUZZ_VERBOSE=1 prints how each input ended; TC_FUZZ_RESIDUAL=X replaces the 1e-9 residual bound (exploration only); TC_FUZZ_TMPDIR the directory of the
 // temporary mesh file (default /dev/shm).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -472,104 +470,8 @@ bool split_input(const uint8_t* data, std::size_t size, Input& in)
   return true;
 }
 
-// Inputs that reach an open finding (test/fuzz/findings/open-*) are skipped, so that a run explores past it;
-// TC_FUZZ_KNOWN_BUGS=1 lets them through (to replay the finding). Each test is narrow: it matches the finding's
-// cause, not a whole format.
-bool g_skip_open_findings = true;
-
-const char* open_finding(const Input& in)
-{
-  if(in.triangulate && in.format != 3) {
-    // open-triangulate_pentagon_stack_buffer_overflow: after PMP::triangulate_face() returned true on a
-    // non-planar polygon, triangulate_polygons() (IO/read_triangle_mesh.h) writes the corners of a face that
-    // is not a triangle into a std::array<int, 3>: a stack buffer overflow. Quads are triangulated along a
-    // diagonal, not by this path: skipped are the inputs with a polygon of five corners or more (a PLY file
-    // with triangulation, whose lists are not read here, whatever it holds).
-    if(in.format == 2)
-      return "open-triangulate_pentagon_stack_buffer_overflow";
-    std::istringstream is(in.mesh);
-    std::string line;
-    while(std::getline(is, line)) {
-      std::istringstream ls(line.substr(0, line.find('#')));
-      std::string first, token;
-      ls >> first;
-      std::size_t more = 0;
-      while(ls >> token)
-        ++more;
-      // an OBJ face line; an OFF line whose first token is a size of five or more
-      if((in.format == 1 && first == "f" && more >= 5) ||
-         (in.format == 0 && !first.empty() && first.find_first_not_of("0123456789") == std::string::npos &&
-          first.size() < 10 && std::stol(first) >= 5 && more >= 5))
-        return "open-triangulate_pentagon_stack_buffer_overflow";
-    }
-  }
-  if(in.format == 0) {
-    // open-off_variant_*, open-off_binary_*: read_triangle_mesh() diagnoses only the plain ASCII OFF variants
-    // (OFF, COFF, NOFF, CNOFF, STOFF, STCOFF) before CGAL's reader; the others (nOFF, 4OFF, ..., OFF BINARY)
-    // reach CGAL's reader, which trusts facet sizes (gigabytes asked for) and casts negative ones read as
-    // doubles to std::size_t (undefined behaviour). The first token as diagnose_off() finds it:
-    std::istringstream is(in.mesh);
-    std::string line;
-    std::vector<std::string> first, counts; // the tokens of the first two lines that have some
-    while(std::getline(is, line) && counts.empty()) {
-      std::istringstream ls(line.substr(0, line.find('#')));
-      std::vector<std::string>& tokens = first.empty() ? first : counts;
-      for(std::string t; ls >> t;)
-        tokens.push_back(t);
-    }
-    const std::string magic = first.empty() ? std::string() : first[0];
-    const bool has_magic = magic.size() >= 3 && magic.compare(magic.size() - 3, 3, "OFF") == 0;
-    if(has_magic && ((magic != "OFF" && magic != "COFF" && magic != "NOFF" && magic != "CNOFF" &&
-                      magic != "STOFF" && magic != "STCOFF") ||
-                     (first.size() > 1 && first[1] == "BINARY")))
-      return "open-off_variant_* / open-off_binary_*";
-    // open-off_counts_line_extra_tokens_*: CGAL reads the counts with operator>> and then the vertices line by
-    // line, so what follows the three counts on their line is its vertex 0, while diagnose_off() reads the
-    // next line: the diagnosis checks other data than CGAL reads (a facet size of -1 or 1e9 gets through)
-    const std::vector<std::string>& count_tokens = !has_magic ? first : first.size() > 1 ? first : counts;
-    if(count_tokens.size() > (has_magic && first.size() > 1 ? 4u : 3u))
-      return "open-off_counts_line_extra_tokens_*";
-  }
-  if(in.format == 2) {
-    // the PLY header, line by line as CGAL's reader reads it
-    std::istringstream is(in.mesh);
-    std::string line;
-    bool in_vertex = false;
-    while(std::getline(is, line)) {
-      std::istringstream ls(line);
-      std::string keyword, type, name;
-      ls >> keyword >> type >> name;
-      if(keyword == "end_header")
-        break;
-      if(keyword == "element") {
-        in_vertex = type == "vertex" || type == "vertices";
-      } else if(keyword == "property" && type == "list") {
-        // open-cgal_ply_reader_trusts_list_sizes: CGAL's PLY reader resizes a list to the size read from the
-        // file before reading its items: with a 16- or 32-bit size type, up to 4e9 items (32 GB) for one line
-        if(name != "uchar" && name != "uint8" && name != "char" && name != "int8")
-          return "open-cgal_ply_reader_trusts_list_sizes";
-      } else if(keyword == "property" && in_vertex &&
-                (name == "x" || name == "y" || name == "z" || name == "nx" || name == "ny" || name == "nz") &&
-                type != "float" && type != "float32" && type != "double" && type != "float64") {
-        // open-cgal_ply_reader_integer_coordinate_property: CGAL's PLY reader reads a coordinate of an integer
-        // type through a pointer that is null unless the property is float or double: a CGAL assertion here,
-        // a null dereference (crash) in a release build
-        return "open-cgal_ply_reader_integer_coordinate_property";
-      }
-    }
-  }
-  return nullptr;
-}
-
 int run(const Input& in)
 {
-  if(g_skip_open_findings) {
-    if(const char* finding = open_finding(in)) {
-      if(g_verbose)
-        std::fprintf(stderr, "tc_fuzz: skipped (reaches the open finding %s; TC_FUZZ_KNOWN_BUGS=1 runs it)\n", finding);
-      return 0;
-    }
-  }
   const std::string path = temp_path(in.format);
   write_file(path, in.mesh.data(), in.mesh.size());
   struct Remove_file
@@ -628,8 +530,6 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
     kResidual = b;
     std::fprintf(stderr, "tc_fuzz: residual bound %g (TC_FUZZ_RESIDUAL) instead of 1e-9\n", b);
   }
-  const char* known = std::getenv("TC_FUZZ_KNOWN_BUGS");
-  g_skip_open_findings = !(known != nullptr && *known != '\0' && *known != '0');
   return 0;
 }
 

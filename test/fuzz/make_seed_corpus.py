@@ -20,6 +20,7 @@ standard library is used.
 
 import math
 import os
+import struct
 import sys
 
 
@@ -147,6 +148,27 @@ def ply(mesh):
     return "\n".join(lines) + "\n"
 
 
+def ply_binary(mesh, big_endian, extra=False):
+    """Binary PLY (float x y z, uchar/int lists); extra: a double property per vertex, an edge element and
+    ushort x, y, z (any numeric coordinate type is accepted). As a latin-1 string."""
+    p, f = mesh
+    e = ">" if big_endian else "<"
+    coord = "ushort" if extra else "float"
+    lines = ["ply", "format binary_%s_endian 1.0" % ("big" if big_endian else "little"),
+             "element vertex %d" % len(p)] + ["property %s %s" % (coord, c) for c in "xyz"]
+    lines += ["property double quality"] if extra else []
+    lines += ["element face %d" % len(f), "property list uchar int vertex_indices"]
+    lines += ["element edge 1", "property int vertex1", "property int vertex2"] if extra else []
+    data = ("\n".join(lines + ["end_header"]) + "\n").encode("ascii")
+    for q in p:
+        data += struct.pack(e + "3H", *(int(round(c)) % 65536 for c in q)) if extra else struct.pack(e + "3f", *q)
+        data += struct.pack(e + "d", 0.5) if extra else b""
+    for t in f:
+        data += struct.pack(e + "B%di" % len(t), len(t), *t)
+    data += struct.pack(e + "2i", 0, 1) if extra else b""
+    return data.decode("latin-1")
+
+
 def stl(mesh):
     p, f = mesh
     lines = ["solid seed"]
@@ -200,6 +222,9 @@ def inputs():
     yield "valid_cube_quads_obj_triangulated", "J1t", obj(cube_quads()), sing([(0, 1), (7, 1)])
     yield "valid_ply_tetra", "P1", ply(tet), sing([(0, 1), (1, 1)])
     yield "valid_ply_octa_n4", "P4", ply(octa), sing([(v, "1/2") for v in range(4)])
+    yield "valid_ply_binary_little_tetra", "P1", ply_binary(tet, False), sing([(0, 1), (1, 1)])
+    yield "valid_ply_binary_big_octa_n4", "P4", ply_binary(octa, True), sing([(v, "1/2") for v in range(4)])
+    yield "valid_ply_binary_extra_tetra", "P1", ply_binary(tet, False, extra=True), sing([(0, 2)])
     yield "valid_stl_tetra", "S1", stl(tet), sing([(0, 2)])
     yield "valid_stl_ico_n2", "S2", stl(ico), sing([(v, 1) for v in range(2)])
     yield "valid_large_indices", "O1", off(tet), sing([(0, 1000), (1, -998)])
@@ -265,7 +290,7 @@ def main(argv):
         if singularities:
             data += ("" if data.endswith("\n") else "\n") + "%%\n" + singularities
         with open(os.path.join(out, name), "wb") as f:
-            f.write(data.encode("ascii"))
+            f.write(data.encode("latin-1"))  # binary PLY seeds: one byte per character
         count += 1
     print("make_seed_corpus.py: %d inputs in %s" % (count, out))
     return 0

@@ -9,6 +9,7 @@
 #include <CGAL/disable_warnings.h>
 
 #include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/read_ply.h>
 #include <CGAL/Trivial_connections/parameters.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -532,14 +533,22 @@ inline std::vector<std::string> tokens_of(const std::string& line)
 }
 
 /*
-  Called when CGAL could not read an ASCII OFF file: finds why, line by line, and throws a precise
-  Invalid_input (parse_error with the line, invalid_vertex with the face). Returns if it finds nothing.
+  ASCII OFF read line by line, for the files the fast path does not take (polygons, colours, normals,
+  comments in odd places): we read OFF ourselves rather than with CGAL's reader, which trusts facet sizes
+  (a 60-byte file asks for gigabytes), casts negative sizes and indices read as doubles to unsigned, and
+  reads the rest of a counts line with extra numbers as the first vertex. Accepted: the keyword
+  `[ST][C][N]OFF` (texture coordinates, colours and normals are read past), the counts `nv nf ne` on one
+  line, nv vertex lines of at least three finite coordinates, nf face lines `size i_1 ... i_size` with
+  0-based indices < nv (a face colour may follow); `#` comments and blank lines anywhere. Refused with a
+  parse_error naming the line: binary, homogeneous (4OFF) and n-dimensional (nOFF) variants, and anything
+  malformed. Memory is proportional to the file's size whatever its counts say.
 */
-inline void diagnose_off(const std::string& path)
+template <class Point, class PolygonRange>
+void read_off_soup(const std::string& path, std::vector<Point>& points, PolygonRange& polygons)
 {
-  std::ifstream is(path);
+  std::ifstream is(path, std::ios::binary);
   if(!is)
-    return;
+    throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "'");
   std::string line;
   std::size_t line_number = 0;
   std::vector<std::string> t;
@@ -553,33 +562,45 @@ inline void diagnose_off(const std::string& path)
     return false;
   };
   const std::string at = path + ":";
+  auto fail = [&](const std::string& what) {
+    throw Invalid_input(Error_code::parse_error, at + std::to_string(line_number) + ": " + what);
+  };
   if(!next_tokens())
     throw Invalid_input(Error_code::parse_error, path + ": the file is empty");
-  std::size_t k = 0;
-  const std::string& magic = t[0];
-  if(magic.size() >= 3 && magic.compare(magic.size() - 3, 3, "OFF") == 0) {
-    if(magic != "OFF" && magic != "COFF" && magic != "NOFF" && magic != "CNOFF" && magic != "STOFF" &&
-       magic != "STCOFF")
-      return; // a variant we do not diagnose
-    if(t.size() > 1 && t[1] == "BINARY")
-      return;
-    k = 1;
+  {
+    // CGAL's keyword grammar: [ST][C][N][4][n]OFF
+    const std::string& magic = t[0];
+    std::size_t j = 0;
+    if(magic.compare(0, 2, "ST") == 0)
+      j += 2;
+    for(const char letter : {'C', 'N', '4', 'n'})
+      if(j < magic.size() && magic[j] == letter)
+        ++j;
+    if(magic.compare(j, std::string::npos, "OFF") != 0)
+      fail("expected the keyword OFF (or COFF, NOFF, STOFF, ...) at the start of an OFF file, found '" + magic + "'");
+    if(magic.find_first_of("4n") != std::string::npos)
+      fail("the OFF variant '" + magic + "' (homogeneous or n-dimensional coordinates) is not supported");
   }
+  if(t.size() > 1 && t[1] == "BINARY")
+    fail("binary OFF is not supported: write the mesh as ASCII OFF, or as PLY (ASCII or binary)");
+  std::size_t k = 1;
   if(k == t.size()) {
     if(!next_tokens())
       throw Invalid_input(Error_code::parse_error, path + ": unexpected end of file: expected the vertex and face counts");
     k = 0;
   }
-  long long nv = -1, nf = -1;
-  if(t.size() < k + 2 || !parse_integer(t[k], nv) || !parse_integer(t[k + 1], nf) || nv < 0 || nf < 0)
-    throw Invalid_input(Error_code::parse_error, at + std::to_string(line_number) +
-                                                   ": expected the vertex, face and edge counts of the OFF header");
+  long long nv = -1, nf = -1, ne = -1;
+  if(t.size() != k + 3 || !parse_integer(t[k], nv) || !parse_integer(t[k + 1], nf) || !parse_integer(t[k + 2], ne) ||
+     nv < 0 || nf < 0)
+    fail("expected the vertex, face and edge counts of the OFF header, three integers on one line");
   for(long long v = 0; v < nv; ++v) {
     if(!next_tokens())
       throw Invalid_input(Error_code::parse_error,
                           path + ": unexpected end of file: the header announces " + std::to_string(nv) +
                             " vertices, the file has " + std::to_string(v));
     check_coordinates(t, 0, at + std::to_string(line_number) + ": vertex " + std::to_string(v), std::size_t(v));
+    points.push_back(Point(std::strtod(t[0].c_str(), nullptr), std::strtod(t[1].c_str(), nullptr),
+                           std::strtod(t[2].c_str(), nullptr)));
   }
   for(long long f = 0; f < nf; ++f) {
     if(!next_tokens())
@@ -593,6 +614,7 @@ inline void diagnose_off(const std::string& path)
     if(t.size() < std::size_t(size) + 1)
       throw Invalid_input(Error_code::parse_error, where + ": expected " + std::to_string(size) + " vertex indices",
                           std::size_t(f));
+    polygons.emplace_back();
     for(long long j = 1; j <= size; ++j) {
       long long v = 0;
       if(!parse_integer(t[std::size_t(j)], v))
@@ -604,6 +626,7 @@ inline void diagnose_off(const std::string& path)
                               std::to_string(nv) + " vertices (0-based indices 0 to " +
                               (nv == 0 ? std::string("none") : std::to_string(nv - 1)) + ")",
                             std::size_t(f));
+      polygons.back().push_back(std::size_t(v));
     }
   }
   if(nf == 0)
@@ -724,62 +747,6 @@ private:
 };
 
 // the characters std::isspace accepts in the "C" locale (what the iostreams of CGAL's readers skip)
-// The header of a PLY file (up to end_header): CGAL's reader loops forever on an element without properties
-// and fails badly on a property before any element, so such headers are refused first, with their line.
-inline void diagnose_ply_header(const std::string& path)
-{
-  std::ifstream is(path, std::ios::binary);
-  if(!is)
-    return;
-  std::string line;
-  std::size_t line_number = 0;
-  bool element_open = false, element_has_property = false, format_seen = false;
-  auto fail = [&](const std::string& what) {
-    throw Invalid_input(Error_code::parse_error, path + ":" + std::to_string(line_number) + ": " + what);
-  };
-  while(std::getline(is, line)) {
-    ++line_number;
-    if(!line.empty() && line.back() == '\r')
-      line.pop_back();
-    const std::vector<std::string> t = tokens_of(line);
-    if(line_number == 1) {
-      if(t.size() != 1 || t[0] != "ply")
-        fail("not a PLY file (the first line must be 'ply')");
-      continue;
-    }
-    if(t.empty() || t[0] == "comment" || t[0] == "obj_info")
-      continue;
-    if(t[0] == "format") {
-      if(t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
-        fail("expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
-      format_seen = true;
-    } else if(t[0] == "element") {
-      long long count = -1;
-      if(t.size() != 3 || !parse_integer(t[2], count) || count < 0)
-        fail("expected 'element NAME COUNT' with a count that is a non-negative integer");
-      if(element_open && !element_has_property)
-        fail("the element before this line has no property");
-      element_open = true;
-      element_has_property = false;
-    } else if(t[0] == "property") {
-      if(!element_open)
-        fail("a property before any element");
-      if(t.size() < 3 || (t[1] == "list" && t.size() != 5))
-        fail("expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
-      element_has_property = true;
-    } else if(t[0] == "end_header") {
-      if(!format_seen)
-        fail("end of the header without a format line");
-      if(element_open && !element_has_property)
-        fail("the last element of the header has no property");
-      return;
-    } else {
-      fail("unexpected '" + t[0] + "' in the header");
-    }
-  }
-  throw Invalid_input(Error_code::parse_error, path + ": the PLY header has no end_header line");
-}
-
 inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
 
 inline const char* skip_blanks(const char* p, const char* end)
@@ -1220,9 +1187,18 @@ Mesh_input_order<TriangleMesh> triangle_soup_to_mesh(const PointRange& points, c
 /*!
 \ingroup PkgTrivialConnectionsIO
 Reads a triangle mesh from an OFF, OBJ, PLY, STL or GOCAD (`.ts`) file (by extension, any letter case: the
-formats `CGAL::IO::read_polygon_mesh()` reads without VTK) with `CGAL::IO::read_polygon_soup()`, validates
-it and builds it in `tm` with `triangle_soup_to_mesh()`: vertex `i` of the file is the `i`-th vertex of `tm`
-and face `f` its `f`-th face, unused vertices included. Every message starts with `path: `.
+formats `CGAL::IO::read_polygon_mesh()` reads without VTK), validates it and builds it in `tm` with
+`triangle_soup_to_mesh()`: vertex `i` of the file is the `i`-th vertex of `tm` and face `f` its `f`-th face,
+unused vertices included. Every message starts with `path: `.
+
+OFF and PLY are read by the package's own readers, which check every count against the size of the file
+before using it (CGAL 5.5's readers trust them: a file of a few bytes can ask for gigabytes or crash them).
+OFF: ASCII, keyword `OFF`, `COFF`, `NOFF`, `CNOFF`, `STOFF`, ... (normals, colours and texture coordinates
+are read past); binary, homogeneous (`4OFF`) and n-dimensional (`nOFF`) OFF files are refused. PLY: ASCII
+and binary of either endianness; the `x`, `y`, `z` properties of the `vertex` element, of any numeric type,
+and the `vertex_indices` (or `vertex_index`) list of the `face` element, of any integer type; other elements
+and properties are read past. OBJ is checked by the package and then read, like STL and GOCAD, with
+`CGAL::IO::read_polygon_soup()`.
 
 \tparam TriangleMesh as for `triangle_soup_to_mesh()`
 \tparam NamedParameters a sequence of named parameters
@@ -1246,7 +1222,8 @@ and face `f` its `f`-th face, unused vertices included. Every message starts wit
 \pre `tm` is empty
 \throws Invalid_input
   - `io_error`: the file does not exist, is a directory or cannot be read;
-  - `parse_error`: unknown or missing extension, or the file cannot be parsed (for OFF with the line);
+  - `parse_error`: unknown or missing extension, or the file cannot be parsed (the message names the line
+    for OFF, OBJ and a PLY header, the element and item in a PLY body), or is a refused OFF variant;
   - `invalid_vertex`: a face uses a vertex index out of range (`where()`: the face);
   - `not_triangle_mesh`: a face of more than three vertices without `triangulate(true)`, or of fewer than
     three; `degenerate_face`: also a face that `triangulate(true)` cannot split (a zero normal) or that uses
@@ -1305,21 +1282,26 @@ Mesh_input_order<TriangleMesh> read_triangle_mesh(const std::string& path, Trian
     }
   }
 
-  // Our own diagnosis first: it names the line of a malformed file, and CGAL's readers must not see some
-  // malformed files (they trust counts, read negative indices, and hang on some PLY headers).
-  if(ext == "off")
-    internal::io::diagnose_off(path);
-  else if(ext == "obj")
-    internal::io::diagnose_obj(path);
-  else if(ext == "ply")
-    internal::io::diagnose_ply_header(path);
+  // OFF and PLY are read by our own readers (see read_off_soup() and Ply_reader for what CGAL's do with
+  // malformed files); OBJ is diagnosed by ours first, then read by CGAL's, like STL and GOCAD.
   std::vector<Point> points;
   std::vector<boost::container::small_vector<std::size_t, 3>> polygons;
-  bool read = false;
-  try {
-    read = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
-  } catch(const std::length_error&) {
-    read = false; // a count too large for a vector
+  bool read = true;
+  if(ext == "off") {
+    internal::io::read_off_soup(path, points, polygons);
+  } else if(ext == "ply") {
+    const internal::io::File_contents data(path);
+    if(!data.ok())
+      throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "'");
+    internal::io::Ply_reader(data.begin(), data.end(), path).read(points, polygons);
+  } else {
+    if(ext == "obj")
+      internal::io::diagnose_obj(path);
+    try {
+      read = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+    } catch(const std::length_error&) {
+      read = false; // a count too large for a vector
+    }
   }
   if(!read)
     throw Invalid_input(Error_code::parse_error, "cannot parse '" + path + "' as a " + ext + " mesh file");

@@ -587,41 +587,6 @@ Checked<Mesh> solve_checked(const Mesh_view<Mesh>& view, S& solver, const Singul
   return r;
 }
 
-/*
-  No +-1 move of one free integer lowers the energy (recomputed by us). Without prescribed integers this is
-  check_integers_locally_optimal; with some, the moves are those of the loops left to the solver (boundary
-  loops of a component in pairs with its last one, as free_coordinates() says), the others kept.
-*/
-template <class Mesh>
-void expect_locally_optimal(const Mesh_view<Mesh>& view, Solver<Mesh>& solver, const Singularities& sing, int n,
-                            const TC::Solve_report& best, const Periods& given)
-{
-  if(given.empty()) {
-    check_integers_locally_optimal(view, solver, sing, n, best);
-    return;
-  }
-  std::vector<std::int64_t> base;
-  for(const auto& l : best.loops) base.push_back(l.period);
-  std::vector<int> free, partner;
-  free_coordinates(solver, free, partner);
-  for(std::size_t i = 0; i < free.size(); ++i) {
-    if(given[free[i]]) continue;
-    for(int d : {-1, 1}) {
-      std::vector<std::int64_t> periods = base;
-      periods[free[i]] += d;
-      if(partner[i] >= 0) periods[partner[i]] -= d;
-      std::vector<double> x;
-      const TC::Solve_report r = solver.solve(descriptors(view, sing), view.halfedge_map(x),
-                                              TC::parameters::loop_periods(periods, TC::parameters::symmetry_order(n)));
-      EXPECT_LT(r.max_vertex_residual, 1e-9);
-      EXPECT_LT(r.max_loop_residual, 1e-9);
-      const double E = energy(view, x, solver.weighting());
-      EXPECT_GE(E, best.energy - 1e-9 * std::max(1., best.energy))
-        << "moving free loop " << free[i] << " by " << d << " lowers the energy " << best.energy << " to " << E;
-    }
-  }
-}
-
 /// index of the solver loop of every boundary vertex (numbered in `view`), -1 for interior vertices
 template <class Mesh, class S>
 std::vector<int> loop_at_vertex(const Mesh_view<Mesh>& view, const S& solver)
@@ -734,7 +699,7 @@ Checked<Mesh> check_case(const Mesh_view<Mesh>& view, Solver<Mesh>& solver, cons
   Checked<Mesh> r = solve_checked(view, solver, sing, n, given);
   {
     SCOPED_TRACE("local optimality of the integers");
-    expect_locally_optimal(view, solver, sing, n, r.report, given);
+    check_integers_locally_optimal(view, solver, sing, n, r.report, given);
   }
   return r;
 }
@@ -779,6 +744,40 @@ TEST(Property_random_components, every_invariant_holds_on_several_components)
   random_property(3000, 40, Kind::multi, true);
 }
 
+/// a random mesh of any kind with random n, weighting, singularities and prescribed loops, solved and checked
+struct Solved_case
+{
+  const Soup& soup;
+  int n;
+  const Mesh_view<Surface_mesh>& view;
+  Solver<Surface_mesh>& solver;
+  const Singularities& sing;
+  const Periods& given;
+  const Checked<Surface_mesh>& result;
+};
+
+/// `check(case, random)` on `count` random solved cases from `first_seed` on (traces say which case failed)
+template <class F>
+void for_each_solved_case(unsigned first_seed, int count, F check)
+{
+  for_each_case(first_seed, count, [&](unsigned, Random& random) {
+    std::string what;
+    const Soup soup = random_soup(random, Kind::any, what);
+    SCOPED_TRACE(what);
+    ASSERT_EQ(soup_problem(soup), "");
+    const int n = random_order(random);
+    const Weighting w = random.coin(0.7) ? Weighting::hodge_star : Weighting::unit;
+    const Surface_mesh mesh = to_surface_mesh(soup);
+    const Mesh_view<Surface_mesh> view(mesh);
+    Solver<Surface_mesh> solver(mesh, TC::parameters::weighting(w));
+    const Singularities sing = random_singularities(view, n, random);
+    const Periods given = random_periods(view, solver, sing, n, random, false);
+    SCOPED_TRACE("n = " + std::to_string(n) + "; " + describe(sing, given));
+    const Checked<Surface_mesh> result = solve_checked(view, solver, sing, n, given, false);
+    check(Solved_case{soup, n, view, solver, sing, given, result}, random);
+  });
+}
+
 // -----------------------------------------------------------------------------------------------------
 // Independence of the numbering: the same mesh with shuffled vertices, faces and corners gives the same x
 // per geometric edge, the same energy and the same index of every hole
@@ -786,20 +785,9 @@ TEST(Property_random_components, every_invariant_holds_on_several_components)
 
 TEST(Property_numbering, same_answer_for_shuffled_vertices_and_faces)
 {
-  for_each_case(4000, 40, [&](unsigned, Random& random) {
-    std::string what;
-    const Soup a = random_soup(random, Kind::any, what);
-    SCOPED_TRACE(what);
-    ASSERT_EQ(soup_problem(a), "");
-    const int n = random_order(random);
-    const Weighting w = random.coin(0.7) ? Weighting::hodge_star : Weighting::unit;
-    const Surface_mesh ma = to_surface_mesh(a);
-    const Mesh_view<Surface_mesh> va(ma);
-    Solver<Surface_mesh> sa(ma, TC::parameters::weighting(w));
-    const Singularities sing = random_singularities(va, n, random);
-    const Periods given = random_periods(va, sa, sing, n, random, false);
-    SCOPED_TRACE("n = " + std::to_string(n) + "; " + describe(sing, given));
-    const Checked<Surface_mesh> ra = solve_checked(va, sa, sing, n, given, false);
+  for_each_solved_case(4000, 40, [&](const Solved_case& c, Random& random) {
+    const auto& [a, n, va, sa, sing, given, ra] = c;
+    const Weighting w = sa.weighting();
 
     std::vector<int> perm;
     const Soup b = renumbered(a, random.seed(), &perm, true);
@@ -869,20 +857,8 @@ void expect_same_x_after(const Soup& soup, const Mesh_view<Mesh>& va, Solver<Mes
 
 TEST(Property_scale, same_answer_after_scaling_by_1e_minus_6_and_1e6_and_translating_by_1e6)
 {
-  for_each_case(5000, 40, [&](unsigned, Random& random) {
-    std::string what;
-    const Soup soup = random_soup(random, Kind::any, what);
-    SCOPED_TRACE(what);
-    ASSERT_EQ(soup_problem(soup), "");
-    const int n = random_order(random);
-    const Weighting w = random.coin(0.7) ? Weighting::hodge_star : Weighting::unit;
-    const Surface_mesh ma = to_surface_mesh(soup);
-    const Mesh_view<Surface_mesh> va(ma);
-    Solver<Surface_mesh> sa(ma, TC::parameters::weighting(w));
-    const Singularities sing = random_singularities(va, n, random);
-    const Periods given = random_periods(va, sa, sing, n, random, false);
-    SCOPED_TRACE("n = " + std::to_string(n) + "; " + describe(sing, given));
-    const Checked<Surface_mesh> ra = solve_checked(va, sa, sing, n, given, false);
+  for_each_solved_case(5000, 40, [&](const Solved_case& c, Random&) {
+    const auto& [soup, n, va, sa, sing, given, ra] = c;
     expect_same_x_after(soup, va, sa, ra, sing, n, given, 1e-6, {{0, 0, 0}}, 1e-9, false);
     expect_same_x_after(soup, va, sa, ra, sing, n, given, 1e6, {{0, 0, 0}}, 1e-9, false);
     expect_same_x_after(soup, va, sa, ra, sing, n, given, 1, {{1e6, -1e6, 1e6}}, 1e-9, false);
@@ -1033,7 +1009,7 @@ TEST(Hard_needles, grid_with_needles_and_caps_has_the_flat_answers_and_the_well_
       EXPECT_LT(worst, 1e-9 * std::max(1., max_abs(rp.x))) << "needles change x";
       EXPECT_NEAR(rn.report.energy, rp.report.energy, 1e-9 * std::max(1., rp.report.energy));
       EXPECT_EQ(hole_periods(vp, sp, rp.report), hole_periods(vn, sn, rn.report));
-      expect_locally_optimal(vn, sn, sing, n, rn.report, {});
+      check_integers_locally_optimal(vn, sn, sing, n, rn.report, {});
     });
     // (3) Hodge weights with singularities: every invariant, and scale invariance. Weights down to 1.5 eps
     for_each_case(7100, 4, [&](unsigned, Random& random) {
@@ -1043,7 +1019,7 @@ TEST(Hard_needles, grid_with_needles_and_caps_has_the_flat_answers_and_the_well_
       const Periods given = random_periods(vn, solver, sing, n, random, false);
       SCOPED_TRACE("Hodge weights, n = " + std::to_string(n) + "; " + describe(sing, given));
       const Checked<Surface_mesh> r = solve_checked(vn, solver, sing, n, given, field);
-      expect_locally_optimal(vn, solver, sing, n, r.report, given);
+      check_integers_locally_optimal(vn, solver, sing, n, r.report, given);
       // scaling by 1e-6 or 1e6 is not exact in binary: the eps-long edges, hence their weights, change by
       // ~1e-16 / eps relatively, and so may x (at eps = 1e-9: 1e-7; x changed by 6e-8 relatively)
       const double tolerance = std::max(1e-9, 1e-15 / eps);
@@ -1077,7 +1053,7 @@ TEST(Hard_needles, curved_needles_on_a_torus)
         SCOPED_TRACE(std::string(w == Weighting::unit ? "unit" : "Hodge") + " weights, n = " + std::to_string(n) +
                      "; " + describe(sing, {}));
         const Checked<Surface_mesh> r = solve_checked(view, solver, sing, n, {}, field_checkable(eps));
-        expect_locally_optimal(view, solver, sing, n, r.report, {});
+        check_integers_locally_optimal(view, solver, sing, n, r.report, {});
         expect_same_x_after(soup, view, solver, r, sing, n, {}, 1e-6, {{0, 0, 0}}, 1e-9, field_checkable(eps));
         expect_same_x_after(soup, view, solver, r, sing, n, {}, 1e6, {{0, 0, 0}}, 1e-9, field_checkable(eps));
       });

@@ -41,6 +41,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -1255,11 +1256,13 @@ long long check_integers_by_enumeration(const Mesh_view<Mesh>& view, Solver& sol
 
 /*
   Local optimality of the chosen integers (for meshes too large for the box enumeration): no single free
-  coordinate moved by ±1 (boundary loops in pairs, as above) lowers the energy, recomputed by us.
+  coordinate moved by ±1 (boundary loops in pairs, as above) lowers the energy, recomputed by us. The loops
+  whose integer was prescribed (`prescribed[l]` set: the loop_periods of the solve) are not moved.
 */
 template <class Mesh, class Solver>
 void check_integers_locally_optimal(const Mesh_view<Mesh>& view, Solver& solver, const Singularities& sing, int n,
-                                    const TC::Solve_report& best)
+                                    const TC::Solve_report& best,
+                                    const std::vector<std::optional<std::int64_t>>& prescribed = {})
 {
   std::vector<std::int64_t> base;
   for(const auto& r : best.loops) base.push_back(r.period);
@@ -1269,6 +1272,8 @@ void check_integers_locally_optimal(const Mesh_view<Mesh>& view, Solver& solver,
   double gain = 0;
   for(std::size_t i = 0; i < free.size(); ++i)
     for(int d : {-1, 1}) {
+      if(!prescribed.empty() && prescribed[std::size_t(free[i])])
+        continue;
       std::vector<std::int64_t> periods = base;
       periods[free[i]] += d;
       if(partner[i] >= 0) periods[partner[i]] -= d;
@@ -1276,6 +1281,7 @@ void check_integers_locally_optimal(const Mesh_view<Mesh>& view, Solver& solver,
       const TC::Solve_report r = solver.solve(descriptors(view, sing), view.halfedge_map(x),
                                               TC::parameters::loop_periods(periods, TC::parameters::symmetry_order(n)));
       EXPECT_LT(r.max_vertex_residual, 1e-9);
+      EXPECT_LT(r.max_loop_residual, 1e-9);
       const double E = energy(view, x, solver.weighting());
       if(E < best.energy - 1e-9 * std::max(1., best.energy)) {
         ++improving;

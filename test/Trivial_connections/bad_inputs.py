@@ -5,11 +5,13 @@ Used by ctest (bad_input_corpus). The corpus stays in OUT_DIR/corpus/CASE/ for i
 Usage: bad_inputs.py PROGRAM OUT_DIR
 Exit status 0 when every case behaves, 1 otherwise (each failure is listed).
 """
+import atexit
 import math
 import os
 import shutil
 import subprocess
 import sys
+import tempfile
 
 program, out = sys.argv[1], os.path.abspath(sys.argv[2])
 corpus = os.path.join(out, "corpus")
@@ -27,20 +29,53 @@ TWO_TETS = ("OFF\n8 8 0\n" + TET_V + "5 0 0\n6 0 0\n5 1 0\n5 0 1\n" + TET_F +
 
 failures = []
 
+# Permissions do not stop root: as root (CI), the cases about unreadable files and unwritable folders run the
+# program as the user nobody (setpriv, util-linux), which then cannot read a file of mode 000 nor write into
+# the case's folder (root's, mode 755).
+# The build tree may be where nobody cannot go (/root): those cases and a copy of the program are in a
+# temporary folder of mode 755 under the system's temporary directory.
+AS_OTHER_USER = []
+other_root, other_program = None, program
+if os.geteuid() == 0:
+    other_root = tempfile.mkdtemp(prefix="tc_bad_inputs_")
+    atexit.register(shutil.rmtree, other_root, True)
+    os.chmod(other_root, 0o755)
+    other_program = os.path.join(other_root, "trivial_connections")
+    shutil.copy2(program, other_program)
+    probe = ["setpriv", "--reuid=nobody", "--regid=nogroup", "--clear-groups", other_program, "--version"]
+    try:
+        if subprocess.run(probe, capture_output=True, timeout=60).returncode == 0:
+            AS_OTHER_USER = probe[:4]
+    except OSError:
+        pass
 
-def case(name, files, args, status, words=(), outputs=("c.txt", "f.txt")):
+
+def case(name, files, args, status, words=(), outputs=("c.txt", "f.txt"), unreadable=(), as_other_user=False):
     """Writes `files` (name -> content) into the case's folder, runs the program with `args` (file names
-    are replaced by their paths) and --connection/--field outputs there, and checks the outcome."""
-    folder = os.path.join(corpus, name)
+    are replaced by their paths) and --connection/--field outputs there, and checks the outcome.
+    `unreadable`: files made mode 000; `as_other_user`: as root, run as nobody (see AS_OTHER_USER)."""
+    if (unreadable or as_other_user) and os.geteuid() == 0 and not AS_OTHER_USER:
+        print("skipped %-27s as root, and setpriv cannot run the program as nobody" % name)
+        return
+    other = (unreadable or as_other_user) and os.geteuid() == 0
+    folder = os.path.join(other_root if other else corpus, name)
     os.makedirs(folder)
     for f, content in files.items():
         with open(os.path.join(folder, f), "w") as h:
             h.write(content)
-    argv = [program] + [os.path.join(folder, a) if a in files else a for a in args]
+    for f in unreadable:
+        os.chmod(os.path.join(folder, f), 0)
+    if as_other_user and os.geteuid() != 0:
+        os.chmod(folder, 0o555)  # not root: the folder itself is made read-only
+    argv = (AS_OTHER_USER if other else []) + [other_program if other else program] + \
+        [os.path.join(folder, a) if a in files else a for a in args]
     out_paths = [os.path.join(folder, o) for o in outputs]
     if outputs:
         argv += ["--connection", out_paths[0], "--field", out_paths[1]]
     run = subprocess.run(argv, capture_output=True, text=True, timeout=120)
+    os.chmod(folder, 0o755)
+    for f in unreadable:
+        os.chmod(os.path.join(folder, f), 0o644)
     err = run.stderr.strip()
     problems = []
     if run.returncode != status:
@@ -204,6 +239,15 @@ case("output_in_missing_directory", {"m.off": TET, "s.sing": "0 1\n1 1\n"},
      ["cannot write", "no_dir"])
 case("output_is_a_directory", {"m.off": TET, "s.sing": "0 1\n1 1\n"},
      ["m.off", "--singularities", "s.sing", "--vtk", corpus], 1, ["cannot write"])
+
+case("unreadable_mesh", {"m.off": TET}, ["m.off"], 1, ["cannot read mesh file", "Permission denied"],
+     unreadable=["m.off"])
+case("unreadable_singularities", {"m.off": TET, "s.sing": "0 1\n1 1\n"}, ["m.off", "--singularities", "s.sing"], 1,
+     ["cannot read singularity file", "Permission denied"], unreadable=["s.sing"])
+case("unreadable_constraints", {"m.off": TET, "c.dirs": "0 1 0 0\n"}, ["m.off", "--constraints", "c.dirs"], 1,
+     ["c.dirs", "Permission denied"], unreadable=["c.dirs"])
+case("unwritable_output_folder", {"m.off": TET, "s.sing": "0 1\n1 1\n"}, ["m.off", "--singularities", "s.sing"], 1,
+     ["cannot write", "Permission denied"], as_other_user=True)
 
 # ---- accepted edge cases: finite outputs
 case("isolated_vertex_is_ignored", {"m.off": "OFF\n5 4 0\n" + TET_V + "7 7 7\n" + TET_F, "s.sing": "0 1\n1 1\n"},

@@ -746,22 +746,7 @@ private:
   std::size_t m_size = 0;
 };
 
-// the characters std::isspace accepts in the "C" locale (what the iostreams of CGAL's readers skip)
-inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
 
-inline const char* skip_blanks(const char* p, const char* end)
-{
-  while(p != end && is_blank(*p))
-    ++p;
-  return p;
-}
-
-inline const char* token_end(const char* p, const char* end)
-{
-  while(p != end && !is_blank(*p))
-    ++p;
-  return p;
-}
 
 inline const char* end_of_line(const char* p, const char* end)
 {

@@ -25,6 +25,23 @@ namespace Trivial_connections {
 namespace internal {
 namespace io {
 
+// the characters std::isspace accepts in the "C" locale (what the iostreams of CGAL's readers skip)
+inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
+
+inline const char* skip_blanks(const char* p, const char* end)
+{
+  while(p != end && is_blank(*p))
+    ++p;
+  return p;
+}
+
+inline const char* token_end(const char* p, const char* end)
+{
+  while(p != end && !is_blank(*p))
+    ++p;
+  return p;
+}
+
 /*
   A PLY reader of our own (ASCII, binary little and big endian), used instead of CGAL's: CGAL 5.5's reader
   trusts list sizes (a 250-byte file asks for 16 GB), dereferences a null pointer on integer coordinates,
@@ -164,17 +181,12 @@ private:
                         m_path + ": element '" + e.name + "' item " + std::to_string(item) + ": " + what);
   }
 
-  static bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
-
   static std::vector<std::string> words(const char* b, const char* e)
   {
     std::vector<std::string> out;
     while(b != e) {
-      while(b != e && is_blank(*b))
-        ++b;
-      const char* w = b;
-      while(b != e && !is_blank(*b))
-        ++b;
+      const char* w = skip_blanks(b, e);
+      b = token_end(w, e);
       if(w != b)
         out.emplace_back(w, b);
     }
@@ -297,11 +309,8 @@ private:
 
   double ascii_scalar(Ply_type t, const Ply_element& e, std::uint64_t item)
   {
-    while(m_p != m_end && is_blank(*m_p))
-      ++m_p;
-    const char* w = m_p;
-    while(m_p != m_end && !is_blank(*m_p))
-      ++m_p;
+    const char* w = skip_blanks(m_p, m_end);
+    m_p = token_end(w, m_end);
     if(w == m_p)
       fail_item(e, item, "unexpected end of file (the header announces " + std::to_string(e.count) + " items)");
     const std::string word(w, m_p);

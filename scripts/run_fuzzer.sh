@@ -11,6 +11,9 @@
 #   and their paths are printed. Replay one with: build-fuzz/fuzz_input FILE
 #   The reproducers of fixed findings (test/fuzz/findings/regression-*) are replayed with the seeds.
 # Environment: FUZZ_JOBS (default 1) parallel fuzzing processes sharing the corpus (-fork).
+#   FUZZ_SEED: libFuzzer's random seed (default: a new one each run). With a fixed seed, one process and an
+#   empty working corpus, a run follows the same sequence of inputs every time, a longer run extending a
+#   shorter one: CI uses FUZZ_SEED=1, so that what a run here found clean stays clean in CI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -35,7 +38,7 @@ cmake --build "$build" --target fuzz_input -j2
 # ---- corpus
 rm -rf "$build/seeds"
 "$python" "$root/test/fuzz/make_seed_corpus.py" "$build/seeds"
-# the reproducers of fixed findings are replayed with the seeds (a regression fails the run); open ones are not
+# the reproducers of fixed findings are replayed with the seeds (a regression fails the run)
 for f in "$root"/test/fuzz/findings/regression-*; do
   if [ -f "$f" ]; then cp "$f" "$build/seeds/"; fi
 done
@@ -47,6 +50,7 @@ jobs=${FUZZ_JOBS:-1}
 flags=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=16384 -print_final_stats=1
        -artifact_prefix="$build/artifacts/" -detect_leaks=1)
 if [ "$jobs" -gt 1 ]; then flags+=(-fork="$jobs" -ignore_crashes=0); fi
+if [ -n "${FUZZ_SEED:-}" ]; then flags+=(-seed="$FUZZ_SEED"); fi
 before=$(find "$build/artifacts" -type f | wc -l)
 echo "run_fuzzer.sh: fuzzing for ${seconds} s (log: $log)"
 start=$(date +%s)
@@ -69,7 +73,7 @@ ft=$(grep -o 'ft: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*' || true)
 corpus_size=$(find "$build/corpus" -type f | wc -l)
 result=clean
 [ "$status" -eq 0 ] || result="FAILED (libFuzzer exit status $status)"
-summary="fuzz_input: ${execs:-?} executions in ${elapsed} s of ${seconds} s (${rate:-?} exec/s), cov ${cov:-?}, ft ${ft:-?}, corpus ${corpus_size} inputs, result: ${result}"
+summary="fuzz_input: ${execs:-?} executions in ${elapsed} s of ${seconds} s (${rate:-?} exec/s, seed ${FUZZ_SEED:-random}), cov ${cov:-?}, ft ${ft:-?}, corpus ${corpus_size} inputs, result: ${result}"
 echo "$summary" >"$build/fuzz_summary.txt"
 echo "run_fuzzer.sh: $summary"
 if [ "$status" -ne 0 ]; then

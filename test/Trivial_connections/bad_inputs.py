@@ -249,6 +249,12 @@ case("unreadable_constraints", {"m.off": TET, "c.dirs": "0 1 0 0\n"}, ["m.off", 
 case("unwritable_output_folder", {"m.off": TET, "s.sing": "0 1\n1 1\n"}, ["m.off", "--singularities", "s.sing"], 1,
      ["cannot write", "Permission denied"], as_other_user=True)
 
+# a needle: a square fanned around a vertex at height EPS above its bottom edge (aspect ratio about 1/EPS)
+NEEDLE = "OFF\n5 4 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 {} 0\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n"
+case("cap_too_flat_for_doubles", {"m.off": NEEDLE.format("1e-13")}, ["m.off"], 1,
+     ["face 0 is degenerate", "nearly collinear", "1e-12 rad"])
+case("cap_area_underflows", {"m.off": NEEDLE.format("1e-200")}, ["m.off"], 1, ["face 0 is degenerate"])
+
 # ---- accepted edge cases: finite outputs
 case("isolated_vertex_is_ignored", {"m.off": "OFF\n5 4 0\n" + TET_V + "7 7 7\n" + TET_F, "s.sing": "0 1\n1 1\n"},
      ["m.off", "--singularities", "s.sing"], 0)
@@ -259,6 +265,11 @@ case("flat_disk_no_singularity", {"m.off": DISK}, ["m.off"], 0)
 # huge indices: 2 pi k is rounded to ~1e-8 for k = 1e7, which the solver must accept (a relative allowance)
 case("huge_indices_are_solved", {"m.off": TET, "s.sing": "0 10000000\n1 -9999998\n"},
      ["m.off", "--singularities", "s.sing"], 0)
+# caps (an angle pi - 4e-9) are solved; so are needles (one tiny angle), even of aspect ratio 1e100
+case("cap_aspect_1e9_is_solved", {"m.off": NEEDLE.format("1e-9")}, ["m.off"], 0)
+case("needle_aspect_1e100_is_solved",
+     {"m.off": "OFF\n5 4 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n1e-100 1e-100 0\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n"},
+     ["m.off"], 0)
 # integer coordinates in PLY (valid PLY; CGAL's own reader dereferences a null pointer on them)
 case("ply_integer_coordinates", {"m.ply": PLY_HEAD.replace("float", "int") + TET_V + TET_F, "s.sing": "0 1\n1 1\n"},
      ["m.ply", "--singularities", "s.sing"], 0)

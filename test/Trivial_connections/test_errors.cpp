@@ -190,6 +190,31 @@ TEST(Bad_mesh, degenerate_faces)
     ASSERT_NE(sm.add_face(v[0], v[1], v[2]), SM::null_face());
     EXPECT_NO_THROW(Solver s(sm));
   }
+  // a cap whose largest angle is within about 1e-13 rad of pi: its plane is rounding noise, whatever the
+  // placement (here rotated out of the coordinate planes, where the cross product cancels to its last bits);
+  // the same shape within 1e-10 of pi is accepted, in both placements
+  for(const double offset : {1e-13, 1e-10}) {
+    for(const bool rotated : {false, true}) {
+      SCOPED_TRACE("offset " + std::to_string(offset) + (rotated ? ", rotated" : ""));
+      auto place = [&](double x, double y) {
+        if(!rotated)
+          return Point(x, y, 0);
+        const double c = std::cos(0.7), s = std::sin(0.7); // about z by 0.7, then about x by 0.4
+        const double xr = c * x - s * y, yr = s * x + c * y;
+        return Point(xr, std::cos(0.4) * yr, std::sin(0.4) * yr);
+      };
+      SM sm;
+      std::vector<SM::Vertex_index> v;
+      for(const Point& q : {place(0, 0), place(1, 0), place(0.5, offset)}) v.push_back(sm.add_vertex(q));
+      ASSERT_NE(sm.add_face(v[0], v[1], v[2]), SM::null_face());
+      if(offset < 1e-12) {
+        if(auto e = expect_invalid([&] { Solver solver(sm); }, Error_code::degenerate_face))
+          EXPECT_MESSAGE_HAS(*e, "nearly collinear");
+      } else {
+        EXPECT_NO_THROW(Solver solver(sm));
+      }
+    }
+  }
   // a non-finite coordinate in a closed mesh (face of vertex 5 of an icosphere)
   {
     Soup s = icosphere_soup(1);

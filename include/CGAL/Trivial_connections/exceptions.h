@@ -24,7 +24,8 @@ enum class Error_code {
   not_triangle_mesh,          ///< a face is not a triangle
   non_manifold,               ///< a non-manifold vertex or edge
   inconsistent_orientation,   ///< two faces that share an edge do not traverse it in opposite directions
-  degenerate_face,            ///< a face has zero area or a non-finite vertex coordinate
+  degenerate_face,            ///< a face has zero area or a non-finite vertex coordinate, or is so nearly collinear
+                              ///< (every angle within 1e-12 rad of 0 or pi) that its plane is not determined in double precision
   invalid_vertex,             ///< a vertex that does not exist, or that belongs to no face
   singularity_on_boundary,    ///< a singularity placed on a boundary vertex
   duplicate_singularity,      ///< a vertex listed twice

@@ -186,6 +186,8 @@ private:
     }
   }
 
+  static constexpr double kMinimumSine = 1e-12;
+
   template <class VertexPointMap, class Traits>
   void check_degenerate_faces(VertexPointMap vpm, const Traits& traits) const
   {
@@ -199,17 +201,37 @@ private:
       if(!bad)
         bad = collinear(get(vpm, vertex_descriptors[a]), get(vpm, vertex_descriptors[b]), get(vpm, vertex_descriptors[c]));
       if(!bad) {
-        // a face that is not collinear exactly can still have a zero or subnormal area in double
-        const auto& p = points[a]; const auto& q = points[b]; const auto& r = points[c];
-        const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-        const double w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-        const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-        const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        bad = !(nn > 0) || !std::isnormal(nn);
+        // A face that is not collinear exactly can still have a zero or subnormal area in double, or be so
+        // nearly collinear that its plane is rounding noise: the normal of the face frames comes from the
+        // corner of largest sine, and its rounding error is about eps / sine. Below kMinimumSine the normal
+        // (and so the field's plane on that face) could be off by 1e-4 rad or more, or flipped. A shape
+        // criterion, so that acceptance does not depend on how the mesh is rotated.
+        double best_sine = 0;
+        const int corners[3] = {a, b, c};
+        for(int k = 0; k < 3; ++k) {
+          const auto& p = points[corners[k]];
+          const auto& q = points[corners[(k + 1) % 3]];
+          const auto& r = points[corners[(k + 2) % 3]];
+          const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+          const double w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+          const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+          const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+          const double lw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+          if(!std::isnormal(nn) || !std::isnormal(lu) || !std::isnormal(lw)) { // squares under- or overflowed
+            best_sine = 0;
+            break;
+          }
+          best_sine = std::max(best_sine, nn / lu / lw);
+        }
+        bad = !(best_sine >= kMinimumSine);
       }
       if(bad)
         throw Invalid_input(Error_code::degenerate_face,
-                            "face " + std::to_string(f) + " is degenerate (zero area)", std::size_t(f));
+                            "face " + std::to_string(f) +
+                              " is degenerate (zero area, or so nearly collinear that its plane is not determined in "
+                              "double precision: every angle within 1e-12 rad of 0 or pi)",
+                            std::size_t(f));
     }
   }
 };

@@ -37,6 +37,7 @@
 #include <iterator>
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -1239,6 +1240,59 @@ TYPED_TEST(IoMeshReader, FastReaderRejectsMalformedFilesWithTheUsualErrors)
 // Faces of more than three vertices are split on request: into triangles inside the face (their areas add
 // up to the face's, which a wrong split of a non-convex face does not give), with the face's orientation,
 // the vertex numbering kept and source_faces naming each triangle's face.
+// A polygon of five or more corners is split into m - 2 triangles of its own corners whose directed edges
+// are the polygon's boundary, once each in the polygon's direction, plus diagonals in both directions: a
+// triangulation of the polygon with its orientation. Among them, the slightly non-planar pentagon on which
+// CGAL's triangulate_face() left a broken face cycle (an endless loop, found by the fuzzer).
+TYPED_TEST(IoMeshReader, TriangulatedPolygonsKeepTheirBoundaryAndOrientation)
+{
+  using Mesh = TypeParam;
+  const std::vector<std::pair<std::string, std::string>> files = {
+    {"fuzzer_pentagon.obj", "v 0 0 0\nv 0 0 2\nv 0 1 0\nv 0 1 1\nv 22 0 0\nv 1 0 1\nv 1 1 0\nv 1 0 1\nf 1 5 2 3 8\n"},
+    {"star.obj", "v 0 0 0\nv 4 -1 0\nv 1 1 0\nv 4 3 0\nv 0 2 0\nv -3 3 0\nv -1 1 0\nv -3 -1 0\nf 1 2 3 4 5 6 7 8\n"},
+    {"collinear_corners.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4 5 6\n"}};
+  Temp_dir dir;
+  for(const auto& [name, content] : files) {
+    SCOPED_TRACE(name);
+    std::vector<std::size_t> corners;
+    for(std::istringstream is(content.substr(content.find("f "))); is;) {
+      std::string t;
+      if(is >> t && t != "f")
+        corners.push_back(std::stoul(t) - 1);
+    }
+    Mesh mesh;
+    const TC::Mesh_input_order<Mesh> order =
+      TC::read_triangle_mesh(dir.write(name, content), mesh, TC::parameters::triangulate(true));
+    ASSERT_EQ(order.faces.size(), corners.size() - 2);
+    std::map<std::pair<std::size_t, std::size_t>, int> directed;
+    auto index = [&order](auto v) {
+      return std::size_t(std::find(order.vertices.begin(), order.vertices.end(), v) - order.vertices.begin());
+    };
+    for(auto f : order.faces)
+      for(auto h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh))
+        ++directed[{index(source(h, mesh)), index(target(h, mesh))}];
+    auto count_of = [&directed](std::size_t a, std::size_t b) {
+      const auto it = directed.find({a, b});
+      return it == directed.end() ? 0 : it->second;
+    };
+    const std::size_t m = corners.size();
+    std::set<std::pair<std::size_t, std::size_t>> boundary;
+    for(std::size_t k = 0; k < m; ++k) {
+      const std::size_t a = corners[k], b = corners[(k + 1) % m];
+      boundary.insert({a, b});
+      EXPECT_EQ(count_of(a, b), 1) << "boundary edge " << a << "-" << b;
+      EXPECT_EQ(count_of(b, a), 0) << "boundary edge " << a << "-" << b << " reversed";
+    }
+    for(const auto& entry : directed) {
+      const std::size_t a = entry.first.first, b = entry.first.second;
+      EXPECT_EQ(entry.second, 1) << a << "-" << b;
+      EXPECT_TRUE(std::find(corners.begin(), corners.end(), a) != corners.end()) << a;
+      if(boundary.count(entry.first) == 0)
+        EXPECT_EQ(count_of(b, a), 1) << "diagonal " << a << "-" << b << " not used in both directions";
+    }
+  }
+}
+
 TYPED_TEST(IoMeshReader, TriangulatesFacesOfMoreThanThreeVerticesOnRequest)
 {
   using Mesh = TypeParam;

@@ -48,8 +48,8 @@
 // every interior edge, by the solver's transport angle in face frames and by our own unfolding). Residuals
 // are bounded by 1e-9 times the magnitudes the residual sums (see check_solution()).
 //
-// Environment: TC_FUZZ_VERBOSE=1 prints how each input ended; TC_FUZZ_RESIDUAL=X replaces the 1e-9 residual bound (exploration only); TC_FUZZ_TMPDIR the directory of the
-// temporary mesh file (default /dev/shm).
+// Environment: TC_FUZZ_VERBOSE=1 prints how each input ended; TC_FUZZ_RESIDUAL=X replaces the 1e-9 residual
+// bound (exploration only); TC_FUZZ_TMPDIR the directory of the temporary mesh file (default /dev/shm).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>

@@ -12,11 +12,14 @@
 #include <CGAL/Trivial_connections/internal/read_ply.h>
 #include <CGAL/Trivial_connections/parameters.h>
 
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh/Surface_mesh.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/assertions.h>
 #include <CGAL/exceptions.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -939,13 +942,17 @@ bool fast_parse_obj(const char* p, const char* end, std::vector<Point>& points,
 }
 
 /*
-  Whether the polygon, projected onto the plane of its Newell normal, is simple (no two edges meet except
-  consecutive ones at their common corner): what a constrained Delaunay triangulation in that plane needs.
-  CGAL's triangulate_face() asserts, or crashes with assertions off, on faces that are not. Exact predicates
-  on the projected points.
+  Triangulates a polygon of five or more corners: projected onto the plane of its Newell normal, it must be
+  simple (no two edges meet except consecutive ones at their common corner; exact predicates on the
+  projected points) and within 5% of its size from planar, else false. Its triangles, the faces of the
+  constrained Delaunay triangulation of the projected corners inside the polygon (m - 2 of them, no new
+  vertex), are appended to `out` as point indices, with the polygon's orientation. We do not call
+  PMP::triangulate_face() for these: it asserts, crashes, loops or corrupts its mesh (an endless face cycle)
+  on faces it projects differently, which the fuzzer kept finding.
 */
 template <class Point>
-bool projects_to_a_simple_polygon(const std::vector<Point>& points, const std::vector<std::size_t>& corners)
+bool triangulate_simple_polygon(const std::vector<Point>& points, const std::vector<std::size_t>& corners,
+                                std::vector<std::array<int, 3>>& out)
 {
   using K2 = CGAL::Exact_predicates_inexact_constructions_kernel;
   const std::size_t m = corners.size();
@@ -1018,13 +1025,54 @@ bool projects_to_a_simple_polygon(const std::vector<Point>& points, const std::v
       }
     }
   }
+  // (u, v, n) is right-handed, so the polygon turns counter-clockwise in (u, v), as the faces of the CDT
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::size_t, K2>;
+  using Fb = CGAL::Constrained_triangulation_face_base_2<K2, CGAL::Triangulation_face_base_with_info_2<int, K2>>;
+  using CDT = CGAL::Constrained_Delaunay_triangulation_2<K2, CGAL::Triangulation_data_structure_2<Vb, Fb>,
+                                                         CGAL::No_constraint_intersection_tag>;
+  CDT cdt;
+  std::vector<typename CDT::Vertex_handle> handles;
+  for(std::size_t k = 0; k < m; ++k) {
+    handles.push_back(cdt.insert(q[k]));
+    handles.back()->info() = corners[k];
+  }
+  if(cdt.number_of_vertices() != m)
+    return false;
+  for(std::size_t k = 0; k < m; ++k)
+    cdt.insert_constraint(handles[k], handles[(k + 1) % m]);
+  if(cdt.number_of_vertices() != m) // no Steiner point, but for safety
+    return false;
+  // inside: reached from the infinite face by crossing an odd number of constraints (exactly one: simple)
+  for(auto fh = cdt.all_faces_begin(); fh != cdt.all_faces_end(); ++fh)
+    fh->info() = -1;
+  std::vector<typename CDT::Face_handle> stack(1, cdt.infinite_face());
+  cdt.infinite_face()->info() = 0;
+  while(!stack.empty()) {
+    const typename CDT::Face_handle fh = stack.back();
+    stack.pop_back();
+    for(int i = 0; i < 3; ++i) {
+      const typename CDT::Face_handle g = fh->neighbor(i);
+      if(g->info() != -1)
+        continue;
+      g->info() = fh->info() + (cdt.is_constrained(typename CDT::Edge(fh, i)) ? 1 : 0);
+      stack.push_back(g);
+    }
+  }
+  const std::size_t first = out.size();
+  for(auto fh = cdt.finite_faces_begin(); fh != cdt.finite_faces_end(); ++fh)
+    if(fh->info() % 2 == 1)
+      out.push_back({{int(fh->vertex(0)->info()), int(fh->vertex(1)->info()), int(fh->vertex(2)->info())}});
+  if(out.size() - first != m - 2) {
+    out.resize(first);
+    return false;
+  }
   return true;
 }
 
 /*
-  Splits every polygon of more than three vertices into triangles with PMP::triangulate_face() (a quad along
-  its better diagonal, larger polygons by a constrained Delaunay triangulation in their plane), keeping the
-  polygon's orientation and the vertex indices. Triangles of a polygon are consecutive, polygons in order;
+  Splits every polygon of more than three vertices into triangles (a quad along its better diagonal with
+  PMP::triangulate_face(), larger polygons by triangulate_simple_polygon(): a constrained Delaunay
+  triangulation in their plane), keeping the polygon's orientation and the vertex indices. Triangles of a polygon are consecutive, polygons in order;
   source[t] is the polygon of triangle t. Indices are checked first; polygons of fewer than three vertices are
   left to the validation, which rejects them.
 */
@@ -1045,6 +1093,7 @@ void triangulate_polygons(const std::vector<Point>& points, const PolygonRange& 
   // by vertex: the faces split_face() creates have no property of their own, their vertices do
   auto polygon_of = patches.template add_property_map<Patch_vertex, std::size_t>("v:tc_polygon", 0).first;
   std::vector<Patch_face> to_split;
+  std::vector<std::pair<std::size_t, std::array<int, 3>>> pieces; // (polygon, triangle)
   std::size_t f = 0;
   for(const auto& polygon : polygons) {
     for(const auto& index : polygon)
@@ -1058,11 +1107,19 @@ void triangulate_polygons(const std::vector<Point>& points, const PolygonRange& 
       if(repeated != sorted.end())
         throw Invalid_input(Error_code::degenerate_face, "face " + std::to_string(f) + " uses vertex " +
                                                           std::to_string(*repeated) + " twice", f);
-      if(polygon.size() > 4 && !projects_to_a_simple_polygon(points, corners))
-        throw Invalid_input(Error_code::degenerate_face,
-                            "face " + std::to_string(f) +
-                              " cannot be triangulated (it is far from planar, or seen along its normal its boundary"
-                            " crosses itself)", f);
+      if(polygon.size() > 4) {
+        std::vector<std::array<int, 3>> split;
+        if(!triangulate_simple_polygon(points, corners, split))
+          throw Invalid_input(Error_code::degenerate_face,
+                              "face " + std::to_string(f) +
+                                " cannot be triangulated (it is far from planar, or seen along its normal its boundary"
+                                " crosses itself)", f);
+        for(const std::array<int, 3>& t : split)
+          pieces.emplace_back(f, t);
+        ++f;
+        continue;
+      }
+      // a quad: PMP::triangulate_face() splits it along its better diagonal
       std::vector<Patch_vertex> corner_vertices;
       for(std::size_t i : corners) {
         const Point& p = points[i];
@@ -1091,14 +1148,15 @@ void triangulate_polygons(const std::vector<Point>& points, const PolygonRange& 
   }
 
   // Triangles of each split polygon, gathered by polygon (new faces are appended, so sort by polygon).
-  std::vector<std::pair<std::size_t, std::array<int, 3>>> pieces;
   for(const Patch_face pf : patches.faces()) {
     std::array<int, 3> t;
     std::size_t k = 0;
     for(const Patch_vertex v : CGAL::vertices_around_face(patches.halfedge(pf), patches)) {
-      if(k < 3)
-        t[k] = get(point_index, v);
-      ++k;
+      if(k == 3) { // more corners (and no endless walk if the face cycle is broken)
+        ++k;
+        break;
+      }
+      t[k++] = get(point_index, v);
     }
     const std::size_t polygon = get(polygon_of, patches.target(patches.halfedge(pf)));
     if(k != 3) // triangulate_face() reported success but left a larger face (non-planar faces, found by fuzzing)

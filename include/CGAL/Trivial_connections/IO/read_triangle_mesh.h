@@ -1253,9 +1253,11 @@ and properties are read past. OBJ is checked by the package and then read, like 
 
 \cgalNamedParamsBegin
   \cgalParamNBegin{triangulate}
-    \cgalParamDescription{whether faces of more than three vertices are split into triangles (with
-      `CGAL::Polygon_mesh_processing::triangulate_face()`: a quad along its better diagonal, a larger face by a
-      constrained Delaunay triangulation in its plane), keeping their orientation and the vertex numbering.
+    \cgalParamDescription{whether faces of more than three vertices are split into triangles (a quad along
+      its better diagonal with `CGAL::Polygon_mesh_processing::triangulate_face()`, a larger face by a
+      constrained Delaunay triangulation of its corners in the plane of its normal, without new vertices; a
+      larger face more than 5% of its size from planar, or whose boundary crosses itself in that plane, is a
+      `degenerate_face` error), keeping their orientation and the vertex numbering.
       Triangle `t` of `tm` then comes from face `source_faces[t]` of the file; see `Mesh_input_order`.}
     \cgalParamType{`bool`}
     \cgalParamDefault{`false`: such a face is a `not_triangle_mesh` error}

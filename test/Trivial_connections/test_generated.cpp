@@ -126,19 +126,6 @@ Singularities designed_singularities(const std::string& name, const Mesh_view<Me
 template <class Mesh>
 using Solver = TC::Trivial_connection_solver<Mesh>;
 
-/// per interior edge {i, j} (i < j, vertex numbers of the soup): x of the halfedge i -> j
-template <class Mesh>
-std::map<std::pair<int, int>, double> x_by_vertex_pair(const Mesh_view<Mesh>& view, const std::vector<double>& x,
-                                                       const std::vector<int>& soup_index_of_vertex)
-{
-  std::map<std::pair<int, int>, double> r;
-  for(int h : view.interior_halfedges) {
-    const int i = soup_index_of_vertex[view.src[h]], j = soup_index_of_vertex[view.tgt[h]];
-    if(i < j) r[{i, j}] = x[h];
-  }
-  return r;
-}
-
 /// soup number of each vertex of a mesh built from `soup` (matched by exact position)
 template <class Mesh>
 std::vector<int> soup_numbers(const Mesh_view<Mesh>& view, const Soup& soup)

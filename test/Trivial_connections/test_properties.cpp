@@ -630,19 +630,6 @@ std::vector<long long> hole_periods(const Mesh_view<Mesh>& view, const S& solver
   return r;
 }
 
-/// per interior edge {i, j} (i < j in the numbering `number`): x of the halfedge i -> j
-template <class Mesh>
-std::map<std::pair<int, int>, double> x_by_edge(const Mesh_view<Mesh>& view, const std::vector<double>& x,
-                                                const std::vector<int>& number)
-{
-  std::map<std::pair<int, int>, double> r;
-  for(int h : view.interior_halfedges) {
-    const int i = number[view.src[h]], j = number[view.tgt[h]];
-    if(i < j) r[{i, j}] = x[h];
-  }
-  return r;
-}
-
 /// largest |a - b| over the edges of `a` (both must have the same edges), and where
 double largest_difference(const std::map<std::pair<int, int>, double>& a, const std::map<std::pair<int, int>, double>& b,
                           std::pair<int, int>& at)
@@ -803,7 +790,8 @@ TEST(Property_numbering, same_answer_for_shuffled_vertices_and_faces)
     std::vector<int> back(perm.size());
     for(std::size_t i = 0; i < perm.size(); ++i) back[perm[i]] = int(i);
     std::pair<int, int> at{-1, -1};
-    const double d = largest_difference(x_by_edge(va, ra.x, identity(va.nv())), x_by_edge(vb, rb.x, back), at);
+    const double d =
+      largest_difference(x_by_vertex_pair(va, ra.x, identity(va.nv())), x_by_vertex_pair(vb, rb.x, back), at);
     EXPECT_LT(d, 1e-9 * std::max(1., max_abs(ra.x))) << "x differs at edge " << at.first << "-" << at.second;
     const std::vector<long long> ha = hole_periods(va, sa, ra.report), hb = hole_periods(vb, sb, rb.report);
     for(int v = 0; v < va.nv(); ++v)

@@ -1254,6 +1254,20 @@ long long check_integers_by_enumeration(const Mesh_view<Mesh>& view, Solver& sol
 }
 
 
+/// per interior edge {i, j} (i < j in the numbering `soup_index_of_vertex` of the view's vertices): x of the
+/// halfedge i -> j, to compare connections across renumbered meshes
+template <class Mesh>
+std::map<std::pair<int, int>, double> x_by_vertex_pair(const Mesh_view<Mesh>& view, const std::vector<double>& x,
+                                                       const std::vector<int>& soup_index_of_vertex)
+{
+  std::map<std::pair<int, int>, double> r;
+  for(int h : view.interior_halfedges) {
+    const int i = soup_index_of_vertex[view.src[h]], j = soup_index_of_vertex[view.tgt[h]];
+    if(i < j) r[{i, j}] = x[h];
+  }
+  return r;
+}
+
 /*
   Local optimality of the chosen integers (for meshes too large for the box enumeration): no single free
   coordinate moved by ±1 (boundary loops in pairs, as above) lowers the energy, recomputed by us. The loops

@@ -749,8 +749,6 @@ private:
   std::size_t m_size = 0;
 };
 
-
-
 inline const char* end_of_line(const char* p, const char* end)
 {
   const void* eol = std::memchr(p, '\n', std::size_t(end - p));

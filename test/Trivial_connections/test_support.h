@@ -23,7 +23,7 @@
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 
-// Note: internal/mesh_arrays.h calls CGAL::vertices / CGAL::faces / CGAL::opposite qualified, so (two-phase
+// Note: internal/mesh/mesh_arrays.h calls CGAL::vertices / CGAL::faces / CGAL::opposite qualified, so (two-phase
 // lookup) the package only compiles when the mesh's graph_traits header is included before it.
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 

@@ -7,9 +7,9 @@
 #define CGAL_TRIVIAL_CONNECTIONS_HOMOLOGY_GENERATORS_H
 
 #include <CGAL/Trivial_connections/parameters.h>
-#include <CGAL/Trivial_connections/internal/geometry.h>
-#include <CGAL/Trivial_connections/internal/mesh_arrays.h>
-#include <CGAL/Trivial_connections/internal/topology.h>
+#include <CGAL/Trivial_connections/internal/mesh/geometry.h>
+#include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
 

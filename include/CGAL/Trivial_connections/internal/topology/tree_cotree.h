@@ -3,11 +3,12 @@
 //
 // Author(s) : CGAL Trivial Connections developers
 
-#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_TOPOLOGY_H
-#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_TOPOLOGY_H
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_TOPOLOGY_TREE_COTREE_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_TOPOLOGY_TREE_COTREE_H
 
 #include <CGAL/Trivial_connections/Solve_report.h>
-#include <CGAL/Trivial_connections/internal/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/topology/dual_tree_paths.h>
 
 #include <boost/pending/disjoint_sets.hpp>
 
@@ -239,18 +240,8 @@ struct Mesh_topology
       const int i = edge_corner[e];
       Loop loop{Loop_kind::generator, component_of_face[MA::face_of(i)], -1, {}, {}, {}};
       // from the face across i up to the common ancestor, down to face(i), then across i
-      int a = MA::face_of(m.opposite_corner[i]), b = MA::face_of(i);
-      std::vector<int> down;
-      while(a != b) {
-        if(depth[a] >= depth[b]) {
-          loop.crossings.push_back(m.opposite_corner[parent_corner[a]]);
-          a = MA::face_of(parent_corner[a]);
-        } else {
-          down.push_back(parent_corner[b]);
-          b = MA::face_of(parent_corner[b]);
-        }
-      }
-      loop.crossings.insert(loop.crossings.end(), down.rbegin(), down.rend());
+      append_dual_tree_path(m.opposite_corner, parent_corner, depth, MA::face_of(m.opposite_corner[i]),
+                            MA::face_of(i), loop.crossings);
       loop.crossings.push_back(i);
       generators.push_back(std::move(loop));
     }
@@ -295,4 +286,4 @@ private:
 } // namespace Trivial_connections
 } // namespace CGAL
 
-#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_TOPOLOGY_H
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_TOPOLOGY_TREE_COTREE_H

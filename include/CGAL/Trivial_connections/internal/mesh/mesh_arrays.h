@@ -3,8 +3,8 @@
 //
 // Author(s) : CGAL Trivial Connections developers
 
-#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_ARRAYS_H
-#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_ARRAYS_H
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_MESH_ARRAYS_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_MESH_ARRAYS_H
 
 #include <CGAL/Trivial_connections/exceptions.h>
 
@@ -240,4 +240,4 @@ private:
 } // namespace Trivial_connections
 } // namespace CGAL
 
-#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_ARRAYS_H
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_MESH_ARRAYS_H

@@ -3,10 +3,10 @@
 //
 // Author(s) : CGAL Trivial Connections developers
 
-#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_GEOMETRY_H
-#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_GEOMETRY_H
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_GEOMETRY_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_GEOMETRY_H
 
-#include <CGAL/Trivial_connections/internal/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
 #include <CGAL/Trivial_connections/parameters.h>
 
 #include <CGAL/number_type_config.h>
@@ -192,4 +192,4 @@ struct Mesh_geometry
 } // namespace Trivial_connections
 } // namespace CGAL
 
-#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_GEOMETRY_H
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_MESH_GEOMETRY_H

@@ -3,8 +3,8 @@
 //
 // Author(s) : CGAL Trivial Connections developers
 
-#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGER_PERIODS_H
-#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGER_PERIODS_H
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_CLOSEST_VECTOR_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_CLOSEST_VECTOR_H
 
 #include <Eigen/Dense>
 
@@ -202,4 +202,4 @@ inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eige
 } // namespace Trivial_connections
 } // namespace CGAL
 
-#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGER_PERIODS_H
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_CLOSEST_VECTOR_H

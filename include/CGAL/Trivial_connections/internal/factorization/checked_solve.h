@@ -1,0 +1,86 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_CHECKED_SOLVE_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_CHECKED_SOLVE_H
+
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/system/constraint_rows.h>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  The connection x = W^-1 A^T lambda of the multipliers `lambda` of A W^-1 A^T lambda = b, checked through the
+  constraints it must satisfy: A x - b is M lambda - b, computed from x at the cost of one pass over the edges
+  (cheaper than a product with M, and the sums are the ones the report needs). Refined while the residual
+  drops, up to three steps, when it is not already at rounding level. `solve` is the unchecked b -> M^-1 b.
+  Throws solver_failure when the residual stays above the package's promise.
+*/
+template <class Solve>
+Eigen::VectorXd checked_connection(const Constraint_rows& rows, Solve solve, const Eigen::VectorXd& b,
+                                   Eigen::VectorXd& lambda, Constraint_sums& sums)
+{
+  const double scale = 1 + b.template lpNorm<Eigen::Infinity>();
+  Eigen::VectorXd xe = rows.connection_of(lambda);
+  std::vector<double> slack = rows.slacks(lambda);
+  rows.sums_of(xe, slack, sums);
+  double res = (b - rows.row_sums(sums)).template lpNorm<Eigen::Infinity>();
+  // Refined in x itself: x += W^-1 A^T M^-1 (b - A x). Recomputing x from refined multipliers would divide
+  // their rounding errors by the smallest weights again, which on needle triangles is the residual itself.
+  for(int step = 0; step < 3 && std::isfinite(res) && res > 1e-13 * scale; ++step) {
+    const Eigen::VectorXd delta = solve(Eigen::VectorXd(b - rows.row_sums(sums)));
+    Eigen::VectorXd refined_x = xe + rows.connection_of(delta);
+    std::vector<double> refined_slack = rows.slacks(delta);
+    for(std::size_t g = 0; g < slack.size(); ++g)
+      refined_slack[g] += slack[g];
+    Constraint_sums refined;
+    rows.sums_of(refined_x, refined_slack, refined);
+    const double refined_res = (b - rows.row_sums(refined)).template lpNorm<Eigen::Infinity>();
+    if(!(refined_res < res))
+      break;
+    lambda += delta;
+    xe.swap(refined_x);
+    slack.swap(refined_slack);
+    sums = std::move(refined);
+    res = refined_res;
+  }
+  // the package promises holonomy residuals below 1e-9 rad (plus the rounding of 2 pi k for huge indices): a
+  // mesh whose geometry double precision cannot carry that far (coordinates spanning some 15 orders of
+  // magnitude) is refused rather than half solved
+  if(!std::isfinite(res) || !xe.allFinite() || res > 1e-9 + 1e-14 * (scale - 1)) {
+    std::ostringstream message;
+    message << "the linear solve is inaccurate: constraint residual " << std::scientific << std::setprecision(2)
+            << res << " rad after refinement (more than 1e-9; the mesh's geometry is too ill-conditioned for "
+            << "double precision)";
+    throw Invalid_input(Error_code::solver_failure, message.str());
+  }
+  return xe;
+}
+
+// M^-1 b, checked and refined like the solution of a solve
+template <class Solve>
+Eigen::VectorXd checked_multipliers(const Constraint_rows& rows, Solve solve, const Eigen::VectorXd& b)
+{
+  Eigen::VectorXd lambda = solve(b);
+  Constraint_sums sums;
+  checked_connection(rows, solve, b, lambda, sums);
+  return lambda;
+}
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_CHECKED_SOLVE_H

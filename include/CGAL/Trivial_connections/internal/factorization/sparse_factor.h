@@ -1,0 +1,129 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_SPARSE_FACTOR_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_SPARSE_FACTOR_H
+
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/system/system_assembly.h>
+#include <CGAL/Trivial_connections/solver_traits.h>
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+
+#include <memory>
+#include <mutex>
+#include <utility>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  The backend's factorization M = L D L^T of the constraint system, in the order the system was assembled in
+  (a fill-reducing order of the node rows, then the rows with a free integer), and the substitutions through
+  it. Solves may run from several threads at once: the substitutions of the package's backends read the
+  factor only; another backend's solve may use scratch memory of its own, so it runs under a lock.
+*/
+template <class SolverTraits>
+class Sparse_factor
+{
+  using Substitutions = Factor_substitutions<SolverTraits>;
+
+public:
+  // whether forward() and backward() can stop at the trailing block (see Factor_substitutions)
+  static constexpr bool leading_columns = Substitutions::leading_columns;
+  // the triangle of the ordered system that the backend reads (0: the whole matrix)
+  static constexpr int stored_triangle = Stored_triangle<SolverTraits>::value;
+
+  Sparse_factor() = default;
+  Sparse_factor(const Sparse_factor&) = delete;
+  Sparse_factor& operator=(const Sparse_factor&) = delete;
+
+  // `ordered`: the system from ordered_system() with `permutation`; taken without a copy
+  void load(Eigen::SparseMatrix<double>& ordered, const Row_permutation& permutation)
+  {
+    m_permutation = permutation;
+    m_system.reset(new typename SolverTraits::Matrix(Eigen::SparseMatrix<double>()));
+    m_system->eigen_object().swap(ordered);
+  }
+
+  // an empty system (no rows) is not factored
+  void factor(Eigen::Index rows)
+  {
+    m_substitutions_available = false;
+    if(rows == 0)
+      return;
+    double d = 1;
+    if(!m_solver.factor(*m_system, d))
+      throw Invalid_input(Error_code::solver_failure, "the sparse factorization of the constraint system failed");
+    m_substitutions_available = Substitutions::available(m_solver);
+    if(Substitutions_need_only_the_factor<SolverTraits>::value)
+      Eigen::SparseMatrix<double>().swap(m_system->eigen_object()); // released: the solves read the factor alone
+  }
+
+  const Row_permutation& permutation() const { return m_permutation; }
+  bool substitutions_available() const { return m_substitutions_available; }
+
+  // The trailing k x k block of the factor, L_FF (unit lower triangular) and D_F, when the backend exposes it.
+  bool read_trailing_block(Eigen::Index k, Eigen::MatrixXd& L, Eigen::VectorXd& d)
+  {
+    return Trailing_schur_complement<SolverTraits>::read(m_solver, k, L, d);
+  }
+  bool substitutions_exposed() { return Substitutions::available(m_solver); }
+
+  // z <- L^-1 z, through the first `columns` columns when the backend has leading_columns, else all of them
+  void forward(Eigen::VectorXd& z, Eigen::Index columns)
+  {
+    if constexpr(leading_columns)
+      Substitutions::forward(m_solver, z, columns);
+    else
+      Substitutions::forward(m_solver, z);
+  }
+  // z <- D^-1 z
+  void scale(Eigen::VectorXd& z) { Substitutions::scale(m_solver, z); }
+  // z <- L^-T z, likewise
+  void backward(Eigen::VectorXd& z, Eigen::Index columns)
+  {
+    if constexpr(leading_columns)
+      Substitutions::backward(m_solver, z, columns);
+    else
+      Substitutions::backward(m_solver, z);
+  }
+
+  // M^-1 b, rows in their own order (b not empty)
+  Eigen::VectorXd solve(const Eigen::VectorXd& b)
+  {
+    if(m_substitutions_available) {
+      Eigen::VectorXd z = m_permutation * b;
+      forward(z, z.size());
+      scale(z);
+      backward(z, z.size());
+      return m_permutation.transpose() * z;
+    }
+    typename SolverTraits::Vector rhs(b.size()), sol(b.size());
+    rhs = m_permutation * b;
+    {
+      std::lock_guard<std::mutex> lock(m_backend_mutex);
+      if(!m_solver.linear_solver(rhs, sol))
+        throw Invalid_input(Error_code::solver_failure, "a back-substitution failed");
+    }
+    return m_permutation.transpose() * Eigen::VectorXd(sol);
+  }
+
+private:
+  // the backend keeps a pointer to it; empty after the factorization when the backend needs only its factor
+  std::unique_ptr<typename SolverTraits::Matrix> m_system;
+  SolverTraits m_solver;
+  Row_permutation m_permutation; // row -> position in m_system
+  bool m_substitutions_available = false;
+  std::mutex m_backend_mutex; // serialises the solves of backends without Factor_substitutions
+};
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_SPARSE_FACTOR_H

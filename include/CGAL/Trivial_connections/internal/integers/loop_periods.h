@@ -1,0 +1,186 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_LOOP_PERIODS_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_LOOP_PERIODS_H
+
+#include <CGAL/Trivial_connections/Singularity_index.h>
+#include <CGAL/Trivial_connections/Solve_report.h>
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/factorization/loop_metric.h>
+#include <CGAL/Trivial_connections/internal/integers/closest_vector.h>
+#include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  The integers of the free slots not prescribed, minimising the energy, per component, written into
+  `periods` (0 there on entry). `free_slots[c]`: component c's free slots, in the order of its metric;
+  `y[c]`: the right-hand side of the Schur complement S of its free rows with those integers 0 (the
+  prescribed ones are in it), so that the loop part of the energy is t^T S^-1 t with t = y + unit m.
+  `holonomy`: per slot, for the candidate that makes each slot's own connection sum smallest.
+  `work_budget`: for the enumeration (see closest_vector()). Sets `proven` when every component's choice is
+  proven optimal. Returns that part of the energy for the integers rounded one by one (for
+  Solve_report::rounding_energy).
+*/
+inline double choose_loop_periods(const std::vector<std::vector<int>>& free_slots, const std::vector<Loop_metric>& metrics,
+                                  const std::vector<Eigen::VectorXd>& y, double unit, const std::vector<char>& prescribed,
+                                  const std::vector<double>& holonomy, double work_budget,
+                                  std::vector<std::int64_t>& periods, bool& proven)
+{
+  proven = true;
+  double rounding_part = 0;
+  for(std::size_t c = 0; c < free_slots.size(); ++c) {
+    const std::vector<int>& free = free_slots[c];
+    if(free.empty())
+      continue;
+    const Loop_metric& metric = metrics[c];
+    std::vector<Eigen::Index> chosen, fixed; // positions in the component's block
+    for(std::size_t a = 0; a < free.size(); ++a)
+      (prescribed[free[a]] ? fixed : chosen).push_back(Eigen::Index(a));
+    const Eigen::Index kc = Eigen::Index(chosen.size());
+    if(kc == 0) {
+      rounding_part += y[c].dot(metric.inverse * y[c]);
+      continue;
+    }
+    // With G = S^-1 and the prescribed part t_P = y_P fixed, t^T G t = (t_Q - t_Q*)^T G_QQ (t_Q - t_Q*) +
+    // const with t_Q* = -G_QQ^-1 G_QP y_P: the minimiser of (m - center)^T G_QQ (m - center), with
+    // center = (t_Q* - y_Q) / unit. Without prescribed slots G_QQ = G, whose factor is kept.
+    Eigen::VectorXd center(kc);
+    double constant = 0;
+    Eigen::MatrixXd G_QQ, R_Q;
+    const Eigen::MatrixXd* G = &metric.inverse;
+    const Eigen::MatrixXd* R = &metric.inverse_factor;
+    if(fixed.empty()) {
+      center = -y[c] / unit;
+    } else {
+      G_QQ.resize(kc, kc);
+      Eigen::MatrixXd G_QP(kc, Eigen::Index(fixed.size()));
+      Eigen::VectorXd y_P(Eigen::Index(fixed.size()));
+      for(Eigen::Index i = 0; i < kc; ++i) {
+        for(Eigen::Index j = 0; j < kc; ++j)
+          G_QQ(i, j) = metric.inverse(chosen[i], chosen[j]);
+        for(Eigen::Index j = 0; j < Eigen::Index(fixed.size()); ++j)
+          G_QP(i, j) = metric.inverse(chosen[i], fixed[j]);
+      }
+      for(Eigen::Index j = 0; j < Eigen::Index(fixed.size()); ++j)
+        y_P[j] = y[c][fixed[j]];
+      const Eigen::LLT<Eigen::MatrixXd> llt(G_QQ);
+      if(llt.info() != Eigen::Success)
+        throw Invalid_input(Error_code::solver_failure, "the metric of the loop integers is not positive definite");
+      R_Q = llt.matrixU();
+      const Eigen::VectorXd g = G_QP * y_P;
+      const Eigen::VectorXd t_star = -llt.solve(g);
+      for(Eigen::Index i = 0; i < kc; ++i)
+        center[i] = (t_star[i] - y[c][chosen[i]]) / unit;
+      double fixed_part = 0;
+      for(Eigen::Index i = 0; i < Eigen::Index(fixed.size()); ++i)
+        for(Eigen::Index j = 0; j < Eigen::Index(fixed.size()); ++j)
+          fixed_part += y_P[i] * metric.inverse(fixed[i], fixed[j]) * y_P[j];
+      constant = fixed_part + g.dot(t_star); // y_P^T (G_PP - G_PQ G_QQ^-1 G_QP) y_P
+      G = &G_QQ;
+      R = &R_Q;
+    }
+    std::vector<std::int64_t> rounded(kc), own(kc);
+    for(Eigen::Index a = 0; a < kc; ++a) {
+      rounded[a] = std::int64_t(std::llround(center[a]));
+      // each slot on its own: the integer making its own connection sum smallest
+      own[a] = std::int64_t(std::llround(holonomy[free[chosen[a]]] / unit));
+    }
+    const Closest_vector_result best = closest_vector(*G, *R, center, {rounded, own}, work_budget);
+    proven = proven && best.proven;
+    // t^T S^-1 t = unit^2 q(m) + constant
+    rounding_part += unit * unit * best.candidate_values[0] + constant;
+    for(Eigen::Index a = 0; a < kc; ++a)
+      periods[free[chosen[a]]] = best.m[a];
+  }
+  return rounding_part;
+}
+
+// t = y + unit m per component over its free slots, for the chosen integers (the prescribed ones are in y)
+inline std::vector<Eigen::VectorXd> loop_right_hand_sides(const std::vector<std::vector<int>>& free_slots,
+                                                          const std::vector<Eigen::VectorXd>& y, double unit,
+                                                          const std::vector<char>& prescribed,
+                                                          const std::vector<std::int64_t>& periods)
+{
+  std::vector<Eigen::VectorXd> t(y);
+  for(std::size_t c = 0; c < t.size(); ++c)
+    for(Eigen::Index a = 0; a < t[c].size(); ++a)
+      if(!prescribed[free_slots[c][a]])
+        t[c][a] += unit * double(periods[free_slots[c][a]]);
+  return t;
+}
+
+/*
+  `loop_periods` of a solve: one entry per loop of the tree-cotree decomposition, empty where the solver
+  chooses, read into `periods` and `prescribed`. The boundary loops of a component are prescribed all or none,
+  and then with `k` (n times the vertex indices, per vertex) they must satisfy Poincare-Hopf.
+*/
+inline void read_prescribed_periods(const std::vector<std::optional<std::int64_t>>& given, const Mesh_topology& topology,
+                                    const std::vector<Component_report>& components, const std::vector<std::int64_t>& k,
+                                    int n, std::vector<std::int64_t>& periods, std::vector<char>& prescribed)
+{
+  const std::vector<Mesh_topology::Loop>& loops = topology.loops;
+  if(given.size() != loops.size())
+    throw Invalid_input(Error_code::invalid_loop_periods, "loop_periods has " + std::to_string(given.size()) +
+                                                            " values, the mesh has " + std::to_string(loops.size()) +
+                                                            " loops");
+  std::vector<std::size_t> boundary_given(components.size(), 0);
+  for(std::size_t l = 0; l < loops.size(); ++l) {
+    prescribed[l] = given[l].has_value() ? 1 : 0;
+    periods[l] = given[l].value_or(0);
+    if(loops[l].kind == Loop_kind::boundary && given[l])
+      ++boundary_given[loops[l].component];
+  }
+  std::vector<std::int64_t> total(components.size(), 0);
+  for(std::size_t v = 0; v < k.size(); ++v)
+    if(k[v] != 0)
+      total[topology.component_of_node[topology.node_of_vertex[v]]] += k[v];
+  for(std::size_t l = 0; l < loops.size(); ++l)
+    if(loops[l].kind == Loop_kind::boundary)
+      total[loops[l].component] += periods[l];
+  for(std::size_t c = 0; c < components.size(); ++c) {
+    const std::size_t b = components[c].number_of_boundary_loops;
+    if(boundary_given[c] != 0 && boundary_given[c] != b)
+      throw Invalid_input(Error_code::invalid_loop_periods,
+                          std::to_string(boundary_given[c]) + " of the " + std::to_string(b) +
+                            " boundary loops of component " + std::to_string(c) +
+                            " are prescribed: prescribe all of them or none (Poincare-Hopf ties their sum)",
+                          c);
+    if(b > 0 && boundary_given[c] == b && total[c] != n * components[c].euler_characteristic)
+      throw Invalid_input(Error_code::invalid_loop_periods,
+                          "Poincare-Hopf violated by the prescribed boundary loop indices of component " +
+                            std::to_string(c) + ": vertex and boundary indices sum to " +
+                            Singularity_index(total[c], n).to_string() + ", expected " +
+                            std::to_string(components[c].euler_characteristic),
+                          c);
+  }
+}
+
+inline std::vector<std::optional<std::int64_t>> optional_periods(const std::vector<std::int64_t>& given)
+{
+  return std::vector<std::optional<std::int64_t>>(given.begin(), given.end());
+}
+inline const std::vector<std::optional<std::int64_t>>& optional_periods(const std::vector<std::optional<std::int64_t>>& given)
+{
+  return given;
+}
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_LOOP_PERIODS_H

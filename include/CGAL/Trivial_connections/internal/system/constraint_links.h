@@ -1,0 +1,230 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_SYSTEM_CONSTRAINT_LINKS_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_SYSTEM_CONSTRAINT_LINKS_H
+
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/mesh/geometry.h>
+#include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/topology/dual_tree_paths.h>
+#include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
+
+#include <CGAL/assertions.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+// A signed reference to element i is coded i (+1) or ~i (-1): a loop's crossings (x_e or -x_e), the links at a
+// guided face. Decoded without branches, whose sign pattern is random.
+inline int index_of_code(int code) { return code ^ (code >> 31); }
+inline double sign_of_code(int code) { return double(1 | (code >> 31)); }
+
+// A range of face descriptors given by the user, as face indices (checked: faces of the mesh, once each).
+// `what` names the set in the messages ("constrained", "guided").
+template <class TriangleMesh, class FaceRange>
+std::vector<int> checked_face_indices(const Mesh_arrays<TriangleMesh>& m, const FaceRange& range, const std::string& what)
+{
+  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
+  std::vector<int> faces;
+  std::vector<char> listed(std::size_t(m.nf), 0);
+  for(const face_descriptor f : range) {
+    const std::size_t i = f == boost::graph_traits<TriangleMesh>::null_face() ? std::size_t(m.nf)
+                                                                              : std::size_t(get(m.face_index, f));
+    if(i >= std::size_t(m.nf) || m.face_descriptors[i] != f)
+      throw Invalid_input(Error_code::invalid_constraint, "a " + what + " face is not a face of the mesh");
+    if(listed[i])
+      throw Invalid_input(Error_code::invalid_constraint, "face " + std::to_string(i) + " is " + what + " twice", i);
+    listed[i] = 1;
+    faces.push_back(int(i));
+  }
+  return faces;
+}
+
+/*
+  The directional constraints as links between faces. Per component, the constrained faces are chained and
+  each link is a dual path, whose row says that the connection carries the target of one end to the target
+  of the other, up to a free multiple of 2 pi / n. With the boundary aligned, the boundary faces of each loop
+  are chained along the loop, each link being the open fan of the boundary vertex between them; the chains
+  and the faces the user constrains are then linked in the order of a depth-first traversal of the dual
+  spanning tree, by their paths in that tree. The links of a component form a tree on its constrained
+  faces, so their rows are independent of each other and of the cycle rows.
+  Guided faces (soft guidance) are linked like constrained ones; each has a slack, its mismatch d_g, which
+  enters its links' rows with weight 1 / mu (see the user manual).
+*/
+struct Constraint_links
+{
+  struct Constrained_face
+  {
+    int face;
+    int border_corner; // the border corner halfedge it follows with the boundary aligned; -1: a user target
+    bool soft;         // a guided face (its target is a guide)
+  };
+  struct Link
+  {
+    int from, to;      // in `faces`
+    int component;
+    std::vector<int> crossings; // corner halfedges, as a loop's (released once the rows have coded them)
+    std::size_t length = 0;
+  };
+
+  std::vector<Constrained_face> faces; // aligned boundary faces, then user targets, then guided faces
+  std::vector<Link> links;
+  std::vector<int> seed_constraint;    // per component: the constrained face the field starts from, or -1
+  bool has_user_constraints = false;   // user targets or guides (read from face_directions)
+  int first_guided = 0;                // the guided faces are the last of `faces`
+  double guidance_weight = 1;          // mu
+  // per guided face (CSR): the links at it, j when it is their `from` end (+1), ~j when their `to` end (-1)
+  std::vector<int> slack_start, slack_links;
+
+  Constraint_links() = default;
+
+  template <class TriangleMesh>
+  Constraint_links(const Mesh_arrays<TriangleMesh>& m, const Mesh_topology& t, const std::vector<int>& user_faces,
+                   const std::vector<int>& guided, bool align, double mu)
+    : guidance_weight(mu)
+  {
+    using Mesh = Mesh_arrays<TriangleMesh>;
+    std::vector<int> constraint_of_face(std::size_t(m.nf), -1);
+    std::vector<std::vector<int>> units(t.components.size()); // per component: a constrained face of each chain
+    auto add_face = [&](int f, int border_corner, bool soft = false) {
+      CGAL_assertion(constraint_of_face[f] < 0);
+      constraint_of_face[f] = int(faces.size());
+      faces.push_back({f, border_corner, soft});
+      return int(faces.size()) - 1;
+    };
+    auto border_length = [&](int i) { return norm(sub(m.points[m.target_of(i)], m.points[m.source_of(i)])); };
+    if(align) {
+      for(const Mesh_topology::Loop& loop : t.loops) {
+        if(loop.kind != Loop_kind::boundary)
+          continue;
+        const std::vector<int>& corners = loop.border_corners;
+        const int count = int(corners.size());
+        // start where the face changes, so that a face with two border edges is one link of the chain
+        int start = 0;
+        while(start < count && Mesh::face_of(corners[start]) == Mesh::face_of(corners[(start + count - 1) % count]))
+          ++start;
+        start %= count;
+        int previous = -1;
+        for(int a = 0; a < count; ++a) {
+          const int i = (start + a) % count, corner = corners[i], f = Mesh::face_of(corner);
+          if(previous >= 0 && faces[previous].face == f) {
+            // the same face again (two border edges): it follows the longer one
+            if(border_length(corner) > border_length(faces[previous].border_corner))
+              faces[previous].border_corner = corner;
+          } else {
+            const int current = add_face(f, corner);
+            if(previous >= 0) {
+              // the fan of the vertex between them: from the previous border corner's face to this one
+              const int j = (i + count - 1) % count;
+              const int end = j + 1 < count ? loop.fan_start[j + 1] : int(loop.crossings.size());
+              links.push_back({previous, current, loop.component,
+                               std::vector<int>(loop.crossings.begin() + loop.fan_start[j],
+                                                loop.crossings.begin() + end)});
+            } else {
+              units[loop.component].push_back(current);
+            }
+            previous = current;
+          }
+        }
+      }
+    }
+    // user targets, then guides: each face a chain of its own
+    auto add_user_faces = [&](const std::vector<int>& user, bool soft) {
+      for(int f : user) {
+        if(constraint_of_face[f] >= 0)
+          throw Invalid_input(Error_code::invalid_constraint,
+                              "face " + std::to_string(f) + " is on the boundary, which the field is aligned with: " +
+                                (soft ? "it cannot be guided too" : "it cannot have a target too"),
+                              std::size_t(f));
+        units[t.component_of_face[f]].push_back(add_face(f, -1, soft));
+      }
+    };
+    add_user_faces(user_faces, false);
+    first_guided = int(faces.size());
+    add_user_faces(guided, true);
+    has_user_constraints = !user_faces.empty() || !guided.empty();
+    seed_constraint.assign(t.components.size(), -1);
+    if(faces.empty())
+      return;
+
+    const Dual_tree_order tree(t.parent_corner, t.face_order);
+    for(std::size_t c = 0; c < units.size(); ++c) {
+      std::vector<int>& u = units[c];
+      if(u.empty())
+        continue;
+      std::sort(u.begin(), u.end(),
+                [&](int a, int b) { return tree.preorder[faces[a].face] < tree.preorder[faces[b].face]; });
+      // the field starts from a constrained face (its target is exact); a component with guided faces only
+      // is rotated towards its guides
+      for(int a : u)
+        if(!faces[a].soft) {
+          seed_constraint[c] = a;
+          break;
+        }
+      for(std::size_t k = 1; k < u.size(); ++k) {
+        std::vector<int> crossings;
+        append_dual_tree_path(m.opposite_corner, t.parent_corner, tree.depth, faces[u[k - 1]].face, faces[u[k]].face,
+                              crossings);
+        links.push_back({u[k - 1], u[k], int(c), std::move(crossings)});
+      }
+    }
+    // per guided face, the links at it: the slack s_g enters +1 in a link from it, -1 in a link to it
+    slack_start.assign(faces.size() - std::size_t(first_guided) + 1, 0);
+    for(const Link& link : links)
+      for(int end : {link.from, link.to})
+        if(faces[end].soft)
+          ++slack_start[std::size_t(end - first_guided) + 1];
+    for(std::size_t g = 1; g < slack_start.size(); ++g)
+      slack_start[g] += slack_start[g - 1];
+    slack_links.resize(std::size_t(slack_start.back()));
+    std::vector<int> next(slack_start.begin(), slack_start.end() - 1);
+    for(std::size_t j = 0; j < links.size(); ++j)
+      for(int end : {links[j].from, links[j].to})
+        if(faces[end].soft)
+          slack_links[std::size_t(next[std::size_t(end - first_guided)]++)] = end == links[j].from ? int(j) : ~int(j);
+  }
+
+  std::size_t number_of_guided_faces() const { return faces.size() - std::size_t(first_guided); }
+
+  // For link j, calls visit(link, value) for the entries of C C^T / mu in its row: C has one column per
+  // guided face, +1 in the links from it and -1 in the links to it
+  template <class Visit>
+  void for_each_slack_coupling(int j, Visit visit) const
+  {
+    for(int end : {links[j].from, links[j].to}) {
+      if(!faces[end].soft)
+        continue;
+      const double sign = end == links[j].from ? 1. : -1.;
+      const std::size_t g = std::size_t(end - first_guided);
+      for(int p = slack_start[g]; p < slack_start[g + 1]; ++p) {
+        const int code = slack_links[p];
+        visit(index_of_code(code), sign * sign_of_code(code) / guidance_weight);
+      }
+    }
+  }
+
+  // the crossings are coded by the constraint rows, which keep them: only the lengths stay here
+  void release_crossings()
+  {
+    for(Link& link : links) {
+      link.length = link.crossings.size();
+      std::vector<int>().swap(link.crossings);
+    }
+  }
+};
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_SYSTEM_CONSTRAINT_LINKS_H

@@ -1,0 +1,149 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_SYSTEM_RIGHT_HAND_SIDE_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_SYSTEM_RIGHT_HAND_SIDE_H
+
+#include <CGAL/Trivial_connections/Singularity_index.h>
+#include <CGAL/Trivial_connections/Solve_report.h>
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/mesh/geometry.h>
+#include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/system/constraint_rows.h>
+
+#include <CGAL/number_type_config.h>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+// the symmetry order n of a solve or a field, checked
+inline int checked_symmetry_order(int n)
+{
+  if(n < 1)
+    throw Invalid_input(Error_code::invalid_symmetry_order,
+                        "the symmetry order n must be at least 1 (got " + std::to_string(n) + ")");
+  return n;
+}
+
+/*
+  The singularities as n times their index per vertex, checked: vertices of the mesh with a face, listed
+  once, interior, multiples of 1/n, bounded (so that the sums over all vertices stay far from overflow), and
+  Poincare-Hopf on every closed component, exactly. Writes each component's index sum into `components`.
+*/
+template <class TriangleMesh, class SingularityRange>
+std::vector<std::int64_t> checked_vertex_indices(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& geometry,
+                                                 const Mesh_topology& topology, const SingularityRange& singularities,
+                                                 int n, std::vector<Component_report>& components)
+{
+  std::vector<std::int64_t> k(m.nv, 0);
+  std::vector<char> listed(m.nv, 0);
+  std::vector<std::int64_t> sums(components.size(), 0); // n times the index sums
+  for(const auto& s : singularities) {
+    const typename boost::graph_traits<TriangleMesh>::vertex_descriptor vd = s.first;
+    const Singularity_index& index = s.second;
+    const std::size_t v = std::size_t(get(m.vertex_index, vd));
+    if(v >= std::size_t(m.nv) || m.vertex_descriptors[v] != vd)
+      throw Invalid_input(Error_code::invalid_vertex, "a singularity is placed on a vertex that is not in the mesh");
+    if(m.faces_at_vertex[v] == 0)
+      throw Invalid_input(Error_code::invalid_vertex,
+                          "vertex " + std::to_string(v) + " carries a singularity but belongs to no face", v);
+    if(listed[v])
+      throw Invalid_input(Error_code::duplicate_singularity, "vertex " + std::to_string(v) + " is given a singularity twice", v);
+    listed[v] = 1;
+    if(geometry.on_boundary[v])
+      throw Invalid_input(Error_code::singularity_on_boundary,
+                          "vertex " + std::to_string(v) + " is on the boundary: singularities must be interior "
+                          "(boundary loops get their index from the solver or from loop_periods)", v);
+    if(!index.is_multiple_of_one_over(n))
+      throw Invalid_input(Error_code::index_not_multiple,
+                          "the index " + index.to_string() + " of vertex " + std::to_string(v) +
+                            " is not a multiple of 1/" + std::to_string(n), v);
+    if(std::abs(index.numerator()) > (std::int64_t(1) << 30) / (n / index.denominator()))
+      throw Invalid_input(Error_code::invalid_index,
+                          "the index " + index.to_string() + " of vertex " + std::to_string(v) + " is too large", v);
+    k[v] = index.times(n);
+    sums[topology.component_of_node[topology.node_of_vertex[v]]] += k[v];
+  }
+  std::string violations;
+  std::size_t first_bad = Invalid_input::no_location, bad = 0;
+  for(std::size_t c = 0; c < components.size(); ++c) {
+    const Singularity_index sum(sums[c], n);
+    components[c].vertex_index_sum = sum;
+    if(components[c].number_of_boundary_loops == 0 && sums[c] != n * components[c].euler_characteristic && ++bad <= 5) {
+      violations += (violations.empty() ? "" : "; ") + std::string("component ") + std::to_string(c) +
+                    " (closed, genus " + std::to_string(components[c].genus) + "): indices sum to " +
+                    sum.to_string() + ", expected " + std::to_string(components[c].euler_characteristic);
+      if(first_bad == Invalid_input::no_location)
+        first_bad = c;
+    }
+  }
+  if(bad > 5)
+    violations += "; and " + std::to_string(bad - 5) + " more components";
+  if(!violations.empty())
+    throw Invalid_input(Error_code::poincare_hopf_violated, "Poincare-Hopf violated: " + violations, first_bad);
+  return k;
+}
+
+// Per slot, H with H + sum x = 2 pi period / n: the loops' Levi-Civita holonomy, and for a link the
+// transport along it plus the target angle it leaves minus the one it reaches (wrapped).
+inline std::vector<double> slot_holonomies(const Constraint_rows& rows, const std::vector<double>& loop_holonomy,
+                                           const std::vector<double>& target)
+{
+  const Constraint_links& links = rows.links();
+  std::vector<double> holonomy(loop_holonomy);
+  holonomy.resize(rows.number_of_slots(), 0.);
+  for(std::size_t j = 0; j < links.links.size(); ++j) {
+    const std::size_t l = loop_holonomy.size() + j;
+    double h = target[links.links[j].from] - target[links.links[j].to];
+    for(int p = rows.slot_edge_start[l]; p < rows.slot_edge_start[l + 1]; ++p)
+      h += sign_of_code(rows.slot_edges[p]) * rows.geometry().transport[index_of_code(rows.slot_edges[p])];
+    holonomy[l] = wrap_angle(h);
+  }
+  return holonomy;
+}
+
+// b of A x = b: per node row 2 pi k_v / n - K_v, per slot row 2 pi period / n - H.
+inline Eigen::VectorXd right_hand_side(const Constraint_rows& rows, const std::vector<std::int64_t>& k,
+                                       const std::vector<std::int64_t>& periods, const std::vector<double>& holonomy,
+                                       int n)
+{
+  const double unit = 2 * CGAL_PI / n;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(rows.size());
+  for(std::size_t node = 0; node < rows.vertex_of_node.size(); ++node) {
+    const int r = rows.row_of_node[node];
+    if(r >= 0) {
+      const int v = rows.vertex_of_node[node];
+      b[r] = unit * double(k[v]) - rows.geometry().angle_defect(v);
+    }
+  }
+  for(std::size_t l = 0; l < holonomy.size(); ++l)
+    if(rows.row_of_slot[l] >= 0)
+      b[rows.row_of_slot[l]] = unit * double(periods[l]) - holonomy[l];
+  return b;
+}
+
+// b for the chosen integers of the free slots not prescribed, from b for the integers 0 there
+inline void add_chosen_periods(const Constraint_rows& rows, const std::vector<std::int64_t>& periods,
+                               const std::vector<char>& prescribed, double unit, Eigen::VectorXd& b)
+{
+  for(const std::vector<int>& free : rows.free_slots)
+    for(int l : free)
+      if(!prescribed[l])
+        b[rows.row_of_slot[l]] += unit * double(periods[l]);
+}
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_SYSTEM_RIGHT_HAND_SIDE_H

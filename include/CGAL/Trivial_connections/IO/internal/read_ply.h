@@ -3,9 +3,10 @@
 //
 // Author(s) : CGAL Trivial Connections developers
 
-#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_READ_PLY_H
-#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_READ_PLY_H
+#ifndef CGAL_TRIVIAL_CONNECTIONS_IO_INTERNAL_READ_PLY_H
+#define CGAL_TRIVIAL_CONNECTIONS_IO_INTERNAL_READ_PLY_H
 
+#include <CGAL/Trivial_connections/IO/internal/text_parsing.h>
 #include <CGAL/Trivial_connections/exceptions.h>
 
 #include <array>
@@ -24,23 +25,6 @@ namespace CGAL {
 namespace Trivial_connections {
 namespace internal {
 namespace io {
-
-// the characters std::isspace accepts in the "C" locale (what the iostreams of CGAL's readers skip)
-inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
-
-inline const char* skip_blanks(const char* p, const char* end)
-{
-  while(p != end && is_blank(*p))
-    ++p;
-  return p;
-}
-
-inline const char* token_end(const char* p, const char* end)
-{
-  while(p != end && !is_blank(*p))
-    ++p;
-  return p;
-}
 
 /*
   A PLY reader of our own (ASCII, binary little and big endian), used instead of CGAL's: CGAL 5.5's reader
@@ -347,4 +331,4 @@ private:
 } // namespace Trivial_connections
 } // namespace CGAL
 
-#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_READ_PLY_H
+#endif // CGAL_TRIVIAL_CONNECTIONS_IO_INTERNAL_READ_PLY_H

@@ -3,7 +3,9 @@
 # Usage: bash scripts/install_dependencies.sh [--no-cholmod] [--doc] [--fuzz]
 #   --no-cholmod   skip libsuitesparse-dev (CHOLMOD, the program's recommended sparse backend; the library
 #                  itself is header-only and defaults to Eigen's SimplicialLDLT)
-#   --doc          also doxygen, to build the documentation (cmake --build build --target doc)
+#   --doc          also what the documentation needs (cmake --build build --target doc): doxygen; MathJax
+#                  (libjs-mathjax), copied into the manual so that its formulas render offline; chromium,
+#                  headless, for the check that they do render (doc/check_mathjax.py)
 #   --fuzz         also clang and libFuzzer's runtime, for the fuzz harness (scripts/run_fuzzer.sh)
 set -euo pipefail
 pkgs=(build-essential cmake libcgal-dev libeigen3-dev libboost-graph-dev
@@ -17,13 +19,13 @@ for arg in "$@"; do
     --no-cholmod) cholmod=0 ;;
     --doc) doc=1 ;;
     --fuzz) fuzz=1 ;;
-    -h|--help) sed -n '2,7p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
     *) echo "install_dependencies.sh: unknown argument '$arg'" >&2; exit 2 ;;
   esac
 done
 
 if [ "$cholmod" = 1 ]; then pkgs+=(libsuitesparse-dev); fi
-if [ "$doc" = 1 ]; then pkgs+=(doxygen); fi
+if [ "$doc" = 1 ]; then pkgs+=(doxygen libjs-mathjax chromium); fi
 if [ "$fuzz" = 1 ]; then pkgs+=(clang libclang-rt-14-dev); fi
 
 missing=()

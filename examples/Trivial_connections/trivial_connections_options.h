@@ -1,0 +1,431 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+//
+// The command line of the program trivial_connections (trivial_connections.cpp): its help and version
+// texts, its options and their parsing, and what it prints on stderr (progress lines, the error line).
+// Included by that file only: the program is one translation unit.
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_PROGRAM_OPTIONS_H
+#define CGAL_TRIVIAL_CONNECTIONS_PROGRAM_OPTIONS_H
+
+#include <CGAL/Trivial_connections/Progress.h>
+#include <CGAL/Trivial_connections/parameters.h>
+#include <CGAL/version.h>
+
+#include <Eigen/Core>
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <unistd.h>
+#endif
+
+namespace trivial_connections_program {
+
+inline const char* const program = "trivial_connections";
+
+inline const char* const usage_text =
+  "Usage: trivial_connections MESH [--triangulate] [--singularities FILE] [--boundary-indices FILE]\n"
+  "                           [--constraints FILE] [--align-boundary] [--guidance FILE]\n"
+  "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
+  "                           [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT]\n"
+  "                           [--singularity-points OUT] [--streamlines OUT] [--streamline-seeds K]\n"
+  "                           [--progress] [--help] [--version]\n"
+  "\n"
+  "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
+  "singularity indices at vertices, and the n-direction field it defines.\n"
+  "\n"
+  "  MESH                  triangle mesh: .off, .obj, .ply, .stl or .ts (oriented 2-manifold, boundary\n"
+  "                        allowed)\n"
+  "  --triangulate         split faces of more than three vertices into triangles (CGAL's PMP); face\n"
+  "                        indices (--constraints, --guidance, --field) then number the triangles: those of\n"
+  "                        a face are consecutive, in file order. Without it such faces are an error.\n"
+  "  --singularities FILE  one line 'v k' per singular vertex: 0-based vertex index (file order) and index k,\n"
+  "                        an integer or a fraction p/q that is a multiple of 1/N; '#' starts a comment.\n"
+  "                        Default: no singularity (then every closed component must have genus 1).\n"
+  "                        On each closed component the indices must sum to its Euler characteristic.\n"
+  "  --boundary-indices FILE  the index of every boundary loop, one line 'v k' per loop: any vertex v of\n"
+  "                        the loop (0-based, file order) and its index k (as for --singularities). Every\n"
+  "                        boundary loop of a component listed, or none; vertex and boundary indices then\n"
+  "                        sum to the Euler characteristic. Default: chosen to minimise the energy.\n"
+  "  --constraints FILE    directional constraints, one line 'f x y z' per face: 0-based face index (file\n"
+  "                        order) and a direction (projected onto the face) that the field must have\n"
+  "                        there, as one of its N directions. Each extra constrained face of a component\n"
+  "                        adds one free integer, chosen with the loop integers.\n"
+  "  --align-boundary      the field follows the boundary on every boundary face: along its border edge\n"
+  "                        (the longer one when it has two); for N = 4, tangent and normal to it.\n"
+  "  --guidance FILE       soft guidance, lines 'f x y z' as for --constraints: the solve minimises the\n"
+  "                        energy plus MU times the sum over these faces of the squared angle between the\n"
+  "                        field and the guide (modulo 2pi/N), still with exactly the given singularities.\n"
+  "  --guidance-weight MU  the weight MU > 0 of the guidance (default 1)\n"
+  "  --n N                 symmetry order: 1 vector field, 2 line field, 4 cross field, ... (default 1)\n"
+  "  --weights W           energy weights: hodge (|e|/|e*|, default) or unit\n"
+  "  --connection OUT      connection file, one line 'i j x w' per interior edge\n"
+  "                        (default: <mesh stem>.connection.txt in the current directory)\n"
+  "  --field OUT           field file, one line 'x y z' per face in input face order\n"
+  "                        (default: <mesh stem>.field.txt in the current directory)\n"
+  "  --vtk OUT             also the mesh with the field for viewers, legacy VTK (ParaView): per face the N\n"
+  "                        directions (direction_0 ...), per vertex its singularity index\n"
+  "  --ply OUT             the same as an ASCII PLY file (MeshLab): face properties dk_x dk_y dk_z\n"
+  "  --singularity-points OUT  one line 'x y z k' per singular vertex\n"
+  "  --streamlines OUT     streamlines of the field as legacy VTK polylines (ParaView), traced from K seed\n"
+  "                        faces spread over the mesh (--streamline-seeds K, default 100); a ray stops at\n"
+  "                        a singularity, a boundary, where it meets itself, or after 50 sqrt(faces) faces\n"
+  "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
+  "                        is a terminal)\n"
+  "  --help, -h            print this help and exit\n"
+  "  --version             print the version (and those of CGAL, Eigen and the sparse solver) and exit\n"
+  "\n"
+  "The integers of the homology generators and boundary loops are chosen to minimise the energy.\n"
+  "Both output files are written only if everything succeeded. Exit status: 0 success, 1 input error,\n"
+  "2 usage error; errors are reported as one line on stderr.\n";
+
+inline void print_version(std::ostream& out)
+{
+#ifndef TC_VERSION
+#define TC_VERSION "unknown"
+#endif
+  out << program << " " << TC_VERSION << " (CGAL " << CGAL_VERSION_STR << ", Eigen " << EIGEN_WORLD_VERSION << "."
+      << EIGEN_MAJOR_VERSION << "." << EIGEN_MINOR_VERSION << ", sparse solver "
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+      << "CHOLMOD " << CHOLMOD_MAIN_VERSION << "." << CHOLMOD_SUB_VERSION << "." << CHOLMOD_SUBSUB_VERSION
+#else
+      << "Eigen SimplicialLDLT"
+#endif
+      << ")\n";
+}
+
+// A bad command line (exit status 2).
+struct Usage_error : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+struct Options
+{
+  bool help = false;
+  bool version = false;
+  bool progress = false;
+  std::string mesh;
+  std::string singularities;
+  std::string boundary_indices;
+  std::string constraints;
+  bool align_boundary = false;
+  bool triangulate = false;
+  std::string guidance;
+  double guidance_weight = 1;
+  int n = 1;
+  CGAL::Trivial_connections::Weighting weighting = CGAL::Trivial_connections::Weighting::hodge_star;
+  std::string weights_name = "hodge";
+  std::string connection;
+  std::string field;
+  std::string vtk, ply, singularity_points, streamlines; // optional outputs for viewers
+  std::size_t streamline_seeds = 100;
+};
+
+using String_field = std::string Options::*;
+
+// Parsers of the option values that are not kept as given: each stores the value or throws.
+inline void parse_symmetry_order(Options& o, const std::string& text)
+{
+  const std::string digits = (!text.empty() && text[0] == '+') ? text.substr(1) : text;
+  if(digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) {
+    if(!text.empty() && text[0] == '-' && text.size() > 1 &&
+       text.find_first_not_of("0123456789", 1) == std::string::npos)
+      throw Usage_error("--n must be at least 1 (got " + text + ")");
+    throw Usage_error("--n expects a positive integer, got '" + text + "'");
+  }
+  const std::string trimmed = digits.substr((std::min)(digits.find_first_not_of('0'), digits.size()));
+  if(trimmed.size() > 9)
+    throw Usage_error("--n is too large (got " + text + ")");
+  o.n = trimmed.empty() ? 0 : std::stoi(trimmed);
+  if(o.n < 1)
+    throw Usage_error("--n must be at least 1 (got " + text + ")");
+}
+
+inline void parse_guidance_weight(Options& o, const std::string& text)
+{
+  char* end = nullptr;
+  o.guidance_weight = std::strtod(text.c_str(), &end);
+  if(end != text.c_str() + text.size() || !(o.guidance_weight > 0) || !std::isfinite(o.guidance_weight))
+    throw Usage_error("--guidance-weight expects a positive finite number, got '" + text + "'");
+}
+
+inline void parse_weights(Options& o, const std::string& text)
+{
+  if(text == "hodge")
+    o.weighting = CGAL::Trivial_connections::Weighting::hodge_star;
+  else if(text == "unit")
+    o.weighting = CGAL::Trivial_connections::Weighting::unit;
+  else
+    throw Usage_error("unknown weights '" + text + "' (expected hodge or unit)");
+  o.weights_name = text;
+}
+
+inline void parse_streamline_seeds(Options& o, const std::string& text)
+{
+  if(text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos || std::stoul(text) == 0)
+    throw Usage_error("--streamline-seeds expects a positive integer, got '" + text + "'");
+  o.streamline_seeds = std::stoul(text);
+}
+
+// An option that takes a value: kept as given in `field`, or read by `parse`.
+struct Valued_option
+{
+  const char* name;
+  String_field field;
+  void (*parse)(Options&, const std::string& text);
+};
+
+// The options that take a value. Each may be given once, as `--name value` or `--name=value`.
+inline const std::array<Valued_option, 14> valued_options = {{
+  {"--singularities", &Options::singularities, nullptr},
+  {"--boundary-indices", &Options::boundary_indices, nullptr},
+  {"--constraints", &Options::constraints, nullptr},
+  {"--guidance", &Options::guidance, nullptr},
+  {"--connection", &Options::connection, nullptr},
+  {"--field", &Options::field, nullptr},
+  {"--vtk", &Options::vtk, nullptr},
+  {"--ply", &Options::ply, nullptr},
+  {"--singularity-points", &Options::singularity_points, nullptr},
+  {"--streamlines", &Options::streamlines, nullptr},
+  {"--guidance-weight", nullptr, parse_guidance_weight},
+  {"--n", nullptr, parse_symmetry_order},
+  {"--weights", nullptr, parse_weights},
+  {"--streamline-seeds", nullptr, parse_streamline_seeds},
+}};
+
+inline bool same_file(const std::string& a, const std::string& b)
+{
+  std::error_code ec1, ec2;
+  // absolute() first: weakly_canonical() leaves a relative path relative when its first element does not exist
+  const std::filesystem::path pa = std::filesystem::weakly_canonical(std::filesystem::absolute(a, ec1), ec1);
+  const std::filesystem::path pb = std::filesystem::weakly_canonical(std::filesystem::absolute(b, ec2), ec2);
+  return !ec1 && !ec2 ? pa == pb : a == b;
+}
+
+// An output must not overwrite another output nor an input: checked before anything is read.
+inline void check_outputs(const Options& o)
+{
+  std::vector<const std::string*> outputs = {&o.connection, &o.field};
+  for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points, &o.streamlines})
+    if(!extra->empty())
+      outputs.push_back(extra);
+  for(std::size_t a = 0; a < outputs.size(); ++a)
+    for(std::size_t b = a + 1; b < outputs.size(); ++b)
+      if(same_file(*outputs[a], *outputs[b]))
+        throw Usage_error("two outputs are the same file '" + *outputs[a] + "'");
+  const std::pair<String_field, const char*> inputs[] = {{&Options::mesh, "input mesh"},
+                                                         {&Options::singularities, "singularity file"},
+                                                         {&Options::boundary_indices, "boundary index file"},
+                                                         {&Options::constraints, "constraint file"},
+                                                         {&Options::guidance, "guidance file"}};
+  for(const std::string* out : outputs)
+    for(const auto& [input, what] : inputs)
+      if(!(o.*input).empty() && same_file(*out, o.*input))
+        throw Usage_error("the output '" + *out + "' would overwrite the " + what);
+}
+
+using Seen_options = std::array<bool, valued_options.size()>;
+
+// Reads the option args[i] and its value (`--name=value`, or `--name value`: then `i` moves to the value).
+inline void read_valued_option(const std::vector<std::string>& args, std::size_t& i, Seen_options& seen, Options& o)
+{
+  const std::string& a = args[i];
+  std::string name = a, value;
+  bool has_value = false;
+  const std::string::size_type eq = a.find('=');
+  if(a.compare(0, 2, "--") == 0 && eq != std::string::npos) {
+    name = a.substr(0, eq);
+    value = a.substr(eq + 1);
+    has_value = true;
+  }
+  const auto option = std::find_if(valued_options.begin(), valued_options.end(),
+                                   [&](const Valued_option& v) { return name == v.name; });
+  if(option == valued_options.end())
+    throw Usage_error("unknown option '" + name + "' (see --help)");
+  bool& seen_option = seen[std::size_t(option - valued_options.begin())];
+  if(seen_option)
+    throw Usage_error("option " + name + " given twice");
+  seen_option = true;
+  if(!has_value) {
+    if(i + 1 >= args.size())
+      throw Usage_error("option " + name + " needs a value (see --help)");
+    value = args[++i];
+  }
+  if(value.empty())
+    throw Usage_error("option " + name + " needs a non-empty value");
+  if(option->field)
+    o.*(option->field) = value;
+  else
+    option->parse(o, value);
+}
+
+// The first `--help`, `-h` or `--version` wins over everything else, even over errors.
+inline Options parse_arguments(int argc, char** argv)
+{
+  Options o;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  for(const std::string& a : args) {
+    if(a == "--help" || a == "-h") {
+      o.help = true;
+      return o;
+    }
+    if(a == "--version") {
+      o.version = true;
+      return o;
+    }
+  }
+  Seen_options seen{};
+  for(std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if(a == "--progress") {
+      o.progress = true;
+      continue;
+    }
+    if(a == "--triangulate" || a == "--align-boundary") {
+      bool& flag = a == "--triangulate" ? o.triangulate : o.align_boundary;
+      if(flag)
+        throw Usage_error("option " + a + " given twice");
+      flag = true;
+      continue;
+    }
+    if(a.size() > 1 && a[0] == '-' && a != "-") {
+      read_valued_option(args, i, seen, o);
+    } else {
+      if(!o.mesh.empty())
+        throw Usage_error("more than one mesh given ('" + o.mesh + "' and '" + a + "')");
+      if(a.empty())
+        throw Usage_error("empty mesh file name");
+      o.mesh = a;
+    }
+  }
+  if(o.mesh.empty())
+    throw Usage_error("no mesh given (usage: trivial_connections MESH [options], see --help)");
+  const std::string stem = std::filesystem::path(o.mesh).stem().string();
+  if(o.connection.empty())
+    o.connection = stem + ".connection.txt";
+  if(o.field.empty())
+    o.field = stem + ".field.txt";
+  check_outputs(o);
+  return o;
+}
+
+inline std::string one_line(std::string s)
+{
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  std::replace(s.begin(), s.end(), '\r', ' ');
+  return s;
+}
+
+// Prints one line per phase to stderr: "[  1.23 s] factorization ... done (0.45 s)", the time since the
+// program started. Lines are written with one fputs each, so that they are never interleaved.
+class Progress_printer
+{
+public:
+  explicit Progress_printer(bool enabled) : m_enabled(enabled), m_start(std::chrono::steady_clock::now()) {}
+
+  bool enabled() const { return m_enabled; }
+  void begin(const char* phase)
+  {
+    if(!m_enabled)
+      return;
+    end_line();
+    m_starts[phase] = std::chrono::steady_clock::now();
+    m_open_phase = phase;
+    m_open = true;
+    print("[" + seconds(m_start) + " s] " + phase + " ...");
+  }
+  void end(const char* phase)
+  {
+    if(!m_enabled)
+      return;
+    const auto start = m_starts.find(phase);
+    if(start == m_starts.end())
+      return;
+    const std::string took = seconds(start->second);
+    m_starts.erase(start);
+    if(m_open && m_open_phase == phase) {
+      m_open = false;
+      print(" done (" + took + " s)\n");
+    } else { // another phase ran inside this one
+      end_line();
+      print("[" + seconds(m_start) + " s] " + phase + " done (" + took + " s)\n");
+    }
+  }
+  // ends an open line (before an error message or the report of an exception out of a phase)
+  void end_line()
+  {
+    if(m_enabled && m_open) {
+      m_open = false;
+      print("\n");
+    }
+  }
+  CGAL::Trivial_connections::Progress_callback callback()
+  {
+    if(!m_enabled)
+      return CGAL::Trivial_connections::Progress_callback();
+    return [this](CGAL::Trivial_connections::Phase p, double fraction) {
+      if(fraction <= 0)
+        begin(CGAL::Trivial_connections::phase_name(p));
+      else if(fraction >= 1)
+        end(CGAL::Trivial_connections::phase_name(p));
+    };
+  }
+
+private:
+  std::string seconds(std::chrono::steady_clock::time_point since) const
+  {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%7.2f",
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count());
+    return buffer;
+  }
+  static void print(const std::string& text)
+  {
+    std::fputs(text.c_str(), stderr);
+    std::fflush(stderr);
+  }
+
+  bool m_enabled;
+  std::chrono::steady_clock::time_point m_start;
+  std::map<std::string, std::chrono::steady_clock::time_point> m_starts; // of the phases not ended yet
+  std::string m_open_phase; // the phase whose line is not ended yet, if m_open
+  bool m_open = false;
+};
+
+inline bool stderr_is_terminal()
+{
+#if defined(__unix__) || defined(__APPLE__)
+  return ::isatty(2) == 1;
+#else
+  return false;
+#endif
+}
+
+inline int fail(const std::string& message, int status)
+{
+  std::cerr << program << ": error: " << one_line(message) << std::endl;
+  return status;
+}
+
+} // namespace trivial_connections_program
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_PROGRAM_OPTIONS_H

@@ -30,7 +30,7 @@
 #include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 
-#include "trivial_connections_options.h"
+#include "trivial_connections_command_line.h"
 
 #include <algorithm>
 #include <chrono>

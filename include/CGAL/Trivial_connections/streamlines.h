@@ -7,6 +7,7 @@
 #define CGAL_TRIVIAL_CONNECTIONS_STREAMLINES_H
 
 #include <CGAL/Trivial_connections/parameters.h>
+#include <CGAL/Trivial_connections/internal/mesh/geometry.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -37,16 +38,10 @@ struct Streamline
 
 namespace internal {
 
-using Vec = std::array<double, 3>;
-inline Vec operator_minus(const Vec& a, const Vec& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
-inline double dot3(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline Vec cross3(const Vec& a, const Vec& b)
-{
-  return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
-}
+using Vec = Vec3;
 inline Vec unit3(const Vec& a)
 {
-  const double l = std::sqrt(dot3(a, a));
+  const double l = std::sqrt(dot(a, a));
   return l > 0 ? Vec{{a[0] / l, a[1] / l, a[2] / l}} : a;
 }
 inline Vec combine(double s, const Vec& a, double t, const Vec& b)
@@ -107,14 +102,14 @@ std::vector<Streamline<TriangleMesh>> trace_streamlines(const TriangleMesh& tm, 
   auto normal = [&](face_descriptor f) {
     const halfedge_descriptor h = halfedge(f, tm);
     const Vec a = point(source(h, tm)), b = point(target(h, tm)), c = point(target(next(h, tm), tm));
-    return internal::unit3(internal::cross3(internal::operator_minus(b, a), internal::operator_minus(c, a)));
+    return internal::unit3(internal::cross(internal::sub(b, a), internal::sub(c, a)));
   };
   auto field_at = [&](face_descriptor f) {
     const auto v = get(field, f);
     return internal::unit3(Vec{{CGAL::to_double(v.x()), CGAL::to_double(v.y()), CGAL::to_double(v.z())}});
   };
   auto turned = [&](const Vec& v, const Vec& N, double angle) {
-    return internal::combine(std::cos(angle), v, std::sin(angle), internal::cross3(N, v));
+    return internal::combine(std::cos(angle), v, std::sin(angle), internal::cross(N, v));
   };
   std::unordered_set<vertex_descriptor> singular;
   for(const auto& s : singularities)
@@ -137,7 +132,7 @@ std::vector<Streamline<TriangleMesh>> trace_streamlines(const TriangleMesh& tm, 
       const Vec N = normal(f);
       // the direction's index among the field's n directions here, for the recurrence test
       const Vec base = internal::combine(sign, field_at(f), 0, field_at(f));
-      const double angle = std::atan2(internal::dot3(internal::cross3(base, d), N), internal::dot3(base, d));
+      const double angle = std::atan2(internal::dot(internal::cross(base, d), N), internal::dot(base, d));
       const int k = int(std::lround(angle / unit)) % n;
       if(!followed[std::size_t((k + n) % n)].insert(f).second)
         return;
@@ -147,13 +142,13 @@ std::vector<Streamline<TriangleMesh>> trace_streamlines(const TriangleMesh& tm, 
       Vec best_q = p;
       for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, tm), tm)) {
         const Vec a = point(source(h, tm)), b = point(target(h, tm));
-        const Vec e = internal::operator_minus(b, a), ap = internal::operator_minus(a, p);
-        const double denominator = internal::dot3(internal::cross3(d, e), N);
-        if(!(std::abs(denominator) > 1e-14 * std::sqrt(internal::dot3(e, e))))
+        const Vec e = internal::sub(b, a), ap = internal::sub(a, p);
+        const double denominator = internal::dot(internal::cross(d, e), N);
+        if(!(std::abs(denominator) > 1e-14 * std::sqrt(internal::dot(e, e))))
           continue; // parallel to this edge
-        const double t = internal::dot3(internal::cross3(ap, e), N) / denominator;
-        const double s = internal::dot3(internal::cross3(ap, d), N) / denominator;
-        if(t > 1e-12 * std::sqrt(internal::dot3(e, e)) && s >= -1e-12 && s <= 1 + 1e-12 &&
+        const double t = internal::dot(internal::cross(ap, e), N) / denominator;
+        const double s = internal::dot(internal::cross(ap, d), N) / denominator;
+        if(t > 1e-12 * std::sqrt(internal::dot(e, e)) && s >= -1e-12 && s <= 1 + 1e-12 &&
            (exit == GT::null_halfedge() || t < best_t)) {
           exit = h;
           best_t = t;
@@ -165,9 +160,9 @@ std::vector<Streamline<TriangleMesh>> trace_streamlines(const TriangleMesh& tm, 
       }
       if(exit == GT::null_halfedge())
         return; // numerically stuck (at a vertex)
-      const Vec moved_by = internal::operator_minus(best_q, p);
-      const Vec edge = internal::operator_minus(point(target(exit, tm)), point(source(exit, tm)));
-      if(!points.empty() && internal::dot3(moved_by, moved_by) < 1e-16 * internal::dot3(edge, edge)) {
+      const Vec moved_by = internal::sub(best_q, p);
+      const Vec edge = internal::sub(point(target(exit, tm)), point(source(exit, tm)));
+      if(!points.empty() && internal::dot(moved_by, moved_by) < 1e-16 * internal::dot(edge, edge)) {
         points.back() = best_q; // a pass by a vertex: no segment of its own
       } else {
         points.push_back(best_q);
@@ -178,14 +173,14 @@ std::vector<Streamline<TriangleMesh>> trace_streamlines(const TriangleMesh& tm, 
         return;
       const face_descriptor g = face(across, tm);
       // Levi-Civita transport about the edge, then the connection's rotation x(exit) about g's normal
-      const Vec e = internal::unit3(internal::operator_minus(point(target(exit, tm)), point(source(exit, tm))));
+      const Vec e = internal::unit3(internal::sub(point(target(exit, tm)), point(source(exit, tm))));
       const Vec Ng = normal(g);
-      Vec moved = internal::combine(internal::dot3(d, e), e, internal::dot3(d, internal::cross3(N, e)),
-                                    internal::cross3(Ng, e));
+      Vec moved = internal::combine(internal::dot(d, e), e, internal::dot(d, internal::cross(N, e)),
+                                    internal::cross(Ng, e));
       moved = turned(moved, Ng, get(x, exit));
       // the field's direction nearest to it
       const Vec g0 = internal::combine(sign, field_at(g), 0, field_at(g));
-      const double a = std::atan2(internal::dot3(internal::cross3(g0, moved), Ng), internal::dot3(g0, moved));
+      const double a = std::atan2(internal::dot(internal::cross(g0, moved), Ng), internal::dot(g0, moved));
       d = internal::unit3(turned(g0, Ng, unit * std::round(a / unit)));
       p = best_q;
       f = g;

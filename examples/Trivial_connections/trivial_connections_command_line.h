@@ -7,8 +7,8 @@
 // texts, its options and their parsing, and what it prints on stderr (progress lines, the error line).
 // Included by that file only: the program is one translation unit.
 
-#ifndef CGAL_TRIVIAL_CONNECTIONS_PROGRAM_OPTIONS_H
-#define CGAL_TRIVIAL_CONNECTIONS_PROGRAM_OPTIONS_H
+#ifndef CGAL_TRIVIAL_CONNECTIONS_PROGRAM_COMMAND_LINE_H
+#define CGAL_TRIVIAL_CONNECTIONS_PROGRAM_COMMAND_LINE_H
 
 #include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/parameters.h>
@@ -428,4 +428,4 @@ inline int fail(const std::string& message, int status)
 
 } // namespace trivial_connections_program
 
-#endif // CGAL_TRIVIAL_CONNECTIONS_PROGRAM_OPTIONS_H
+#endif // CGAL_TRIVIAL_CONNECTIONS_PROGRAM_COMMAND_LINE_H

@@ -1,0 +1,560 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+// The layers under Trivial_connection_solver (include/CGAL/Trivial_connections/internal/), each on its own:
+// every test builds the layers it needs by hand and checks them against a definition computed here
+// (brute force, dense matrices, Gauss-Bonnet), never against the solver's answers.
+
+#include "test_support.h"
+
+#include <CGAL/Trivial_connections/internal/factorization/checked_solve.h>
+#include <CGAL/Trivial_connections/internal/factorization/prefactored_system.h>
+#include <CGAL/Trivial_connections/internal/field/field_propagation.h>
+#include <CGAL/Trivial_connections/internal/integers/closest_vector.h>
+#include <CGAL/Trivial_connections/internal/integers/loop_periods.h>
+#include <CGAL/Trivial_connections/internal/system/constraint_links.h>
+#include <CGAL/Trivial_connections/internal/system/constraint_rows.h>
+#include <CGAL/Trivial_connections/internal/system/system_assembly.h>
+#include <CGAL/Trivial_connections/internal/topology/dual_tree_paths.h>
+#include <CGAL/Trivial_connections/internal/topology/loop_holonomy.h>
+
+namespace {
+
+using namespace tc_test;
+namespace TCI = CGAL::Trivial_connections::internal;
+
+// The lower layers of a mesh, built as the solver builds them (constraint links on `constrained` and `guided`)
+struct Layers
+{
+  const Surface_mesh& mesh;
+  TCI::Mesh_arrays<Surface_mesh> arrays;
+  TCI::Mesh_geometry geometry;
+  TCI::Mesh_topology topology;
+  TCI::Constraint_links links;
+  TCI::Constraint_rows rows;
+
+  Layers(const Surface_mesh& m, const std::vector<int>& constrained = {}, const std::vector<int>& guided = {},
+         bool align = false, double mu = 1, TC::Weighting weighting = TC::Weighting::hodge_star)
+    : mesh(m), arrays(m, get(CGAL::vertex_point, m), K()), geometry(arrays, weighting), topology(arrays)
+  {
+    topology.build_trees(arrays, geometry.edge_of_corner, geometry.edge_corner);
+    geometry.compute_angles(arrays);
+    links = TCI::Constraint_links(arrays, topology, constrained, guided, align, mu);
+    rows = TCI::Constraint_rows(arrays, geometry, topology, links);
+    rows.compute_edge_nodes(arrays);
+  }
+  Layers(const Layers&) = delete;
+
+  int edges() const { return geometry.number_of_interior_edges(); }
+};
+
+// A x for every unit x_e and every unit slack, as dense columns: the definition of the system's matrix
+Eigen::MatrixXd constraint_matrix(const Layers& l, Eigen::MatrixXd& slack_columns)
+{
+  const int ne = l.edges();
+  const std::size_t ng = l.links.number_of_guided_faces();
+  Eigen::MatrixXd A(l.rows.size(), ne);
+  for(int e = 0; e < ne; ++e) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(ne);
+    x[e] = 1;
+    TCI::Constraint_sums sums;
+    l.rows.sums_of(x, std::vector<double>(ng, 0.), sums);
+    A.col(e) = l.rows.row_sums(sums);
+  }
+  slack_columns.resize(l.rows.size(), Eigen::Index(ng));
+  for(std::size_t g = 0; g < ng; ++g) {
+    std::vector<double> s(ng, 0.);
+    s[g] = 1;
+    TCI::Constraint_sums sums;
+    l.rows.sums_of(Eigen::VectorXd::Zero(ne), s, sums);
+    slack_columns.col(Eigen::Index(g)) = l.rows.row_sums(sums);
+  }
+  return A;
+}
+
+// the faces around a few vertices spread over the mesh
+std::vector<int> spread_faces(int nf, int count, int offset)
+{
+  std::vector<int> faces;
+  for(int i = 0; i < count; ++i)
+    faces.push_back((offset + i * (nf / count)) % nf);
+  return faces;
+}
+
+// --------------------------------------------------------------------------------------------------------
+// integers: the closest vector search
+// --------------------------------------------------------------------------------------------------------
+
+double q_of(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, const std::vector<std::int64_t>& m)
+{
+  Eigen::VectorXd d(c.size());
+  for(Eigen::Index i = 0; i < c.size(); ++i)
+    d[i] = double(m[i]) - c[i];
+  return d.dot(G * d);
+}
+
+// the minimum of q over the integer box of half-width `r` around the rounded center, by enumeration
+double brute_force_minimum(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, int r)
+{
+  const Eigen::Index k = c.size();
+  std::vector<std::int64_t> m(k), low(k);
+  for(Eigen::Index i = 0; i < k; ++i)
+    low[i] = m[i] = std::int64_t(std::llround(c[i])) - r;
+  double best = std::numeric_limits<double>::infinity();
+  while(true) {
+    best = (std::min)(best, q_of(G, c, m));
+    Eigen::Index i = 0;
+    for(; i < k; ++i) {
+      if(++m[i] <= low[i] + 2 * r)
+        break;
+      m[i] = low[i];
+    }
+    if(i == k)
+      return best;
+  }
+}
+
+// a random symmetric positive definite matrix, badly conditioned on purpose (rounding is then far from optimal)
+Eigen::MatrixXd random_metric(std::mt19937& rng, Eigen::Index k)
+{
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::MatrixXd B(k, k);
+  for(Eigen::Index i = 0; i < k; ++i)
+    for(Eigen::Index j = 0; j < k; ++j)
+      B(i, j) = u(rng) + (i == j ? 0.2 : 0.);
+  return B.transpose() * B + 1e-3 * Eigen::MatrixXd::Identity(k, k);
+}
+
+TEST(Closest_vector, exact_when_proven)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-4, 4);
+  for(int trial = 0; trial < 60; ++trial) {
+    const Eigen::Index k = 1 + trial % 5;
+    const Eigen::MatrixXd G = random_metric(rng, k);
+    Eigen::VectorXd c(k);
+    for(Eigen::Index i = 0; i < k; ++i)
+      c[i] = u(rng);
+    const Eigen::MatrixXd R = G.llt().matrixU();
+    std::vector<std::int64_t> rounded(k);
+    for(Eigen::Index i = 0; i < k; ++i)
+      rounded[i] = std::llround(c[i]);
+    const TCI::Closest_vector_result r = TCI::closest_vector(G, R, c, {rounded});
+    ASSERT_TRUE(r.proven);
+    EXPECT_NEAR(r.value, q_of(G, c, r.m), 1e-9 * (1 + r.value));
+    // the search radius of the brute force covers the optimum: |m - c|_inf <= sqrt(q(rounded) / lambda_min)
+    const double lambda_min = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(G).eigenvalues()[0];
+    const int radius = int(std::ceil(std::sqrt(q_of(G, c, rounded) / lambda_min))) + 1;
+    if(std::pow(2 * radius + 1, double(k)) > 3e6)
+      continue;
+    EXPECT_NEAR(r.value, brute_force_minimum(G, c, radius), 1e-9 * (1 + r.value)) << "k = " << k;
+    EXPECT_LE(r.value, r.candidate_values[0] + 1e-12);
+  }
+}
+
+TEST(Closest_vector, out_of_budget_never_worse_than_candidates_and_locally_optimal)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-20, 20);
+  const Eigen::Index k = 24;
+  const Eigen::MatrixXd G = random_metric(rng, k);
+  const Eigen::MatrixXd R = G.llt().matrixU();
+  Eigen::VectorXd c(k);
+  for(Eigen::Index i = 0; i < k; ++i)
+    c[i] = u(rng);
+  std::vector<std::int64_t> rounded(k), zero(k, 0);
+  for(Eigen::Index i = 0; i < k; ++i)
+    rounded[i] = std::llround(c[i]);
+  const TCI::Closest_vector_result r = TCI::closest_vector(G, R, c, {rounded, zero}, 1.); // 1000 nodes at most
+  EXPECT_FALSE(r.proven);
+  ASSERT_EQ(r.candidate_values.size(), 2u);
+  EXPECT_LE(r.value, (std::min)(r.candidate_values[0], r.candidate_values[1]) + 1e-9);
+  for(Eigen::Index i = 0; i < k; ++i)
+    for(int step : {-1, 1}) {
+      std::vector<std::int64_t> m = r.m;
+      m[i] += step;
+      EXPECT_GE(q_of(G, c, m), r.value - 1e-9 * (1 + r.value));
+    }
+}
+
+// choose_loop_periods with some integers prescribed: the others minimise t^T G t, t = y + unit m
+TEST(Loop_periods, partial_prescription_minimises_the_loop_energy)
+{
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-9, 9);
+  const double unit = 2 * CGAL_PI / 4;
+  for(int trial = 0; trial < 20; ++trial) {
+    const Eigen::Index k = 4;
+    TCI::Loop_metric metric;
+    metric.inverse = random_metric(rng, k) + 0.5 * Eigen::MatrixXd::Identity(k, k);
+    metric.inverse_factor = metric.inverse.llt().matrixU();
+    const std::vector<std::vector<int>> free_slots = {{0, 1, 2, 3}};
+    std::vector<char> prescribed = {0, char(trial % 2), 0, char(trial % 3 == 0)};
+    Eigen::VectorXd y(k);
+    for(Eigen::Index i = 0; i < k; ++i)
+      y[i] = u(rng);
+    const std::vector<double> holonomy(k, 0.);
+    std::vector<std::int64_t> periods(k, 0);
+    bool proven = false;
+    TCI::choose_loop_periods(free_slots, {metric}, {y}, unit, prescribed, holonomy, 1e6, periods, proven);
+    EXPECT_TRUE(proven);
+    auto energy = [&](const std::vector<std::int64_t>& m) {
+      Eigen::VectorXd t = y;
+      for(Eigen::Index i = 0; i < k; ++i)
+        if(!prescribed[i])
+          t[i] += unit * double(m[i]);
+      return t.dot(metric.inverse * t);
+    };
+    for(Eigen::Index i = 0; i < k; ++i) {
+      if(prescribed[i]) {
+        EXPECT_EQ(periods[i], 0) << "a prescribed integer is left as given";
+      }
+    }
+    // the continuous optimum of the free integers, then every integer vector within 6 of it
+    std::vector<Eigen::Index> chosen;
+    for(Eigen::Index i = 0; i < k; ++i)
+      if(!prescribed[i])
+        chosen.push_back(i);
+    Eigen::MatrixXd G_QQ(chosen.size(), chosen.size());
+    Eigen::VectorXd g(chosen.size());
+    for(std::size_t i = 0; i < chosen.size(); ++i) {
+      g[Eigen::Index(i)] = (metric.inverse * y)[chosen[i]];
+      for(std::size_t j = 0; j < chosen.size(); ++j)
+        G_QQ(Eigen::Index(i), Eigen::Index(j)) = metric.inverse(chosen[i], chosen[j]);
+    }
+    const Eigen::VectorXd continuous = -G_QQ.ldlt().solve(g) / unit;
+    double best = std::numeric_limits<double>::infinity();
+    std::vector<std::int64_t> m(k, 0), low(chosen.size());
+    for(std::size_t i = 0; i < chosen.size(); ++i)
+      low[i] = m[chosen[i]] = std::llround(continuous[Eigen::Index(i)]) - 6;
+    while(true) {
+      best = (std::min)(best, energy(m));
+      std::size_t i = 0;
+      for(; i < chosen.size(); ++i) {
+        if(++m[chosen[i]] <= low[i] + 12)
+          break;
+        m[chosen[i]] = low[i];
+      }
+      if(i == chosen.size())
+        break;
+    }
+    EXPECT_NEAR(energy(periods), best, 1e-9 * (1 + best));
+  }
+}
+
+// --------------------------------------------------------------------------------------------------------
+// topology: Gauss-Bonnet through the loop holonomies, loops and tree paths as dual paths
+// --------------------------------------------------------------------------------------------------------
+
+// crossings form a dual path: each enters the face the next one leaves
+void expect_dual_path(const TCI::Mesh_arrays<Surface_mesh>& m, const std::vector<int>& crossings, int from, int to)
+{
+  int face = from;
+  for(int i : crossings) {
+    ASSERT_EQ(i / 3, face);
+    ASSERT_GE(m.opposite_corner[i], 0);
+    face = m.opposite_corner[i] / 3;
+  }
+  EXPECT_EQ(face, to);
+}
+
+TEST(Topology, gauss_bonnet_and_dual_loops)
+{
+  const std::vector<std::pair<const char*, Surface_mesh>> meshes = {
+    {"disk", disk(5, 12)}, {"annulus", annulus(0.4, 1, 4, 16)}, {"torus", torus(2, 0.7, 16, 9)},
+    {"genus 2", genus2()}, {"two spheres", two_spheres(2)}};
+  for(const auto& [name, mesh] : meshes) {
+    SCOPED_TRACE(name);
+    const Layers l(mesh);
+    const std::vector<double> H = TCI::levi_civita_holonomies(l.arrays, l.geometry, l.topology);
+    ASSERT_EQ(H.size(), l.topology.loops.size());
+    ASSERT_GE(l.arrays.nf, 100);
+    // per component: sum of the interior angle defects + geodesic curvature of the boundary = 2 pi chi
+    std::vector<double> total(l.topology.components.size(), 0.);
+    for(int v = 0; v < l.arrays.nv; ++v)
+      if(l.arrays.faces_at_vertex[v] > 0 && !l.geometry.on_boundary[v])
+        total[l.topology.component_of_node[l.topology.node_of_vertex[v]]] += l.geometry.angle_defect(v);
+    std::vector<int> generators(l.topology.components.size(), 0);
+    for(std::size_t j = 0; j < l.topology.loops.size(); ++j) {
+      const TCI::Mesh_topology::Loop& loop = l.topology.loops[j];
+      if(loop.kind == TC::Loop_kind::boundary) {
+        total[loop.component] += H[j];
+      } else {
+        ++generators[loop.component];
+        EXPECT_GT(H[j], -CGAL_PI);
+        EXPECT_LE(H[j], CGAL_PI);
+        expect_dual_path(l.arrays, loop.crossings, loop.crossings.front() / 3, loop.crossings.front() / 3);
+      }
+    }
+    for(std::size_t c = 0; c < total.size(); ++c) {
+      const TCI::Mesh_topology::Component& comp = l.topology.components[c];
+      EXPECT_NEAR(total[c], 2 * CGAL_PI * double(comp.euler_characteristic), 1e-9);
+      EXPECT_EQ(generators[c], 2 * comp.genus);
+      EXPECT_EQ(comp.euler_characteristic, 2 - 2 * comp.genus - comp.boundary_loops);
+    }
+    // paths in the dual tree between faces of a component
+    const TCI::Dual_tree_order order(l.topology.parent_corner, l.topology.face_order);
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> face(0, l.arrays.nf - 1);
+    for(int trial = 0; trial < 50; ++trial) {
+      const int a = face(rng), b = face(rng);
+      if(l.topology.component_of_face[a] != l.topology.component_of_face[b])
+        continue;
+      std::vector<int> crossings;
+      TCI::append_dual_tree_path(l.arrays.opposite_corner, l.topology.parent_corner, order.depth, a, b, crossings);
+      expect_dual_path(l.arrays, crossings, a, b);
+      EXPECT_LE(int(crossings.size()), order.depth[a] + order.depth[b]);
+    }
+  }
+}
+
+// --------------------------------------------------------------------------------------------------------
+// system: the links, and the assembled matrix against A W^-1 A^T + C C^T / mu formed densely
+// --------------------------------------------------------------------------------------------------------
+
+TEST(Constraint_system, links_form_a_tree_of_dual_paths)
+{
+  const Surface_mesh mesh = annulus(0.4, 1, 4, 16);
+  TCI::Mesh_arrays<Surface_mesh> arrays(mesh, get(CGAL::vertex_point, mesh), K());
+  const TCI::Mesh_geometry geometry(arrays, TC::Weighting::hodge_star);
+  TCI::Mesh_topology topology(arrays);
+  topology.build_trees(arrays, geometry.edge_of_corner, geometry.edge_corner);
+  const std::vector<int> constrained = {36, 48, 70}, guided = {52, 80}; // off the boundary rings
+  const TCI::Constraint_links links(arrays, topology, constrained, guided, true, 0.5);
+  // one link fewer than constrained faces per component, each a dual path between its faces
+  EXPECT_EQ(links.links.size(), links.faces.size() - 1);
+  for(const auto& link : links.links)
+    expect_dual_path(arrays, link.crossings, links.faces[link.from].face, links.faces[link.to].face);
+  // the links connect every constrained face: union-find over them
+  std::vector<int> parent(links.faces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> find = [&](int i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
+  for(const auto& link : links.links)
+    parent[find(link.from)] = find(link.to);
+  for(std::size_t a = 0; a < links.faces.size(); ++a)
+    EXPECT_EQ(find(int(a)), find(0));
+  // aligned boundary faces first (each following a border edge of its face), then targets, then guides
+  EXPECT_EQ(links.first_guided, int(links.faces.size()) - 2);
+  for(std::size_t a = 0; a + 5 < links.faces.size(); ++a) {
+    const int i = links.faces[a].border_corner;
+    ASSERT_GE(i, 0);
+    EXPECT_EQ(i / 3, links.faces[a].face);
+    EXPECT_LT(arrays.opposite_corner[i], 0);
+  }
+  EXPECT_GE(links.seed_constraint[0], 0);
+  EXPECT_FALSE(links.faces[links.seed_constraint[0]].soft);
+}
+
+TEST(Constraint_system, assembly_is_A_W_inverse_A_transpose)
+{
+  const Surface_mesh mesh = genus2(2);
+  for(const bool with_links : {false, true}) {
+    SCOPED_TRACE(with_links ? "with links and guided faces" : "cycles only");
+    const int nf = int(num_faces(mesh));
+    const double mu = 0.7;
+    const Layers l(mesh, with_links ? spread_faces(nf, 3, 1) : std::vector<int>(),
+                   with_links ? spread_faces(nf, 4, 7) : std::vector<int>(), false, mu);
+    Eigen::MatrixXd C;
+    const Eigen::MatrixXd A = constraint_matrix(l, C);
+    Eigen::VectorXd w_inverse(l.edges());
+    for(int e = 0; e < l.edges(); ++e)
+      w_inverse[e] = 1 / l.geometry.weight[e];
+    const Eigen::MatrixXd expected = A * w_inverse.asDiagonal() * A.transpose() + C * C.transpose() / mu;
+    // the node pattern as the solver makes it
+    std::vector<int> node_start, node_rows;
+    l.topology.node_adjacency(l.arrays, node_start, node_rows);
+    const Eigen::SparseMatrix<double> M = TCI::system_in_row_order(l.arrays, l.rows, node_start, node_rows);
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(M);
+    ASSERT_EQ(dense.rows(), expected.rows());
+    // genus 2: four generator rows; with links, slacks that couple them
+    ASSERT_GT(dense.rows(), 100);
+    EXPECT_EQ(l.topology.loops.size(), 4u);
+    if(with_links) {
+      EXPECT_EQ(l.links.links.size(), 6u);
+      EXPECT_EQ(C.cols(), 4);
+      EXPECT_GT((C * C.transpose()).cwiseAbs().maxCoeff(), 0.);
+    }
+    EXPECT_LT((dense - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
+    // positive definite: the rows are independent (one node per component dropped)
+    EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(dense).info(), Eigen::Success);
+    // x = W^-1 A^T lambda and the slacks C^T lambda / mu
+    Eigen::VectorXd lambda = Eigen::VectorXd::LinSpaced(dense.rows(), -1, 2);
+    EXPECT_LT((l.rows.connection_of(lambda) - w_inverse.asDiagonal() * A.transpose() * lambda).cwiseAbs().maxCoeff(),
+              1e-12 * (1 + lambda.cwiseAbs().maxCoeff()));
+    const std::vector<double> s = l.rows.slacks(lambda);
+    for(std::size_t g = 0; g < s.size(); ++g)
+      EXPECT_NEAR(s[g], C.col(Eigen::Index(g)).dot(lambda) / mu, 1e-12);
+    // in factor order: the fill-reducing order of the nodes, then the free rows last, upper triangle kept
+    std::vector<int> node_order(std::size_t(l.topology.number_of_nodes));
+    std::iota(node_order.rbegin(), node_order.rend(), 0);
+    const TCI::Row_permutation P = TCI::loop_rows_last(l.rows, node_order);
+    const Eigen::Index first = l.rows.rows - Eigen::Index(l.rows.free_rows.size());
+    for(int r : l.rows.free_rows)
+      EXPECT_GE(P.indices()[r], first);
+    const Eigen::SparseMatrix<double> ordered = TCI::ordered_system(M, P, Eigen::Upper);
+    const Eigen::MatrixXd permuted = Eigen::MatrixXd(P * dense * P.transpose());
+    EXPECT_EQ((Eigen::MatrixXd(ordered) - Eigen::MatrixXd(permuted.triangularView<Eigen::Upper>())).cwiseAbs().maxCoeff(), 0.);
+  }
+}
+
+// The prefactored system's split solve (forward, then the integers, then backward) gives the multipliers of
+// the full system M lambda = b with the integers added to b on the free rows; checked against a dense solve.
+TEST(Prefactored_system, split_solve_matches_a_dense_solve)
+{
+  const Surface_mesh mesh = genus2();
+  const int nf = int(num_faces(mesh));
+  Layers l(mesh, spread_faces(nf, 3, 1), spread_faces(nf, 2, 9), false, 2.);
+  std::vector<int> node_start, node_rows;
+  l.topology.node_adjacency(l.arrays, node_start, node_rows);
+  Eigen::SparseMatrix<double> M = TCI::system_in_row_order(l.arrays, l.rows, node_start, node_rows);
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(M);
+  std::vector<int> node_order;
+  TCI::Fill_reducing_ordering<TC::Default_solver_traits>::compute(l.topology.number_of_nodes, node_start, node_rows,
+                                                                  node_order);
+  const TCI::Row_permutation P = TCI::loop_rows_last(l.rows, node_order);
+  Eigen::SparseMatrix<double> ordered =
+    TCI::ordered_system(M, P, TCI::Sparse_factor<TC::Default_solver_traits>::stored_triangle);
+  TCI::Prefactored_system<TC::Default_solver_traits> system;
+  system.factor().load(ordered, P);
+  system.factor().factor(l.rows.rows);
+  system.compute_metrics(l.rows, l.links, l.topology.components.size());
+  ASSERT_TRUE(system.loop_rows_in_factor());
+
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(dense.rows(), -0.5, 0.8);
+  const Eigen::VectorXd direct = dense.ldlt().solve(b);
+  EXPECT_LT((system.solve(l.rows, b) - direct).cwiseAbs().maxCoeff(), 1e-10 * direct.cwiseAbs().maxCoeff());
+  // the metric is (M^-1) on the free rows
+  const Eigen::MatrixXd inverse = dense.inverse();
+  const std::vector<int>& free = l.rows.free_slots[0];
+  const TCI::Loop_metric& metric = system.metrics()[0];
+  for(std::size_t a = 0; a < free.size(); ++a)
+    for(std::size_t c = 0; c < free.size(); ++c)
+      EXPECT_NEAR(metric.inverse(Eigen::Index(a), Eigen::Index(c)),
+                  inverse(l.rows.row_of_slot[free[a]], l.rows.row_of_slot[free[c]]), 1e-9);
+  // integers m on the free rows: backward(y + m) solves M lambda = b + m on those rows
+  auto forward = system.forward(l.rows, b);
+  std::vector<Eigen::VectorXd> t = forward.y;
+  Eigen::VectorXd b_with = b;
+  for(std::size_t a = 0; a < free.size(); ++a) {
+    const double m = double(int(a % 3) - 1) * 0.25;
+    t[0][Eigen::Index(a)] += m;
+    b_with[l.rows.row_of_slot[free[a]]] += m;
+  }
+  const Eigen::VectorXd lambda = system.backward(l.rows, forward, t, b_with);
+  const Eigen::VectorXd expected = dense.ldlt().solve(b_with);
+  EXPECT_LT((lambda - expected).cwiseAbs().maxCoeff(), 1e-10 * expected.cwiseAbs().maxCoeff());
+  // the loop part of the energy b^T M^-1 b is t^T S^-1 t, the rest is the node part
+  EXPECT_NEAR(forward.node_part + t[0].dot(metric.inverse * t[0]), b_with.dot(expected), 1e-9 * b_with.dot(expected));
+}
+
+// --------------------------------------------------------------------------------------------------------
+// field: propagation along the dual tree, rotations onto targets and guides
+// --------------------------------------------------------------------------------------------------------
+
+// a connection that carries a given angle per face to its neighbours exactly: trivial by construction
+std::vector<double> connection_carrying(const Layers& l, const std::vector<double>& theta)
+{
+  std::vector<double> x(3 * std::size_t(l.arrays.nf), 0.);
+  for(int i = 0; i < 3 * l.arrays.nf; ++i) {
+    const int o = l.arrays.opposite_corner[i];
+    if(o >= 0)
+      x[i] = theta[o / 3] - theta[i / 3] - l.geometry.transport_angle(i);
+  }
+  return x;
+}
+
+TEST(Field, propagation_reproduces_a_parallel_field)
+{
+  const Surface_mesh mesh = two_spheres(2);
+  const Layers l(mesh);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-CGAL_PI, CGAL_PI);
+  std::vector<double> theta(std::size_t(l.arrays.nf));
+  for(double& t : theta)
+    t = u(rng);
+  const std::vector<double> x = connection_carrying(l, theta);
+  std::unordered_map<Surface_mesh::Halfedge_index, double> by_halfedge;
+  for(int i = 0; i < 3 * l.arrays.nf; ++i)
+    by_halfedge[l.arrays.halfedges[i]] = x[i];
+  const boost::const_associative_property_map<std::unordered_map<Surface_mesh::Halfedge_index, double>> xmap(by_halfedge);
+  // seed on the second sphere: it gets theta exactly, the first sphere theta up to one rotation
+  const int seed = l.arrays.nf - 1;
+  const std::vector<double> angle =
+    TCI::field_angles(l.arrays, l.geometry, l.topology, l.links, xmap, {}, std::nullopt, seed, theta[seed]);
+  const int root = l.topology.components[0].root_face;
+  for(int f = 0; f < l.arrays.nf; ++f) {
+    const double expected = l.topology.component_of_face[f] == l.topology.component_of_face[seed]
+                              ? theta[f]
+                              : theta[f] - theta[root]; // the first component starts at angle 0 in its root
+    EXPECT_NEAR(wrap(angle[f] - expected), 0., 1e-9) << "face " << f;
+  }
+  // the vectors: unit, tangent, at that angle in the face frame
+  std::vector<Vector> vectors(std::size_t(l.arrays.nf));
+  std::unordered_map<Surface_mesh::Face_index, Vector> by_face;
+  TCI::write_field(l.arrays, angle, K(), boost::associative_property_map<std::unordered_map<Surface_mesh::Face_index, Vector>>(by_face));
+  for(int f = 0; f < l.arrays.nf; ++f) {
+    const Vector v = by_face.at(l.arrays.face_descriptors[f]);
+    TCI::Vec3 ex, ey;
+    TCI::Mesh_geometry::frame(l.arrays, f, ex, ey);
+    const TCI::Vec3 n = TCI::cross(ex, ey);
+    EXPECT_NEAR(v.squared_length(), 1., 1e-12);
+    EXPECT_NEAR(v.x() * n[0] + v.y() * n[1] + v.z() * n[2], 0., 1e-12);
+    EXPECT_NEAR(std::atan2(v.x() * ey[0] + v.y() * ey[1] + v.z() * ey[2], v.x() * ex[0] + v.y() * ex[1] + v.z() * ex[2]),
+                angle[f], 1e-12);
+  }
+}
+
+TEST(Field, rotations_onto_targets_and_guides)
+{
+  const Surface_mesh mesh = two_spheres(2);
+  const int nf = int(num_faces(mesh));
+  // a target on the first sphere, guides only on the second
+  const Layers l(mesh, {3}, {nf - 5, nf - 40, nf - 77});
+  ASSERT_NE(l.topology.component_of_face[3], l.topology.component_of_face[nf - 5]);
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-CGAL_PI, CGAL_PI);
+  std::vector<double> theta((std::size_t(nf))); // not a declaration
+  for(double& t : theta)
+    t = u(rng);
+  const std::vector<double> x = connection_carrying(l, theta);
+  std::unordered_map<Surface_mesh::Halfedge_index, double> by_halfedge;
+  for(int i = 0; i < 3 * nf; ++i)
+    by_halfedge[l.arrays.halfedges[i]] = x[i];
+  const boost::const_associative_property_map<std::unordered_map<Surface_mesh::Halfedge_index, double>> xmap(by_halfedge);
+  std::vector<double> target(l.links.faces.size());
+  for(double& t : target)
+    t = u(rng);
+  const int n = 4;
+  // without n, guides only cannot be honoured
+  EXPECT_THROW(TCI::field_angles(l.arrays, l.geometry, l.topology, l.links, xmap, target, std::nullopt, -1, 0.),
+               TC::Invalid_input);
+  const std::vector<double> angle = TCI::field_angles(l.arrays, l.geometry, l.topology, l.links, xmap, target, n, -1, 0.);
+  // the target is met exactly
+  EXPECT_NEAR(wrap(angle[3] - target[0]), 0., 1e-9);
+  // the guided component's rotation minimises sum_g d_g^2 (d_g modulo 2 pi / n): compare with a fine scan
+  const double period = 2 * CGAL_PI / n;
+  auto cost = [&](double phi) {
+    double s = 0;
+    for(std::size_t a = std::size_t(l.links.first_guided); a < l.links.faces.size(); ++a) {
+      const double d = wrap(theta[l.links.faces[a].face] + phi - target[a], period);
+      s += d * d;
+    }
+    return s;
+  };
+  const int g = l.links.faces[std::size_t(l.links.first_guided)].face;
+  const double phi = angle[g] - theta[g];
+  double best = std::numeric_limits<double>::infinity();
+  for(int i = 0; i < 200000; ++i)
+    best = (std::min)(best, cost(period * i / 200000.));
+  EXPECT_LE(cost(phi), best + 1e-9);
+  // and the rotation is one rotation of the whole component
+  for(int f = 0; f < nf; ++f) {
+    if(l.topology.component_of_face[f] == l.topology.component_of_face[g]) {
+      EXPECT_NEAR(wrap(angle[f] - theta[f] - phi), 0., 1e-9);
+    }
+  }
+}
+
+} // namespace

@@ -413,12 +413,9 @@ TEST(Prefactored_system, split_solve_matches_a_dense_solve)
   std::vector<int> node_order;
   TCI::Fill_reducing_ordering<TC::Default_solver_traits>::compute(l.topology.number_of_nodes, node_start, node_rows,
                                                                   node_order);
-  const TCI::Row_permutation P = TCI::loop_rows_last(l.rows, node_order);
-  Eigen::SparseMatrix<double> ordered =
-    TCI::ordered_system(M, P, TCI::Sparse_factor<TC::Default_solver_traits>::stored_triangle);
   TCI::Prefactored_system<TC::Default_solver_traits> system;
-  system.factor().load(ordered, P);
-  system.factor().factor(l.rows.rows);
+  system.load(l.rows, M, node_order);
+  system.factor(l.rows);
   system.compute_metrics(l.rows, l.links, l.topology.components.size());
   ASSERT_TRUE(system.loop_rows_in_factor());
 

@@ -24,6 +24,7 @@
 #include <CGAL/Trivial_connections/internal/system/constraint_targets.h>
 #include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
 #include <CGAL/Trivial_connections/internal/system/system_assembly.h>
+#include <CGAL/Trivial_connections/internal/factorization/concurrent_node_order.h>
 #include <CGAL/Trivial_connections/internal/factorization/prefactored_system.h>
 #include <CGAL/Trivial_connections/internal/integers/loop_periods.h>
 #include <CGAL/Trivial_connections/internal/field/field_propagation.h>
@@ -37,7 +38,6 @@
 #include <Eigen/Sparse>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <future>
@@ -199,31 +199,11 @@ public:
       throw Invalid_input(Error_code::invalid_argument,
                           "the guidance weight must be positive and finite (got " + std::to_string(mu) + ")");
     m_align = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::align_with_boundary), false);
-    // The fill-reducing order of the node rows needs only the connectivity: it runs on a second thread
-    // while the rest of the set-up (points, degenerate faces), the geometry and the trees are computed, and
-    // the corner angles (not needed by the system) run beside the factorization. The other thread never
-    // calls user code (property maps, the callback) and never reads what the main thread writes meanwhile;
-    // when the main thread throws, the future's destructor waits for it.
+    // The fill-reducing order of the node rows needs only the connectivity: it runs on a second thread while
+    // the rest of the set-up (points, degenerate faces), the geometry and the trees are computed, and the
+    // corner angles (not needed by the system) run beside the factorization.
     m_topology = internal::Mesh_topology(m_mesh);
-    // The pattern of the node rows, made by the other thread: it orders the pattern, this thread fills in
-    // M's values on it (read-only for both once `pattern_ready`).
-    std::vector<int> node_start, node_rows;
-    std::promise<void> pattern_made;
-    std::future<void> pattern_ready = pattern_made.get_future();
-    std::future<std::vector<int>> node_order =
-      internal::concurrently([this, &node_start, &node_rows, &pattern_made] {
-        try {
-          m_topology.node_adjacency(m_mesh, node_start, node_rows);
-        } catch(...) {
-          pattern_made.set_exception(std::current_exception());
-          throw;
-        }
-        pattern_made.set_value();
-        std::vector<int> order;
-        internal::Fill_reducing_ordering<Solver_traits>::compute(m_topology.number_of_nodes, node_start, node_rows,
-                                                                 order);
-        return order;
-      });
+    internal::Concurrent_node_order<Solver_traits> node_order(m_mesh, m_topology);
     m_mesh.check_and_read_points(CGAL::parameters::choose_parameter(
                                    CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
                                    get_const_property_map(CGAL::vertex_point, tm)),
@@ -234,25 +214,19 @@ public:
     notify(Phase::geometry, 1);
     notify(Phase::trees, 0);
     m_topology.build_trees(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner);
+    m_components = internal::component_reports(m_topology);
     build_loops();
     m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, mu);
     notify(Phase::trees, 1);
     notify(Phase::assembly, 0);
     m_rows = internal::Constraint_rows(m_mesh, m_geometry, m_topology, m_links);
+    node_order.wait_for_pattern();
     {
-      std::vector<int> order;
-      const bool deferred = node_order.wait_for(std::chrono::seconds(0)) == std::future_status::deferred;
-      if(deferred)
-        order = node_order.get(); // no second thread: the task runs here, now
-      else
-        pattern_ready.get();
-      Sparse M = internal::system_in_row_order(m_mesh, m_rows, node_start, node_rows);
-      if(!deferred)
-        order = node_order.get(); // the other thread is done with the pattern
-      std::vector<int>().swap(node_start);
-      std::vector<int>().swap(node_rows);
-      load_system(M, order); // ends the assembly phase
+      Sparse M = internal::system_in_row_order(m_mesh, m_rows, node_order.node_start(), node_order.node_rows());
+      std::vector<int> order = node_order.order();
+      m_system.load(m_rows, M, order);
     }
+    notify(Phase::assembly, 1);
     // beside the factorization rather than the assembly, which is more sensitive to a shared cache: the
     // corner angles (for the holonomies and the field) and the nodes of every edge (for the solves)
     std::future<int> angles = internal::concurrently([this] {
@@ -260,13 +234,14 @@ public:
       m_rows.compute_edge_nodes(m_mesh);
       return 0;
     });
-    factor();
+    notify(Phase::factorization, 0);
+    m_system.factor(m_rows);
+    notify(Phase::factorization, 1);
     angles.get();
     m_loop_holonomy = internal::levi_civita_holonomies(m_mesh, m_geometry, m_topology);
-    in_phase(Phase::loop_metric, [&] {
-      m_system.compute_metrics(m_rows, m_links, m_components.size());
-      return 0;
-    });
+    notify(Phase::loop_metric, 0);
+    m_system.compute_metrics(m_rows, m_links, m_components.size());
+    notify(Phase::loop_metric, 1);
     m_progress = nullptr; // the callback may not outlive the constructor call
   }
 
@@ -334,13 +309,7 @@ public:
     const std::size_t i = std::size_t(get(m_mesh.vertex_index, v));
     if(i >= std::size_t(m_mesh.nv) || m_mesh.vertex_descriptors[i] != v)
       return std::nullopt;
-    const int node = m_topology.node_of_vertex[i];
-    if(node < m_topology.number_of_interior_nodes)
-      return std::nullopt;
-    for(std::size_t l = 0; l < m_topology.loops.size(); ++l)
-      if(m_topology.loops[l].kind == Loop_kind::boundary && m_topology.loops[l].node == node)
-        return l;
-    return std::nullopt;
+    return m_topology.boundary_loop_of_node(m_topology.node_of_vertex[i]);
   }
   /// Levi-Civita holonomy `H_L` of `loops()[l]`: the exact geodesic curvature of a boundary loop, the
   /// holonomy wrapped to `(-pi, pi]` for a generator
@@ -515,14 +484,11 @@ public:
   {
     const double seed_angle =
       CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::seed_angle), 0.);
-    int seed = -1;
-    if(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::seed_face_t>::value) {
-      const face_descriptor f = CGAL::parameters::choose_parameter(
-        CGAL::parameters::get_parameter(np, tc_np::seed_face), face_descriptor());
-      seed = f == Graph_traits::null_face() ? -1 : int(get(m_mesh.face_index, f));
-      if(seed < 0 || seed >= m_mesh.nf || m_mesh.face_descriptors[seed] != f)
-        throw Invalid_input(Error_code::invalid_argument, "the seed face is not a face of the mesh");
-    }
+    const int seed = CGAL::parameters::is_default_parameter<NamedParameters, tc_np::seed_face_t>::value
+                       ? -1
+                       : internal::checked_seed_face(m_mesh, CGAL::parameters::choose_parameter(
+                                                               CGAL::parameters::get_parameter(np, tc_np::seed_face),
+                                                               face_descriptor()));
     if(!std::isfinite(seed_angle))
       throw Invalid_input(Error_code::invalid_argument, "the seed angle is not finite");
     const Progress_callback progress = progress_of(np);
@@ -554,26 +520,9 @@ private:
   // the constructor's phases
   void notify(Phase p, double fraction) const { notify(m_progress, p, fraction); }
 
-  template <class Make>
-  auto in_phase(Phase p, Make&& make) -> decltype(make())
-  {
-    notify(p, 0);
-    auto result = make();
-    notify(p, 1);
-    return result;
-  }
-
-  // the public view of the topology: loops as halfedges, components as reports
+  // the loops of the topology as halfedges
   void build_loops()
   {
-    const std::vector<internal::Mesh_topology::Component>& comps = m_topology.components;
-    m_components.resize(comps.size());
-    for(std::size_t c = 0; c < comps.size(); ++c) {
-      m_components[c].number_of_faces = std::size_t(comps[c].faces);
-      m_components[c].euler_characteristic = comps[c].euler_characteristic;
-      m_components[c].genus = comps[c].genus;
-      m_components[c].number_of_boundary_loops = std::size_t(comps[c].boundary_loops);
-    }
     for(const internal::Mesh_topology::Loop& l : m_topology.loops) {
       Loop loop;
       loop.kind = l.kind;
@@ -594,13 +543,7 @@ private:
         internal::checked_face_indices(m_mesh, CGAL::parameters::get_parameter(np, tc_np::constrained_faces), "constrained");
     if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::guided_faces_t>::value)
       guided = internal::checked_face_indices(m_mesh, CGAL::parameters::get_parameter(np, tc_np::guided_faces), "guided");
-    std::vector<char> constrained(std::size_t(m_mesh.nf), 0);
-    for(int f : user_faces)
-      constrained[f] = 1;
-    for(int f : guided)
-      if(constrained[f])
-        throw Invalid_input(Error_code::invalid_constraint,
-                            "face " + std::to_string(f) + " is both constrained and guided", std::size_t(f));
+    internal::check_disjoint_face_sets(m_mesh.nf, user_faces, guided);
   }
 
   // per constrained face, its target angle in its frame: the direction of its border halfedge when the boundary
@@ -621,74 +564,34 @@ private:
     }
   }
 
-  // M = A W^-1 A^T (from system_in_row_order(); released here) handed to the backend with its node rows in
-  // the fill-reducing order `node_order` (released too) and the free rows last. Both are released before
-  // the factorization, whose memory is the peak.
-  void load_system(Sparse& M, std::vector<int>& node_order)
-  {
-    if(m_rows.rows > 0) {
-      const internal::Row_permutation permutation = internal::loop_rows_last(m_rows, node_order);
-      Sparse ordered =
-        internal::ordered_system(M, permutation, internal::Sparse_factor<Solver_traits>::stored_triangle);
-      M = Sparse();
-      std::vector<int>().swap(node_order);
-      m_system.factor().load(ordered, permutation);
-    }
-    notify(Phase::assembly, 1);
-  }
-
-  void factor()
-  {
-    notify(Phase::factorization, 0);
-    m_system.factor().factor(m_rows.rows);
-    notify(Phase::factorization, 1);
-  }
-
   // The system again for new constrained and guided faces, on the same mesh data and node order.
   void rebuild(const std::vector<int>& user_faces, const std::vector<int>& guided)
   {
-    // the nodes in their current order (positions of their rows), for the same fill-reducing order
-    const internal::Mesh_topology& t = m_topology;
-    std::vector<int> order(std::size_t(t.number_of_nodes));
-    for(int node = 0; node < t.number_of_nodes; ++node)
-      order[std::size_t(node)] = node;
-    if(m_rows.rows > 0) {
-      const int* position = m_system.factor().permutation().indices().data();
-      std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-        const int ra = m_rows.row_of_node[a], rb = m_rows.row_of_node[b];
-        return (ra < 0 ? -1 : position[ra]) < (rb < 0 ? -1 : position[rb]);
-      });
-    }
+    std::vector<int> order = m_system.node_order(m_rows, m_topology.number_of_nodes);
     m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight);
     std::vector<std::array<int, 2>> edge_nodes = std::move(m_rows.edge_nodes);
     m_rows = internal::Constraint_rows(m_mesh, m_geometry, m_topology, m_links);
     m_rows.edge_nodes = std::move(edge_nodes);
-    std::vector<int> node_start, node_rows;
-    m_topology.node_adjacency(m_mesh, node_start, node_rows);
-    Sparse M = internal::system_in_row_order(m_mesh, m_rows, node_start, node_rows);
-    std::vector<int>().swap(node_start);
-    std::vector<int>().swap(node_rows);
-    load_system(M, order);
-    factor();
-    m_system.compute_metrics(m_rows, m_links, m_components.size());
+    m_system.refactor(m_mesh, m_rows, m_links, order, m_components.size());
   }
 
-  // Each part is built from the ones above it and reads them, never the other way: the mesh, its geometry and
-  // topology, the constraint system (links, rows), its factorization.
-  const TriangleMesh& m_tm;
+  // The parts, one per layer, declared in the order they are built: each is made from the ones before it and
+  // keeps at most const references to them; none knows the coordinator, which alone sequences them and is
+  // the only one to read named parameters (n, the weights and mu enter here and are passed down as values).
+  const TriangleMesh& m_tm;                  // the user's mesh, read only
   Geom_traits m_traits;
   Weighting m_weighting;
-  Progress_callback m_progress; // only during the constructor
-  Mesh m_mesh;
-  internal::Mesh_geometry m_geometry;
-  internal::Mesh_topology m_topology;
-  std::vector<Loop> m_loops;
+  Progress_callback m_progress;              // only during the constructor
+  Mesh m_mesh;                               // mesh/: the flat arrays
+  internal::Mesh_geometry m_geometry;        // mesh/: angles, transport, weights
+  internal::Mesh_topology m_topology;        // topology/: trees, loops
+  std::vector<Loop> m_loops;                 // the loops and components as loops() and components() give them
   std::vector<Component_report> m_components;
-  std::vector<double> m_loop_holonomy; // per loop, H_L
-  bool m_align = false;                // align_with_boundary
-  internal::Constraint_links m_links;
-  internal::Constraint_rows m_rows;
-  internal::Prefactored_system<Solver_traits> m_system;
+  std::vector<double> m_loop_holonomy;       // topology/: per loop, H_L
+  bool m_align = false;                      // align_with_boundary
+  internal::Constraint_links m_links;        // system/: constrained and guided faces, links, mu
+  internal::Constraint_rows m_rows;          // system/: the rows of A x = b
+  internal::Prefactored_system<Solver_traits> m_system; // factorization/: M factored, its solves
 };
 
 } // namespace Trivial_connections

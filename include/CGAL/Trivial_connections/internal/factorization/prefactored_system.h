@@ -13,9 +13,11 @@
 #include <CGAL/Trivial_connections/internal/factorization/sparse_factor.h>
 #include <CGAL/Trivial_connections/internal/system/constraint_links.h>
 #include <CGAL/Trivial_connections/internal/system/constraint_rows.h>
+#include <CGAL/Trivial_connections/internal/system/system_assembly.h>
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -47,7 +49,57 @@ public:
     Eigen::VectorXd z;              // the forward substitution, rows at their positions
   };
 
-  Sparse_factor<SolverTraits>& factor() { return m_factor; }
+  // M = A W^-1 A^T (from system_in_row_order(); released here) handed to the backend with its node rows in the
+  // fill-reducing order `node_order` (released too) and the free rows last. Both are released before the
+  // factorization, whose memory is the peak.
+  void load(const Constraint_rows& rows, Eigen::SparseMatrix<double>& M, std::vector<int>& node_order)
+  {
+    if(rows.rows == 0)
+      return;
+    const Row_permutation permutation = loop_rows_last(rows, node_order);
+    Eigen::SparseMatrix<double> ordered =
+      ordered_system(M, permutation, Sparse_factor<SolverTraits>::stored_triangle);
+    M = Eigen::SparseMatrix<double>();
+    std::vector<int>().swap(node_order);
+    m_factor.load(ordered, permutation);
+  }
+
+  void factor(const Constraint_rows& rows) { m_factor.factor(rows.rows); }
+
+  // The nodes in the order of their rows in the factor (pinned nodes first), to factor a new system of the same
+  // mesh in the same fill-reducing order.
+  std::vector<int> node_order(const Constraint_rows& rows, int number_of_nodes) const
+  {
+    std::vector<int> order((std::size_t(number_of_nodes))); // not a declaration
+    for(int node = 0; node < number_of_nodes; ++node)
+      order[std::size_t(node)] = node;
+    if(rows.rows > 0) {
+      const int* position = m_factor.permutation().indices().data();
+      std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        const int ra = rows.row_of_node[a], rb = rows.row_of_node[b];
+        return (ra < 0 ? -1 : position[ra]) < (rb < 0 ? -1 : position[rb]);
+      });
+    }
+    return order;
+  }
+
+  // A new system on the same mesh (set_constraints() with a backend that does not expose its factor):
+  // assembled, factored in the node order `node_order` (from node_order() of the previous one), its metric.
+  template <class TriangleMesh>
+  void refactor(const Mesh_arrays<TriangleMesh>& m, const Constraint_rows& rows, const Constraint_links& links,
+                std::vector<int>& node_order, std::size_t components)
+  {
+    std::vector<int> node_start, node_rows;
+    rows.topology().node_adjacency(m, node_start, node_rows);
+    Eigen::SparseMatrix<double> M = system_in_row_order(m, rows, node_start, node_rows);
+    std::vector<int>().swap(node_start);
+    std::vector<int>().swap(node_rows);
+    load(rows, M, node_order);
+    factor(rows);
+    compute_metrics(rows, links, components);
+  }
+
+  const Row_permutation& permutation() const { return m_factor.permutation(); }
   const std::vector<Loop_metric>& metrics() const { return m_metrics; }
   // the metric was read from the factor, whose substitutions are exposed (set_constraints() keeps the factor)
   bool loop_rows_in_factor() const { return m_loop_rows_in_factor; }

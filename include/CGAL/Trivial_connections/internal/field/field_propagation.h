@@ -24,6 +24,17 @@ namespace CGAL {
 namespace Trivial_connections {
 namespace internal {
 
+// the index of the seed face of compute_field(), checked
+template <class TriangleMesh>
+int checked_seed_face(const Mesh_arrays<TriangleMesh>& m,
+                      typename boost::graph_traits<TriangleMesh>::face_descriptor f)
+{
+  const int seed = f == boost::graph_traits<TriangleMesh>::null_face() ? -1 : int(get(m.face_index, f));
+  if(seed < 0 || seed >= m.nf || m.face_descriptors[seed] != f)
+    throw Invalid_input(Error_code::invalid_argument, "the seed face is not a face of the mesh");
+  return seed;
+}
+
 // The phi minimising sum_g (phi + o_g)^2 with each phi + o_g reduced to (-period/2, period/2]: the values
 // -o_g reduced to [0, period) are sorted; an optimal choice of representatives takes them as they are from
 // some point on and one period higher before it (a contiguous arc), and phi is their mean.

@@ -50,6 +50,18 @@ std::vector<int> checked_face_indices(const Mesh_arrays<TriangleMesh>& m, const 
   return faces;
 }
 
+// no face both constrained and guided
+inline void check_disjoint_face_sets(int nf, const std::vector<int>& constrained_faces, const std::vector<int>& guided)
+{
+  std::vector<char> constrained(std::size_t(nf), 0);
+  for(int f : constrained_faces)
+    constrained[f] = 1;
+  for(int f : guided)
+    if(constrained[f])
+      throw Invalid_input(Error_code::invalid_constraint, "face " + std::to_string(f) + " is both constrained and guided",
+                          std::size_t(f));
+}
+
 /*
   The directional constraints as links between faces. Per component, the constrained faces are chained and
   each link is a dual path, whose row says that the connection carries the target of one end to the target

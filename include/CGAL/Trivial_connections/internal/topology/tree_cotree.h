@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -277,10 +278,35 @@ struct Mesh_topology
     }
   }
 
+  // the position in `loops` of the boundary loop of a node, if it is one
+  std::optional<std::size_t> boundary_loop_of_node(int node) const
+  {
+    if(node < number_of_interior_nodes)
+      return std::nullopt;
+    for(std::size_t l = 0; l < loops.size(); ++l)
+      if(loops[l].kind == Loop_kind::boundary && loops[l].node == node)
+        return l;
+    return std::nullopt;
+  }
+
 private:
   std::vector<Loop> m_boundary; // boundary loops in the order found; `component` set by build_trees()
   std::vector<int> m_boundary_start; // a border corner halfedge of each
 };
+
+// the topology of each component as the public reports give it (`vertex_index_sum` 0)
+inline std::vector<Component_report> component_reports(const Mesh_topology& topology)
+{
+  std::vector<Component_report> reports(topology.components.size());
+  for(std::size_t c = 0; c < reports.size(); ++c) {
+    const Mesh_topology::Component& component = topology.components[c];
+    reports[c].number_of_faces = std::size_t(component.faces);
+    reports[c].euler_characteristic = component.euler_characteristic;
+    reports[c].genus = component.genus;
+    reports[c].number_of_boundary_loops = std::size_t(component.boundary_loops);
+  }
+  return reports;
+}
 
 } // namespace internal
 } // namespace Trivial_connections

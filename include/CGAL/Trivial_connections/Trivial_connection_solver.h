@@ -26,6 +26,7 @@
 #include <CGAL/Trivial_connections/internal/system/system_assembly.h>
 #include <CGAL/Trivial_connections/internal/factorization/concurrent_node_order.h>
 #include <CGAL/Trivial_connections/internal/factorization/prefactored_system.h>
+#include <CGAL/Trivial_connections/internal/integers/integer_solve.h>
 #include <CGAL/Trivial_connections/internal/integers/loop_periods.h>
 #include <CGAL/Trivial_connections/internal/field/field_propagation.h>
 #include <CGAL/Trivial_connections/internal/field/report.h>
@@ -422,22 +423,12 @@ public:
         choose_periods = choose_periods || !prescribed[l];
     Eigen::VectorXd lambda;
     double rounding_energy = 0;
-    if(choose_periods) {
-      typename internal::Prefactored_system<Solver_traits>::Loop_forward forward = m_system.forward(m_rows, b);
-      notify(progress, Phase::loop_integers, 0);
-      // the budget of the enumeration: about the work of a few back-substitutions, so that a re-solve stays cheap
-      const double loop_energy = internal::choose_loop_periods(
-        m_rows.free_slots, m_system.metrics(), forward.y, unit, prescribed, holonomy,
-        (std::max)(2e5, 10. * double(m_rows.rows)), periods, report.integers_proven_optimal);
-      notify(progress, Phase::loop_integers, 1);
-      const std::vector<Eigen::VectorXd> t =
-        internal::loop_right_hand_sides(m_rows.free_slots, forward.y, unit, prescribed, periods);
-      internal::add_chosen_periods(m_rows, periods, prescribed, unit, b);
-      lambda = m_system.backward(m_rows, forward, t, b);
-      rounding_energy = forward.node_part + loop_energy;
-    } else {
+    if(choose_periods)
+      lambda = internal::solve_choosing_integers(
+        m_system, m_rows, b, unit, prescribed, holonomy, periods, report.integers_proven_optimal, rounding_energy,
+        [&](double fraction) { notify(progress, Phase::loop_integers, fraction); });
+    else
       lambda = m_system.solve(m_rows, b);
-    }
 
     internal::Constraint_sums sums;
     const Eigen::VectorXd xe = internal::checked_connection(

@@ -462,6 +462,15 @@ std::vector<double> connection_carrying(const Layers& l, const std::vector<doubl
   return x;
 }
 
+// per corner halfedge values as a map on the mesh's halfedges
+std::unordered_map<Surface_mesh::Halfedge_index, double> per_halfedge(const Layers& l, const std::vector<double>& x)
+{
+  std::unordered_map<Surface_mesh::Halfedge_index, double> map;
+  for(int i = 0; i < 3 * l.arrays.nf; ++i)
+    map[l.arrays.halfedges[i]] = x[i];
+  return map;
+}
+
 TEST(Field, propagation_reproduces_a_parallel_field)
 {
   const Surface_mesh mesh = two_spheres(2);
@@ -472,9 +481,7 @@ TEST(Field, propagation_reproduces_a_parallel_field)
   for(double& t : theta)
     t = u(rng);
   const std::vector<double> x = connection_carrying(l, theta);
-  std::unordered_map<Surface_mesh::Halfedge_index, double> by_halfedge;
-  for(int i = 0; i < 3 * l.arrays.nf; ++i)
-    by_halfedge[l.arrays.halfedges[i]] = x[i];
+  const auto by_halfedge = per_halfedge(l, x);
   const boost::const_associative_property_map<std::unordered_map<Surface_mesh::Halfedge_index, double>> xmap(by_halfedge);
   // seed on the second sphere: it gets theta exactly, the first sphere theta up to one rotation
   const int seed = l.arrays.nf - 1;
@@ -488,7 +495,6 @@ TEST(Field, propagation_reproduces_a_parallel_field)
     EXPECT_NEAR(wrap(angle[f] - expected), 0., 1e-9) << "face " << f;
   }
   // the vectors: unit, tangent, at that angle in the face frame
-  std::vector<Vector> vectors(std::size_t(l.arrays.nf));
   std::unordered_map<Surface_mesh::Face_index, Vector> by_face;
   TCI::write_field(l.arrays, angle, K(), boost::associative_property_map<std::unordered_map<Surface_mesh::Face_index, Vector>>(by_face));
   for(int f = 0; f < l.arrays.nf; ++f) {
@@ -516,9 +522,7 @@ TEST(Field, rotations_onto_targets_and_guides)
   for(double& t : theta)
     t = u(rng);
   const std::vector<double> x = connection_carrying(l, theta);
-  std::unordered_map<Surface_mesh::Halfedge_index, double> by_halfedge;
-  for(int i = 0; i < 3 * nf; ++i)
-    by_halfedge[l.arrays.halfedges[i]] = x[i];
+  const auto by_halfedge = per_halfedge(l, x);
   const boost::const_associative_property_map<std::unordered_map<Surface_mesh::Halfedge_index, double>> xmap(by_halfedge);
   std::vector<double> target(l.links.faces.size());
   for(double& t : target)

@@ -411,7 +411,7 @@ public:
       internal::read_prescribed_periods(internal::optional_periods(CGAL::parameters::choose_parameter(
                                           CGAL::parameters::get_parameter(np, tc_np::loop_periods),
                                           std::vector<std::int64_t>())),
-                                        m_topology, report.components, k, n, periods, prescribed);
+                                        m_topology, report.components, n, periods, prescribed);
 
     const Progress_callback progress = progress_of(np);
     const double unit = 2 * CGAL_PI / n;

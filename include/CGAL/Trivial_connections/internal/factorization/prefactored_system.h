@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -139,7 +140,7 @@ public:
     Loop_forward f;
     if(m_bordered.active()) {
       f.bordered = m_bordered.forward(m_factor, rows, m_metrics, b);
-      f.y = f.bordered.y;
+      f.y = std::move(f.bordered.y); // the bordered backward pass does not read it
       f.node_part = f.bordered.node_part;
     } else if(m_loop_rows_in_factor) {
       const Eigen::Index first = rows.rows - Eigen::Index(rows.free_rows.size());

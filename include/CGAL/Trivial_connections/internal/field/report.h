@@ -10,6 +10,7 @@
 #include <CGAL/Trivial_connections/Solve_report.h>
 #include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
 #include <CGAL/Trivial_connections/internal/system/constraint_rows.h>
+#include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
 
 #include <CGAL/number_type_config.h>
 
@@ -46,7 +47,8 @@ void write_connection(const TriangleMesh& tm, const Mesh_arrays<TriangleMesh>& m
 /*
   The report of a solve from the constraint sums of its connection: energies, the residual of every vertex,
   loop and link, every integer (the pinned boundary loop's, not a row of the system, follows from
-  Poincare-Hopf and is written into `periods`), the guidance mismatches. `report.components` is set already.
+  Poincare-Hopf and is written into `periods`), the guidance mismatches. `report.components` is set already,
+  with the vertex index sums.
   `loop_holonomy`: per loop, H_L; `holonomy`: per slot, the H of its row.
 */
 inline void fill_report(const Constraint_rows& rows, const Constraint_sums& sums, const std::vector<double>& loop_holonomy,
@@ -69,10 +71,7 @@ inline void fill_report(const Constraint_rows& rows, const Constraint_sums& sums
   }
 
   // the pinned boundary loop's integer follows from Poincare-Hopf
-  std::vector<std::int64_t> total(report.components.size(), 0);
-  for(std::size_t v = 0; v < k.size(); ++v)
-    if(k[v] != 0)
-      total[t.component_of_node[t.node_of_vertex[v]]] += k[v];
+  std::vector<std::int64_t> total = scaled_vertex_index_sums(report.components, n);
   for(std::size_t l = 0; l < loops.size(); ++l)
     if(loops[l].kind == Loop_kind::boundary && rows.row_of_slot[l] >= 0)
       total[loops[l].component] += periods[l];

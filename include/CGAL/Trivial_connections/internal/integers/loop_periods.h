@@ -11,6 +11,7 @@
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/internal/factorization/loop_metric.h>
 #include <CGAL/Trivial_connections/internal/integers/closest_vector.h>
+#include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
 #include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
 
 #include <Eigen/Dense>
@@ -127,11 +128,11 @@ inline std::vector<Eigen::VectorXd> loop_right_hand_sides(const std::vector<std:
 /*
   `loop_periods` of a solve: one entry per loop of the tree-cotree decomposition, empty where the solver
   chooses, read into `periods` and `prescribed`. The boundary loops of a component are prescribed all or none,
-  and then with `k` (n times the vertex indices, per vertex) they must satisfy Poincare-Hopf.
+  and then, with the vertex index sums of `components` (from checked_vertex_indices()), they must satisfy
+  Poincare-Hopf.
 */
 inline void read_prescribed_periods(const std::vector<std::optional<std::int64_t>>& given, const Mesh_topology& topology,
-                                    const std::vector<Component_report>& components, const std::vector<std::int64_t>& k,
-                                    int n, std::vector<std::int64_t>& periods, std::vector<char>& prescribed)
+                                    const std::vector<Component_report>& components, int n, std::vector<std::int64_t>& periods, std::vector<char>& prescribed)
 {
   const std::vector<Mesh_topology::Loop>& loops = topology.loops;
   if(given.size() != loops.size())
@@ -145,10 +146,7 @@ inline void read_prescribed_periods(const std::vector<std::optional<std::int64_t
     if(loops[l].kind == Loop_kind::boundary && given[l])
       ++boundary_given[loops[l].component];
   }
-  std::vector<std::int64_t> total(components.size(), 0);
-  for(std::size_t v = 0; v < k.size(); ++v)
-    if(k[v] != 0)
-      total[topology.component_of_node[topology.node_of_vertex[v]]] += k[v];
+  std::vector<std::int64_t> total = scaled_vertex_index_sums(components, n);
   for(std::size_t l = 0; l < loops.size(); ++l)
     if(loops[l].kind == Loop_kind::boundary)
       total[loops[l].component] += periods[l];

@@ -94,6 +94,16 @@ std::vector<std::int64_t> checked_vertex_indices(const Mesh_arrays<TriangleMesh>
   return k;
 }
 
+// n times the index sum of each component's vertices, from the `vertex_index_sum` that checked_vertex_indices()
+// wrote (exact: its denominator divides n)
+inline std::vector<std::int64_t> scaled_vertex_index_sums(const std::vector<Component_report>& components, int n)
+{
+  std::vector<std::int64_t> sums(components.size(), 0);
+  for(std::size_t c = 0; c < components.size(); ++c)
+    sums[c] = components[c].vertex_index_sum.times(n);
+  return sums;
+}
+
 // Per slot, H with H + sum x = 2 pi period / n: the loops' Levi-Civita holonomy, and for a link the
 // transport along it plus the target angle it leaves minus the one it reaches (wrapped).
 inline std::vector<double> slot_holonomies(const Constraint_rows& rows, const std::vector<double>& loop_holonomy,

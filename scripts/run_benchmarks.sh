@@ -3,6 +3,7 @@
 #
 #   bash scripts/run_benchmarks.sh [--sizes small|large|huge|all|LIST] [--backends ldlt,cholmod]
 #                                  [--repetitions N] [--no-build] [--table-only] [--out FILE]
+#   bash scripts/run_benchmarks.sh --integers [--no-build] [--out FILE]
 #
 #   --sizes        small (default, a few minutes): CGAL meshes 5k-90k faces and a 300k subdivision;
 #                  large: ~1.2M faces (genus 0, 11, 133); huge: ~5M faces; all; or a comma list.
@@ -10,6 +11,10 @@
 #                  -DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON); default: both (cholmod only if CHOLMOD is installed).
 #   --repetitions  repetitions of the small meshes (default 3; large and huge run once).
 #   --no-build     use the existing binaries.   --table-only   only rewrite the table from the JSON files.
+#   --integers     instead of the suite: trivial_connections_integer_benchmark (the choice of the free integers
+#                  against their number, about 15 s, build-bench) into build-bench/integer-choice.json, and its
+#                  table as the section "Integer choice per dimension" at the end of FILE (replacing the one
+#                  there). Run it after the suite: the suite rewrites FILE without that section.
 #
 # JSON results go to build-bench/benchmark-results/BACKEND-SIZE.json and accumulate across runs: the table is
 # made from all of them (the newest result of each mesh wins), so the large meshes can be run separately.
@@ -25,6 +30,7 @@ BUILD=1
 TABLE_ONLY=0
 OUT="$ROOT/benchmark/RESULTS.md"
 JOBS="${JOBS:-2}"
+INTEGERS=0
 
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -34,7 +40,8 @@ while [ $# -gt 0 ]; do
     --no-build) BUILD=0; shift ;;
     --table-only) TABLE_ONLY=1; shift ;;
     --out) OUT="$2"; shift 2 ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    --integers) INTEGERS=1; shift ;;
+    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -45,6 +52,38 @@ if [ -z "$BACKENDS" ]; then
   if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then
     BACKENDS=ldlt,cholmod
   fi
+fi
+
+if [ "$INTEGERS" = 1 ]; then
+  dir="$ROOT/build-bench"
+  if [ "$BUILD" = 1 ]; then
+    cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF \
+          -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON >/dev/null
+    cmake --build "$dir" -j "$JOBS" --target trivial_connections_integer_benchmark
+  fi
+  exe="$dir/benchmark/trivial_connections_integer_benchmark"
+  [ -x "$exe" ] || { echo "run_benchmarks.sh: $exe not built" >&2; exit 1; }
+  [ -f "$OUT" ] || { echo "run_benchmarks.sh: $OUT missing (run the suite first)" >&2; exit 1; }
+  COMMIT="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  if ! git -C "$ROOT" diff --quiet HEAD -- include 2>/dev/null; then COMMIT="$COMMIT with uncommitted changes in include/"; fi
+  md="$(mktemp)"
+  TC_BENCH_MARKDOWN="$md" "$exe" --benchmark_out="$dir/integer-choice.json" --benchmark_out_format=json \
+    --benchmark_context=commit="${COMMIT%% *}"
+  {
+    # FILE without the section (and without trailing blank lines), then the section
+    sed '/^### Integer choice per dimension/,$d' "$OUT" | awk 'NF { for(; b > 0; b--) print ""; print; next } { b++ }'
+    echo
+    echo "### Integer choice per dimension"
+    echo
+    echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')), commit $COMMIT, by \`bash scripts/run_benchmarks.sh --integers\` (\`benchmark/Trivial_connections/benchmark_integer_choice.cpp\`, Eigen::SimplicialLDLT)."
+    echo "k: the free integers (loops not prescribed + constraint links); annulus_mM and holes_pP are generated (align_with_boundary: a constraint link per boundary vertex but one), the others are CGAL's meshes. Reduction: the constructor's loop_metric phase (the metric of the integers + LLL with deep insertions). Choice: the loop_integers phase of a solve (nearest plane, descent, budgeted enumeration) and the whole solve, medians over 9 solves of each of two singularity sets. Rel. gap = (energy − energy_lower_bound) / energy (energy with the guidance energy, 0 here), the larger of the two sets (0 when proven); proven: sets whose choice is proven optimal; rounding excess: (rounding_energy − energy) / energy, what rounding the integers one by one would cost more, the larger of the two sets."
+    echo
+    cat "$md"
+  } > "$OUT.tmp"
+  mv "$OUT.tmp" "$OUT"
+  rm -f "$md"
+  echo "run_benchmarks.sh: integer choice table appended to $OUT"
+  exit 0
 fi
 
 RESULTS_DIR="$ROOT/build-bench/benchmark-results"

@@ -411,7 +411,13 @@ void print_loops(std::ostream& out, const Options& o, const TC::Solve_report& re
   for(const TC::Loop_report& l : report.loops)
     (l.kind == TC::Loop_kind::boundary ? boundary : generators) += 1;
   out << "loops: " << boundary << " boundary, " << generators << " generators; integers "
-      << (report.integers_proven_optimal ? "proven optimal" : "chosen by a heuristic (not proven optimal)") << "\n";
+      << (report.integers_proven_optimal ? "proven optimal" : "not proven optimal");
+  if(!report.integers_proven_optimal) {
+    const double minimised = report.energy + report.guidance_energy;
+    out << " (no choice gives less than " << std::setprecision(10) << report.energy_lower_bound << ": within "
+        << std::setprecision(3) << 100 * (minimised - report.energy_lower_bound) / minimised << " % of the optimum)";
+  }
+  out << "\n";
   const std::size_t max_loops = 20;
   for(std::size_t l = 0; l < report.loops.size() && l < max_loops; ++l) {
     const TC::Loop_report& r = report.loops[l];

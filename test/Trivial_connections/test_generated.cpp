@@ -786,7 +786,7 @@ TEST(Closest_vector, matches_exhaustive_search_on_random_lattices)
       return d.dot(G * d);
     };
 
-    const TC::internal::Closest_vector_result result = TC::internal::closest_vector(G, R, c, {rounded});
+    const TC::internal::Closest_vector_result result = TC::internal::closest_vector(G, c, {rounded});
     ASSERT_EQ(int(result.m.size()), k);
     EXPECT_NEAR(result.value, q(result.m), 1e-9 * (1 + q(result.m)));
     EXPECT_LE(q(result.m), q(rounded) + 1e-12);

@@ -20,6 +20,8 @@
 #include <CGAL/Trivial_connections/internal/topology/dual_tree_paths.h>
 #include <CGAL/Trivial_connections/internal/topology/loop_holonomy.h>
 
+#include <optional>
+
 namespace {
 
 using namespace tc_test;
@@ -141,7 +143,7 @@ TEST(Closest_vector, exact_when_proven)
     std::vector<std::int64_t> rounded(k);
     for(Eigen::Index i = 0; i < k; ++i)
       rounded[i] = std::llround(c[i]);
-    const TCI::Closest_vector_result r = TCI::closest_vector(G, R, c, {rounded});
+    const TCI::Closest_vector_result r = TCI::closest_vector(G, c, {rounded});
     ASSERT_TRUE(r.proven);
     EXPECT_NEAR(r.value, q_of(G, c, r.m), 1e-9 * (1 + r.value));
     // the search radius of the brute force covers the optimum: |m - c|_inf <= sqrt(q(rounded) / lambda_min)
@@ -167,7 +169,7 @@ TEST(Closest_vector, out_of_budget_never_worse_than_candidates_and_locally_optim
   std::vector<std::int64_t> rounded(k), zero(k, 0);
   for(Eigen::Index i = 0; i < k; ++i)
     rounded[i] = std::llround(c[i]);
-  const TCI::Closest_vector_result r = TCI::closest_vector(G, R, c, {rounded, zero}, 1.); // 1000 nodes at most
+  const TCI::Closest_vector_result r = TCI::closest_vector(G, c, {rounded, zero}, 1.); // 1000 nodes at most
   EXPECT_FALSE(r.proven);
   ASSERT_EQ(r.candidate_values.size(), 2u);
   EXPECT_LE(r.value, (std::min)(r.candidate_values[0], r.candidate_values[1]) + 1e-9);
@@ -177,6 +179,238 @@ TEST(Closest_vector, out_of_budget_never_worse_than_candidates_and_locally_optim
       m[i] += step;
       EXPECT_GE(q_of(G, c, m), r.value - 1e-9 * (1 + r.value));
     }
+}
+
+// LLL with deep insertions: U unimodular with U^-1 exact, H = U^T G U, and the basis size reduced and Lovasz
+// reduced (delta 0.99, checked at 0.98) when the reduction completes
+TEST(Lattice_reduction, unimodular_and_reduced)
+{
+  std::mt19937 rng(5);
+  for(int trial = 0; trial < 30; ++trial) {
+    const Eigen::Index k = 2 + 2 * trial;
+    const Eigen::MatrixXd G = random_metric(rng, k);
+    const TCI::Reduced_lattice L = TCI::reduce_lattice(G, G.llt().matrixU(), 1e12);
+    ASSERT_TRUE(L.complete) << "k = " << k;
+    const Eigen::MatrixXd U(L.basis), V(L.inverse_basis);
+    EXPECT_EQ((U - U.array().round().matrix()).cwiseAbs().maxCoeff(), 0.);
+    EXPECT_EQ((U * V - Eigen::MatrixXd::Identity(k, k)).cwiseAbs().maxCoeff(), 0.) << "integer inverse, exactly";
+    const Eigen::MatrixXd H = U.transpose() * G * U;
+    EXPECT_LT((H - L.gram).cwiseAbs().maxCoeff(), 1e-9 * H.cwiseAbs().maxCoeff());
+    EXPECT_LT((L.factor.transpose() * L.factor - H).cwiseAbs().maxCoeff(), 1e-9 * H.cwiseAbs().maxCoeff());
+    // Gram-Schmidt of the reduced basis, from its own Cholesky factor
+    const Eigen::MatrixXd R = H.llt().matrixU();
+    for(Eigen::Index j = 1; j < k; ++j) {
+      const double mu = R(j - 1, j) / R(j - 1, j - 1);
+      EXPECT_GE(R(j, j) * R(j, j), (0.98 - mu * mu) * R(j - 1, j - 1) * R(j - 1, j - 1)) << "Lovasz, k = " << k;
+      for(Eigen::Index i = 0; i < j; ++i)
+        EXPECT_LE(std::abs(R(i, j) / R(i, i)), 0.52) << "size reduced, k = " << k;
+    }
+    // the Gram-Schmidt lengths multiply to the same volume: sqrt(det G)
+    EXPECT_NEAR(R.diagonal().array().log().sum(), G.llt().matrixU().toDenseMatrix().diagonal().array().log().sum(),
+                1e-8 * double(k));
+  }
+}
+
+// the exact minimum of q: every integer point of the box that bounds the ellipsoid q(m) <= q_max, whose
+// half-widths are sqrt(q_max (G^-1)_ii); nullopt when the box has more than `limit` points
+std::optional<double> brute_force_in_ellipsoid(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, double q_max,
+                                               double limit = 4e6)
+{
+  const Eigen::Index k = c.size();
+  const Eigen::MatrixXd inverse = G.inverse();
+  std::vector<std::int64_t> low(k), high(k), m(k);
+  double points = 1;
+  for(Eigen::Index i = 0; i < k; ++i) {
+    const double r = std::sqrt(q_max * inverse(i, i)) + 1e-9;
+    low[i] = std::int64_t(std::ceil(c[i] - r));
+    high[i] = std::int64_t(std::floor(c[i] + r));
+    points *= double(high[i] - low[i] + 1);
+  }
+  if(points > limit)
+    return std::nullopt;
+  double best = std::numeric_limits<double>::infinity();
+  m = low;
+  while(true) {
+    best = (std::min)(best, q_of(G, c, m));
+    Eigen::Index i = 0;
+    for(; i < k; ++i) {
+      if(++m[i] <= high[i])
+        break;
+      m[i] = low[i];
+    }
+    if(i == k)
+      return best;
+  }
+}
+
+// Random lattices of dimension 2 to 12: the search proves the optimum, which brute force confirms, and its lower
+// bound is then the optimum; with a tiny budget, the bound still holds and the point is no worse than rounding
+TEST(Closest_vector, random_lattices_exact_optimum_and_valid_bound)
+{
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-6, 6);
+  int checked = 0, checked_small_budget = 0;
+  for(int trial = 0; trial < 110; ++trial) {
+    const Eigen::Index k = 2 + trial % 11;
+    // mildly conditioned, so that the brute-force box stays small; skewed, so that rounding is poor
+    Eigen::MatrixXd B = Eigen::MatrixXd::Identity(k, k);
+    std::uniform_real_distribution<double> shear(-1.5, 1.5);
+    for(Eigen::Index i = 0; i < k; ++i)
+      for(Eigen::Index j = i + 1; j < k; ++j)
+        B(i, j) = shear(rng) / double(k);
+    const Eigen::MatrixXd G = B.transpose() * B;
+    Eigen::VectorXd c(k);
+    for(Eigen::Index i = 0; i < k; ++i)
+      c[i] = u(rng);
+    std::vector<std::int64_t> rounded(k);
+    for(Eigen::Index i = 0; i < k; ++i)
+      rounded[i] = std::llround(c[i]);
+    const TCI::Closest_vector_result r = TCI::closest_vector(G, c, {rounded});
+    ASSERT_TRUE(r.proven) << "k = " << k;
+    EXPECT_NEAR(r.value, q_of(G, c, r.m), 1e-9 * (1 + r.value));
+    EXPECT_EQ(r.lower_bound, r.value);
+    const std::optional<double> exact = brute_force_in_ellipsoid(G, c, r.value * (1 + 1e-9) + 1e-12);
+    if(exact) {
+      ++checked;
+      EXPECT_NEAR(r.value, *exact, 1e-9 * (1 + r.value)) << "k = " << k;
+    }
+    const TCI::Closest_vector_result small = TCI::closest_vector(G, c, {rounded}, 1.);
+    EXPECT_LE(small.value, small.candidate_values[0] + 1e-12);
+    EXPECT_LE(small.lower_bound, r.value + 1e-9 * (1 + r.value)) << "k = " << k;
+    EXPECT_GE(small.value, r.value - 1e-9 * (1 + r.value));
+    checked_small_budget += small.proven ? 0 : 1;
+  }
+  EXPECT_GE(checked, 80) << "brute force ran on most lattices";
+  std::cout << "brute force on " << checked << " of 110 lattices; " << checked_small_budget
+            << " searches out of budget with a valid bound\n";
+}
+
+// +-1 local search from rounding in the basis V (columns): the reference of the integer choice's tests
+double local_search_in_basis(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, const Eigen::MatrixXd& V)
+{
+  const Eigen::Index k = c.size();
+  const Eigen::MatrixXd H = V.transpose() * G * V;
+  const Eigen::VectorXd w = V.fullPivLu().solve(c);
+  Eigen::VectorXd z = w.array().round().matrix();
+  Eigen::VectorXd d = z - w, Hd = H * d;
+  for(bool improved = true; improved;) {
+    improved = false;
+    for(Eigen::Index i = 0; i < k; ++i)
+      for(double step : {-1., 1.}) {
+        const double gain = 2 * step * Hd[i] + H(i, i);
+        if(gain < -1e-12 * (1 + std::abs(d.dot(Hd)))) {
+          z[i] += step;
+          d[i] += step;
+          Hd += step * H.col(i);
+          improved = true;
+        }
+      }
+  }
+  return d.dot(H * d);
+}
+
+// a random unimodular matrix: the identity changed by `operations` random column additions of +-1 times another
+Eigen::MatrixXd random_unimodular(std::mt19937& rng, Eigen::Index k, int operations)
+{
+  Eigen::MatrixXd V = Eigen::MatrixXd::Identity(k, k);
+  std::uniform_int_distribution<Eigen::Index> pick(0, k - 1);
+  std::bernoulli_distribution sign(0.5);
+  for(int o = 0; o < operations; ++o) {
+    const Eigen::Index i = pick(rng), j = pick(rng);
+    if(i != j)
+      V.col(i) += (sign(rng) ? 1. : -1.) * V.col(j);
+  }
+  return V;
+}
+
+// The integers of real and generated meshes with 50 to 300 free integers (high genus, many holes, many
+// constraint links), n = 1, 2, 4, 6, for right-hand sides from the forward pass of the prefactored system: the
+// loop energy the package chooses is no higher than the best of 20 +-1 local searches from rounding in random
+// unimodular changes of the loop basis and in the loop basis itself, and every such search stays above the
+// reported lower bound.
+TEST(Loop_periods, better_than_local_searches_in_any_basis_and_bounded)
+{
+  struct Case
+  {
+    std::string name;
+    Surface_mesh mesh;
+    bool align;
+  };
+  std::vector<Case> cases;
+  for(const char* file : {"elephant-with-holes.off", "cheese.off"}) {
+    Surface_mesh sm;
+    std::string why;
+    if(read_cgal_mesh(file, sm, why))
+      cases.push_back({file, std::move(sm), false});
+    else
+      std::cout << "skipped " << file << ": " << why << "\n";
+  }
+  cases.push_back({"annulus, aligned with its boundary", annulus(1, 2, 6, 60), true});
+  cases.push_back({"genus 2, warped", to_surface_mesh(warped(genus2_soup(2), 0.05)), false});
+  {
+    std::set<std::array<int, 3>> cells; // a plate of 3 x 61 cubes with 30 holes: genus 30, 60 integers
+    for(int i = 0; i < 3; ++i)
+      for(int j = 0; j < 61; ++j)
+        if(!(i == 1 && j % 2 == 1))
+          cells.insert({{i, j, 0}});
+    cases.push_back({"voxel plate of genus 30", to_surface_mesh(warped(voxel_surface_soup(cells, 1), 0.05)), false});
+  }
+  std::mt19937 rng(23);
+  std::normal_distribution<double> normal(0, 1);
+  for(const Case& m : cases) {
+    Layers l(m.mesh, {}, {}, m.align);
+    std::vector<int> node_start, node_rows;
+    l.topology.node_adjacency(l.arrays, node_start, node_rows);
+    Eigen::SparseMatrix<double> M = TCI::system_in_row_order(l.arrays, l.rows, node_start, node_rows);
+    std::vector<int> node_order;
+    TCI::Fill_reducing_ordering<TC::Default_solver_traits>::compute(l.topology.number_of_nodes, node_start, node_rows,
+                                                                    node_order);
+    TCI::Prefactored_system<TC::Default_solver_traits> system;
+    system.load(l.rows, M, node_order);
+    system.factor(l.rows);
+    system.compute_metrics(l.rows, l.links, l.topology.components.size());
+    const std::vector<TCI::Reduced_lattice> lattices = TCI::reduced_loop_lattices(system.metrics());
+    ASSERT_EQ(l.rows.free_slots.size(), 1u) << m.name;
+    const Eigen::Index k = Eigen::Index(l.rows.free_slots[0].size());
+    if(m.name.find("genus 2") == std::string::npos) {
+      EXPECT_GE(k, 50) << m.name;
+      EXPECT_LE(k, 300) << m.name;
+    }
+    const Eigen::MatrixXd& G = system.metrics()[0].inverse;
+    for(int n : {1, 2, 4, 6}) {
+      SCOPED_TRACE(m.name + ", k = " + std::to_string(k) + ", n = " + std::to_string(n));
+      const double unit = 2 * CGAL_PI / n;
+      Eigen::VectorXd b(l.rows.rows);
+      for(Eigen::Index i = 0; i < b.size(); ++i)
+        b[i] = normal(rng);
+      const auto forward = system.forward(l.rows, b);
+      const Eigen::VectorXd& y = forward.y[0];
+      const std::vector<int>& free = l.rows.free_slots[0]; // slot numbers, loops then links
+      const std::size_t slots = std::size_t(*std::max_element(free.begin(), free.end())) + 1;
+      const std::vector<char> prescribed(slots, 0);
+      const std::vector<double> holonomy(slots, 0.);
+      std::vector<std::int64_t> periods(slots, 0);
+      const TCI::Loop_period_choice choice = TCI::choose_loop_periods(
+        l.rows.free_slots, system.metrics(), lattices, forward.y, unit, prescribed, holonomy, 1e5, periods);
+      // the loop energy t^T G t, t = y + unit m, is unit^2 q(m) with q centred at c = -y / unit
+      const Eigen::VectorXd c = -y / unit;
+      Eigen::VectorXd t = y;
+      for(Eigen::Index a = 0; a < k; ++a)
+        t[a] += unit * double(periods[std::size_t(free[std::size_t(a)])]);
+      const double ours = t.dot(G * t);
+      EXPECT_LE(ours, choice.rounding_part + 1e-9 * (1 + ours)) << "never worse than rounding";
+      EXPECT_LE(choice.lower_bound_part, ours + 1e-9 * (1 + ours));
+      double best_local = unit * unit * local_search_in_basis(G, c, Eigen::MatrixXd::Identity(k, k));
+      for(int s = 0; s < 20; ++s)
+        best_local = (std::min)(best_local,
+                                unit * unit * local_search_in_basis(G, c, random_unimodular(rng, k, int(k) / 2)));
+      EXPECT_LE(ours, best_local + 1e-9 * (1 + ours));
+      EXPECT_GE(best_local, choice.lower_bound_part - 1e-9 * (1 + best_local)) << "the bound holds";
+      if(n == 1)
+        std::cout << m.name << ": k = " << k << ", loop energy " << ours << ", best local search " << best_local
+                  << ", lower bound " << choice.lower_bound_part << (choice.proven ? " (proven)" : "") << "\n";
+    }
+  }
 }
 
 // choose_loop_periods with some integers prescribed: the others minimise t^T G t, t = y + unit m
@@ -198,7 +432,10 @@ TEST(Loop_periods, partial_prescription_minimises_the_loop_energy)
     const std::vector<double> holonomy(k, 0.);
     std::vector<std::int64_t> periods(k, 0);
     bool proven = false;
-    TCI::choose_loop_periods(free_slots, {metric}, {y}, unit, prescribed, holonomy, 1e6, periods, proven);
+    const std::vector<TCI::Loop_metric> metrics = {metric};
+    proven = TCI::choose_loop_periods(free_slots, metrics, TCI::reduced_loop_lattices(metrics), {y}, unit, prescribed,
+                                      holonomy, 1e6, periods)
+               .proven;
     EXPECT_TRUE(proven);
     auto energy = [&](const std::vector<std::int64_t>& m) {
       Eigen::VectorXd t = y;

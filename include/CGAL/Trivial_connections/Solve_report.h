@@ -114,6 +114,11 @@ struct Solve_report
   double rounding_energy = 0;
   /// `true` when the integer choice was proven optimal by exhaustive enumeration (or prescribed, or empty)
   bool integers_proven_optimal = true;
+  /// a certificate for the integer choice: no choice of the free integers (the prescribed ones fixed) gives
+  /// a smaller `energy + guidance_energy` than this (up to rounding). It equals `energy + guidance_energy` when
+  /// `integers_proven_optimal`; otherwise the gap between the two bounds how far from optimal the answer can be
+  /// (see the user manual: it comes from the radius the enumeration proved empty)
+  double energy_lower_bound = 0;
   std::vector<Loop_report> loops;       ///< in the order of `Trivial_connection_solver::loops()`
   /// one per path joining two constrained faces (empty without directional constraints)
   std::vector<Constraint_report> constraints;

@@ -242,6 +242,7 @@ public:
     m_loop_holonomy = internal::levi_civita_holonomies(m_mesh, m_geometry, m_topology);
     notify(Phase::loop_metric, 0);
     m_system.compute_metrics(m_rows, m_links, m_components.size());
+    m_lattices = internal::reduced_loop_lattices(m_system.metrics());
     notify(Phase::loop_metric, 1);
     m_progress = nullptr; // the callback may not outlive the constructor call
   }
@@ -357,8 +358,10 @@ public:
       }
     } catch(...) {
       rebuild({}, {});
+      m_lattices = internal::reduced_loop_lattices(m_system.metrics());
       throw;
     }
+    m_lattices = internal::reduced_loop_lattices(m_system.metrics());
     return update;
   }
 
@@ -422,10 +425,10 @@ public:
       for(int l : free)
         choose_periods = choose_periods || !prescribed[l];
     Eigen::VectorXd lambda;
-    double rounding_energy = 0;
+    internal::Integer_choice_energies energies;
     if(choose_periods)
       lambda = internal::solve_choosing_integers(
-        m_system, m_rows, b, unit, prescribed, holonomy, periods, report.integers_proven_optimal, rounding_energy,
+        m_system, m_rows, m_lattices, b, unit, prescribed, holonomy, periods, energies,
         [&](double fraction) { notify(progress, Phase::loop_integers, fraction); });
     else
       lambda = m_system.solve(m_rows, b);
@@ -435,7 +438,11 @@ public:
       m_rows, [&](const Eigen::VectorXd& r) { return m_system.solve(m_rows, r); }, b, lambda, sums);
     internal::write_connection(m_tm, m_mesh, m_rows, xe, x);
     internal::fill_report(m_rows, sums, m_loop_holonomy, k, periods, prescribed, holonomy, n, report);
-    report.rounding_energy = choose_periods ? rounding_energy : report.energy + report.guidance_energy;
+    const double minimised = report.energy + report.guidance_energy;
+    report.integers_proven_optimal = energies.proven;
+    report.rounding_energy = choose_periods ? energies.rounding_energy : minimised;
+    // the bound is exact arithmetic on the enumeration's costs: rounding may put it a hair above the energy
+    report.energy_lower_bound = energies.proven ? minimised : (std::min)(energies.lower_bound, minimised);
     notify(progress, Phase::solve, 1);
     return report;
   }
@@ -583,6 +590,7 @@ private:
   internal::Constraint_links m_links;        // system/: constrained and guided faces, links, mu
   internal::Constraint_rows m_rows;          // system/: the rows of A x = b
   internal::Prefactored_system<Solver_traits> m_system; // factorization/: M factored, its solves
+  std::vector<internal::Reduced_lattice> m_lattices;    // integers/: per component, the reduced lattice of its integers
 };
 
 } // namespace Trivial_connections

@@ -6,6 +6,9 @@
 #ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_CLOSEST_VECTOR_H
 #define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_CLOSEST_VECTOR_H
 
+#include <CGAL/number_type_config.h>
+#include <CGAL/Trivial_connections/internal/integers/lattice_reduction.h>
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -22,60 +25,81 @@ namespace internal {
 /*
   Closest vector problem of the loop integers: minimise q(m) = (m - c)^T G (m - c) over integer vectors m,
   with G symmetric positive definite (the energy restricted to the loop integers) and c its real minimiser.
+  Everything runs in a reduced basis of the lattice (lattice_reduction.h): m = U z, q = (z - w)^T H (z - w),
+  H = R^T R, w = U^-1 c.
 
-  - Candidates given by the caller (componentwise rounding of c, ...) and the best of them is kept, so the
-    result is never worse than any of them.
-  - Greedy descent: shift one coordinate by its best integer step while q decreases.
-  - Schnorr-Euchner enumeration inside the ellipsoid q < best, depth first with zig-zag order, on the
-    Cholesky factor of G. When it finishes within `node_budget` nodes the result is the exact optimum
-    (`proven`); otherwise the best point met so far is kept.
+  - Candidates given by the caller (componentwise rounding of c, ...) and Babai's nearest plane point in the
+    reduced basis; the best of them is kept, so the result is never worse than any candidate.
+  - Greedy descent: shift one reduced coordinate by its best integer step while q decreases (at the end, in
+    the loop basis and the reduced one in turn, so that no single loop's integer can be improved either).
+  - Schnorr-Euchner enumeration (depth first, zig-zag order, levels k-1 down to 0) within a node budget:
+    1. complete passes inside balls q < rho: rho the best value found when the estimated work (Gaussian
+       heuristic over the Gram-Schmidt lengths) fits half the budget, otherwise growing radii from the one
+       whose estimate fits an eighth, within half the budget. A pass that finishes proves that no point has
+       q below its radius; one that runs out still proves q >= the smallest partial cost left on its stack
+       (the zig-zag order visits the children of a node by increasing cost). That is the lower bound.
+    2. with what is left of the budget, passes pruned linearly (the first d levels may use at most
+       min(1, a d / k) of the best value) with a = 2, 8, 32, ...: a heuristic search for better points whose
+       last pass, once a >= k, is complete and proves the optimum.
+  `proven`: the optimum is certain (up to rounding); `lower_bound` <= q of every integer point, = `value`
+  when proven.
 */
 struct Closest_vector_result
 {
   std::vector<std::int64_t> m;
-  double value = 0;    // q(m)
+  double value = 0;        // q(m)
+  double lower_bound = 0;  // no integer point has a smaller q
   bool proven = false;
   std::vector<double> candidate_values; // q of each candidate given
+  double work = 0;         // multiply-adds of the enumeration
 };
 
-// q(m) = |R (m - c)|^2 with G = R^T R: a triangular product, half the work of one with G
-inline double quadratic_distance(const Eigen::MatrixXd& R, const Eigen::VectorXd& c, const std::vector<std::int64_t>& m)
+// q = |R (z - w)|^2 with R upper triangular
+inline double quadratic_distance(const Eigen::MatrixXd& R, const Eigen::VectorXd& w, const Eigen::VectorXd& z)
 {
-  Eigen::VectorXd d(c.size());
-  for(Eigen::Index i = 0; i < c.size(); ++i)
-    d[i] = double(m[i]) - c[i];
-  return (R.triangularView<Eigen::Upper>() * d).squaredNorm();
+  return (R.triangularView<Eigen::Upper>() * (z - w)).squaredNorm();
 }
 
 struct Enumeration
 {
   const Eigen::MatrixXd& R;
-  const Eigen::VectorXd& c;
-  std::vector<std::int64_t> best_m;
+  const Eigen::VectorXd& w;
+  Eigen::VectorXd best_z;
   double best_value;
-  std::size_t nodes;
-  std::size_t node_budget;
-  bool out_of_budget;
-  std::vector<std::int64_t> m;
-  // sum[l] = sum_{j > l} R(l, j) (m_j - c_j) for the current m, kept up to date when a coordinate
+  double radius = std::numeric_limits<double>::infinity(); // the ball of the pass (besides best_value)
+  double pruning = 0;      // a > 0: the first d levels use at most min(1, a d / k) of best_value
+  double work = 0;         // multiply-adds of the pass: a node at level l costs l + 1
+  double work_budget = 0;
+  bool out_of_budget = false;
+  double frontier = std::numeric_limits<double>::infinity(); // smallest partial cost left unexplored
+  Eigen::VectorXd z;
+  // sum[l] = sum_{j > l} R(l, j) (z_j - w_j) for the current z, kept up to date when a coordinate
   // changes: a change at level j costs j, so the many nodes near the leaves are cheap.
-  std::vector<double> sum;
+  std::vector<double> sum, sum_at_zero;
   bool improved = false;
 
-  void start()
+  Enumeration(const Eigen::MatrixXd& R, const Eigen::VectorXd& w, const Eigen::VectorXd& z0, double value)
+    : R(R), w(w), best_z(z0), best_value(value)
   {
-    const Eigen::Index k = c.size();
-    m.assign(std::size_t(k), 0);
-    sum.assign(std::size_t(k), 0.);
-    for(Eigen::Index j = 1; j < k; ++j)
-      for(Eigen::Index l = 0; l < j; ++l)
-        sum[l] -= R(l, j) * c[j];
+    const Eigen::Index k = w.size();
+    Eigen::VectorXd s = -(R.triangularView<Eigen::StrictlyUpper>() * w);
+    sum_at_zero.assign(s.data(), s.data() + k);
   }
 
-  void assign(Eigen::Index level, std::int64_t v)
+  void start(double budget)
   {
-    const double delta = double(v - m[level]);
-    m[level] = v;
+    work_budget = budget;
+    work = 0;
+    out_of_budget = false;
+    frontier = std::numeric_limits<double>::infinity();
+    z = Eigen::VectorXd::Zero(w.size());
+    sum = sum_at_zero;
+  }
+
+  void assign(Eigen::Index level, double v)
+  {
+    const double delta = v - z[level];
+    z[level] = v;
     if(delta != 0) {
       const double* column = R.col(level).data();
       for(Eigen::Index l = 0; l < level; ++l)
@@ -83,29 +107,39 @@ struct Enumeration
     }
   }
 
+  double bound(Eigen::Index level) const
+  {
+    double b = (std::min)(best_value, radius);
+    if(pruning > 0) {
+      const double depth = double(w.size() - level);
+      b = (std::min)(b, best_value * (std::min)(1., pruning * depth / double(w.size())));
+    }
+    return b;
+  }
+
   void search(Eigen::Index level, double partial)
   {
     const double r = R(level, level);
-    const double center = c[level] - sum[level] / r;
+    const double center = w[level] - sum[level] / r;
     // candidates by increasing distance to the center: the first one beyond the bound ends the level
-    std::int64_t up = std::int64_t(std::ceil(center)), down = up - 1;
+    double up = std::ceil(center), down = up - 1;
     while(true) {
-      if(out_of_budget)
+      const bool take_up = (up - center) <= (center - down);
+      const double v = take_up ? up : down;
+      const double cost = partial + r * r * (v - center) * (v - center);
+      if(!(cost < bound(level)))
         return;
-      if(++nodes > node_budget) {
+      if(out_of_budget || (work += double(level + 1)) > work_budget) {
+        // this candidate and the ones after it are left: none can cost less than it
         out_of_budget = true;
+        frontier = (std::min)(frontier, cost);
         return;
       }
-      const bool take_up = (double(up) - center) <= (center - double(down));
-      const std::int64_t v = take_up ? up++ : down--;
-      const double d = double(v) - center;
-      const double cost = partial + r * r * d * d;
-      if(!(cost < best_value))
-        return;
+      (take_up ? up : down) += take_up ? 1 : -1;
       assign(level, v);
       if(level == 0) {
         best_value = cost;
-        best_m = m;
+        best_z = z;
         improved = true;
       } else {
         search(level - 1, cost);
@@ -114,88 +148,212 @@ struct Enumeration
   }
 };
 
-// Greedy coordinate descent: shift one coordinate by its best integer step while q decreases.
-// The gradient of q is 2 G (m - c). Leaves `best` optimal against every single-coordinate change.
-// On entry and exit r = best.m - c and Gr = G r.
-inline void greedy_descent(const Eigen::MatrixXd& G, Closest_vector_result& best, Eigen::VectorXd& r,
-                           Eigen::VectorXd& Gr)
+// The expected work of a complete enumeration of the ball q < rho, after the Gaussian heuristic: at depth d
+// (level k - d) about vol(d-ball of radius sqrt(rho)) / (R_{k-d,k-d} ... R_{k-1,k-1}) nodes, at k - d + 1
+// multiply-adds each. log(work at depth d) = d/2 log(rho) + offset[d - 1]; the largest term is within a
+// factor k of the sum, which is enough to choose a radius.
+struct Enumeration_cost
 {
-  const Eigen::Index k = r.size();
+  std::vector<double> offset;
+
+  explicit Enumeration_cost(const Eigen::MatrixXd& R)
+  {
+    const Eigen::Index k = R.rows();
+    offset.resize(std::size_t(k));
+    double log_det = 0;
+    for(Eigen::Index d = 1; d <= k; ++d) {
+      log_det += std::log(R(k - d, k - d));
+      const double half = double(d) / 2;
+      offset[std::size_t(d - 1)] = half * std::log(CGAL_PI) - std::lgamma(half + 1) - log_det + std::log(double(k - d + 1));
+    }
+  }
+
+  double log_work(double rho) const
+  {
+    const double log_rho = std::log(rho);
+    double largest = -std::numeric_limits<double>::infinity();
+    for(std::size_t d = 1; d <= offset.size(); ++d)
+      largest = (std::max)(largest, double(d) / 2 * log_rho + offset[d - 1]);
+    return largest;
+  }
+
+  // the largest rho <= high whose expected work is at most `work`
+  double radius_for(double work, double high) const
+  {
+    const double target = std::log(work);
+    if(!(high > 0) || log_work(high) <= target)
+      return high;
+    double low = 0;
+    for(int it = 0; it < 30; ++it) {
+      const double mid = (low + high) / 2;
+      (log_work(mid) > target ? high : low) = mid;
+    }
+    return low;
+  }
+};
+
+// Greedy coordinate descent in the reduced basis: shift one coordinate by its best integer step while q
+// decreases. The gradient of q is 2 H (z - w). Leaves `z` optimal against every single-coordinate change.
+// On entry and exit d = z - w and Hd = H d; returns q(z).
+inline double greedy_descent(const Eigen::MatrixXd& H, Eigen::VectorXd& z, Eigen::VectorXd& d, Eigen::VectorXd& Hd)
+{
+  const Eigen::Index k = z.size();
+  double value = d.dot(Hd);
   for(int sweep = 0; sweep < 1000; ++sweep) {
     bool improved = false;
     for(Eigen::Index i = 0; i < k; ++i) {
-      const double step = std::round(-Gr[i] / G(i, i));
+      const double step = std::round(-Hd[i] / H(i, i));
       if(step == 0)
         continue;
-      const double gain = 2 * step * Gr[i] + step * step * G(i, i);
-      if(gain < -1e-12 * (1 + std::abs(best.value))) {
-        best.m[i] += std::int64_t(step);
-        r[i] += step;
-        Gr += step * G.col(i);
-        best.value += gain;
+      const double gain = 2 * step * Hd[i] + step * step * H(i, i);
+      if(gain < -1e-12 * (1 + std::abs(value))) {
+        z[i] += step;
+        d[i] += step;
+        Hd += step * H.col(i);
+        value += gain;
         improved = true;
       }
     }
     if(!improved)
       break;
   }
-  best.value = r.dot(Gr); // the same, without the rounding drift of the updates
+  return d.dot(Hd); // the same, without the rounding drift of the updates
 }
 
-// G = R^T R with R upper triangular. The enumeration may visit work_budget / k nodes (at least 1000): its
-// first descent costs about k^2 / 2, a node at level l about l.
-inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eigen::MatrixXd& R,
+/*
+  The closest vector in `lattice` (reduce_lattice() of G) to c; the result is locally optimal against every
+  single-coordinate change in both bases (or proven optimal). The enumeration may do `work_budget`
+  multiply-adds, and at least 2 k^2 (a first descent costs about k^2 / 2).
+*/
+inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, const Eigen::MatrixXd& G,
                                             const Eigen::VectorXd& c,
                                             const std::vector<std::vector<std::int64_t>>& candidates,
                                             double work_budget = 2e6)
 {
   const Eigen::Index k = c.size();
   Closest_vector_result best;
-  best.value = std::numeric_limits<double>::infinity();
   if(k == 0) {
-    best.value = 0;
     best.proven = true;
     return best;
   }
+  const Eigen::MatrixXd& R = lattice.factor;
+  const Eigen::MatrixXd& H = lattice.gram;
+  const Eigen::VectorXd w = lattice.reduced ? Eigen::VectorXd(lattice.inverse_basis * c) : c;
+
+  // the candidates, then Babai's nearest plane point
+  Eigen::VectorXd z(k), best_z(k);
+  double best_value = std::numeric_limits<double>::infinity();
   for(const std::vector<std::int64_t>& m : candidates) {
-    const double q = quadratic_distance(R, c, m);
-    best.candidate_values.push_back(q);
-    if(q < best.value) { best.value = q; best.m = m; }
-  }
-
-  Eigen::VectorXd r(k);
-  for(Eigen::Index i = 0; i < k; ++i)
-    r[i] = double(best.m[i]) - c[i];
-  Eigen::VectorXd Gr = G * r;
-  greedy_descent(G, best, r, Gr);
-
-  // Schnorr-Euchner: q = sum_i R_ii^2 (m_i - center_i)^2 with G = R^T R, R upper triangular and
-  // center_i = c_i - sum_{j>i} R_ij (m_j - c_j) / R_ii; levels are fixed from k-1 down to 0.
-  const std::size_t node_budget = std::size_t((std::max)(1000., work_budget / double(k)));
-  Enumeration e{R, c, best.m, best.value, 0, node_budget, false, {}, {}};
-  e.start();
-  e.search(k - 1, 0.);
-  if(e.improved) {
-    // G r follows the coordinates that changed (few, usually), and is recomputed when many did
-    std::vector<Eigen::Index> changed;
     for(Eigen::Index i = 0; i < k; ++i)
-      if(e.best_m[i] != best.m[i])
-        changed.push_back(i);
-    for(Eigen::Index i : changed)
-      r[i] = double(e.best_m[i]) - c[i];
-    if(4 * Eigen::Index(changed.size()) > k) {
-      Gr.noalias() = G * r;
-    } else {
-      for(Eigen::Index i : changed)
-        Gr += double(e.best_m[i] - best.m[i]) * G.col(i);
-    }
-    best.m = e.best_m;
-    best.value = r.dot(Gr); // without the drift of the enumeration's running sums
+      z[i] = double(m[i]);
+    if(lattice.reduced)
+      z = lattice.inverse_basis * z;
+    const double q = quadratic_distance(R, w, z);
+    best.candidate_values.push_back(q);
+    if(q < best_value) { best_value = q; best_z = z; }
   }
-  best.proven = !e.out_of_budget;
-  if(!best.proven)
-    greedy_descent(G, best, r, Gr); // the interrupted enumeration's point may not be locally optimal
+  {
+    Eigen::VectorXd d(k); // z - w
+    for(Eigen::Index i = k - 1; i >= 0; --i) {
+      const double shift = R.row(i).tail(k - 1 - i).dot(d.tail(k - 1 - i)) / R(i, i);
+      z[i] = std::round(w[i] - shift);
+      d[i] = z[i] - w[i];
+    }
+    const double q = quadratic_distance(R, w, z);
+    if(q < best_value) { best_value = q; best_z = z; }
+  }
+  Eigen::VectorXd d = best_z - w;
+  Eigen::VectorXd Hd = H * d;
+  best_value = greedy_descent(H, best_z, d, Hd);
+
+  const double budget = (std::max)(work_budget, 2. * double(k) * double(k));
+  Enumeration e(R, w, best_z, best_value);
+  // 1. complete passes in growing balls, for the lower bound (and the optimum when the ball of the best value
+  // fits), with half the budget: the first in the ball whose expected work is an eighth of it, each next one
+  // in a ball of about twice the expected work, until a pass runs out or proves the optimum
+  const Enumeration_cost cost(R);
+  double rho = best_value;
+  if(cost.log_work(rho) > std::log(budget / 2))
+    rho = cost.radius_for(budget / 8, best_value);
+  double used = 0, lower_bound = 0;
+  bool proven = false;
+  while(true) {
+    e.radius = rho;
+    e.start(budget / 2 - used);
+    e.search(k - 1, 0.);
+    used += (std::min)(e.work, budget / 2 - used);
+    lower_bound = (std::max)(lower_bound, (std::min)({e.best_value, rho, e.frontier}));
+    if(e.out_of_budget)
+      break;
+    if(e.best_value <= rho) {
+      proven = true;
+      break;
+    }
+    if(used >= budget / 4)
+      break; // the next pass would likely not finish
+    rho = (std::min)(e.best_value, (std::max)(1.01 * rho, cost.radius_for(2 * std::exp(cost.log_work(rho)), e.best_value)));
+  }
+  // 2. pruned passes with the rest of the budget, each wider than the one before
+  e.radius = std::numeric_limits<double>::infinity();
+  for(double a = 2; !proven && used < budget; a *= 4) {
+    e.pruning = a >= double(k) ? 0. : a;
+    e.start(budget - used);
+    e.search(k - 1, 0.);
+    used += (std::min)(e.work, budget - used);
+    if(e.pruning == 0) {
+      // complete: proves the optimum, or at least bounds it
+      if(!e.out_of_budget)
+        proven = true;
+      else
+        lower_bound = (std::max)(lower_bound, (std::min)(e.best_value, e.frontier));
+      break;
+    }
+  }
+  best.work = used;
+  if(e.improved) {
+    best_z = e.best_z;
+    d = best_z - w;
+    Hd.noalias() = H * d;
+    best_value = d.dot(Hd);
+    if(!proven)
+      best_value = greedy_descent(H, best_z, d, Hd); // a pruned or interrupted pass's point may not be locally optimal
+  }
+  Eigen::VectorXd m = lattice.reduced ? Eigen::VectorXd(lattice.basis * best_z) : best_z;
+  if(!proven && lattice.reduced) {
+    // locally optimal in the loop basis too (single-loop changes are what a user tries first), then in the
+    // reduced one again, until neither moves
+    for(int round = 0; round < 10; ++round) {
+      Eigen::VectorXd dm = m - c, Gdm = G * dm;
+      const double before = best_value;
+      best_value = greedy_descent(G, m, dm, Gdm);
+      if(!(best_value < before - 1e-12 * (1 + std::abs(before))))
+        break;
+      best_z = lattice.inverse_basis * m;
+      d = best_z - w;
+      Hd.noalias() = H * d;
+      const double after_loop_basis = best_value;
+      best_value = greedy_descent(H, best_z, d, Hd);
+      m = lattice.basis * best_z;
+      if(!(best_value < after_loop_basis - 1e-12 * (1 + std::abs(after_loop_basis))))
+        break;
+    }
+  }
+  best.value = best_value;
+  best.proven = proven;
+  best.lower_bound = proven ? best_value : (std::min)(lower_bound, best_value);
+  best.m.resize(std::size_t(k));
+  for(Eigen::Index i = 0; i < k; ++i)
+    best.m[std::size_t(i)] = std::int64_t(std::llround(m[i]));
   return best;
+}
+
+// The same for a metric reduced on the spot (see lattice_reduction_budget()).
+inline Closest_vector_result closest_vector(const Eigen::MatrixXd& G, const Eigen::VectorXd& c,
+                                            const std::vector<std::vector<std::int64_t>>& candidates,
+                                            double work_budget = 2e6)
+{
+  const Eigen::MatrixXd R = G.llt().matrixU();
+  return closest_vector(reduce_lattice(G, R, lattice_reduction_budget(G.rows())), G, c, candidates, work_budget);
 }
 
 } // namespace internal

@@ -24,27 +24,40 @@ namespace internal {
 /*
   The multipliers of M lambda = b with the free integers not prescribed chosen on the way, in one forward and
   one backward pass: the forward pass leaves their right-hand side y, the closest vector search chooses them
-  (written into `periods`, 0 there on entry; `proven` as choose_loop_periods()), b gets them (2 pi m / n on
+  in the reduced lattices `lattices` (written into `periods`, 0 there on entry), b gets them (2 pi m / n on
   their rows, `unit` = 2 pi / n) and the backward pass finishes. `holonomy`: per slot, the H of its row.
-  `rounding_energy`: the energy for the integers rounded one by one (Solve_report::rounding_energy).
-  `notify(fraction)` is called before (0) and after (1) the choice.
+  `energies`: the energy of the solve with the integers rounded one by one and a lower bound on its energy over
+  every choice of them (Solve_report::rounding_energy, energy_lower_bound), and whether the choice is proven
+  optimal. `notify(fraction)` is called before (0) and after (1) the choice.
 */
+struct Integer_choice_energies
+{
+  double rounding_energy = 0;
+  double lower_bound = 0;
+  bool proven = true;
+};
+
 template <class SolverTraits, class Notify>
 Eigen::VectorXd solve_choosing_integers(Prefactored_system<SolverTraits>& system, const Constraint_rows& rows,
-                                        Eigen::VectorXd& b, double unit, const std::vector<char>& prescribed,
+                                        const std::vector<Reduced_lattice>& lattices, Eigen::VectorXd& b,
+                                        double unit, const std::vector<char>& prescribed,
                                         const std::vector<double>& holonomy, std::vector<std::int64_t>& periods,
-                                        bool& proven, double& rounding_energy, Notify notify)
+                                        Integer_choice_energies& energies, Notify notify)
 {
   typename Prefactored_system<SolverTraits>::Loop_forward forward = system.forward(rows, b);
   notify(0.);
-  // the budget of the enumeration: about the work of a few back-substitutions, so that a re-solve stays cheap
-  const double loop_energy = choose_loop_periods(rows.free_slots, system.metrics(), forward.y, unit, prescribed,
-                                                 holonomy, (std::max)(2e5, 10. * double(rows.rows)), periods, proven);
+  // the budget of the enumeration: about the work of one back-substitution, so that a re-solve stays cheap
+  // (in the reduced basis, nearest plane and descent already find most of what a longer search would)
+  const Loop_period_choice choice = choose_loop_periods(rows.free_slots, system.metrics(), lattices, forward.y, unit,
+                                                        prescribed, holonomy, (std::max)(1e5, 5. * double(rows.rows)),
+                                                        periods);
   notify(1.);
   const std::vector<Eigen::VectorXd> t = loop_right_hand_sides(rows.free_slots, forward.y, unit, prescribed, periods);
   add_chosen_periods(rows, periods, prescribed, unit, b);
   const Eigen::VectorXd lambda = system.backward(rows, forward, t, b);
-  rounding_energy = forward.node_part + loop_energy;
+  energies.rounding_energy = forward.node_part + choice.rounding_part;
+  energies.lower_bound = forward.node_part + choice.lower_bound_part;
+  energies.proven = choice.proven;
   return lambda;
 }
 

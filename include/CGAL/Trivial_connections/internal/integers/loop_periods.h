@@ -28,22 +28,43 @@ namespace Trivial_connections {
 namespace internal {
 
 /*
+  Per component, the lattice of its free integers in their metric, reduced (lattice_reduction.h): it depends on
+  the factorization only, so the solver reduces it once, when the metrics are computed.
+*/
+inline std::vector<Reduced_lattice> reduced_loop_lattices(const std::vector<Loop_metric>& metrics)
+{
+  std::vector<Reduced_lattice> lattices(metrics.size());
+  for(std::size_t c = 0; c < metrics.size(); ++c)
+    if(metrics[c].inverse.rows() > 0)
+      lattices[c] = reduce_lattice(metrics[c].inverse, metrics[c].inverse_factor,
+                                   lattice_reduction_budget(metrics[c].inverse.rows()));
+  return lattices;
+}
+
+// What choose_loop_periods() found, as parts of the energy of the solve
+struct Loop_period_choice
+{
+  double rounding_part = 0;    // the loop part of the energy with the integers rounded one by one
+  double lower_bound_part = 0; // no choice of the integers gives a smaller loop part
+  bool proven = true;          // every component's choice is the optimum
+};
+
+/*
   The integers of the free slots not prescribed, minimising the energy, per component, written into
   `periods` (0 there on entry). `free_slots[c]`: component c's free slots, in the order of its metric;
-  `y[c]`: the right-hand side of the Schur complement S of its free rows with those integers 0 (the
-  prescribed ones are in it), so that the loop part of the energy is t^T S^-1 t with t = y + unit m.
-  `holonomy`: per slot, for the candidate that makes each slot's own connection sum smallest.
-  `work_budget`: for the enumeration (see closest_vector()). Sets `proven` when every component's choice is
-  proven optimal. Returns that part of the energy for the integers rounded one by one (for
-  Solve_report::rounding_energy).
+  `lattices[c]`: its metric's reduced lattice (reduced_loop_lattices()); `y[c]`: the right-hand side of the
+  Schur complement S of its free rows with those integers 0 (the prescribed ones are in it), so that the loop
+  part of the energy is t^T S^-1 t with t = y + unit m. `holonomy`: per slot, for the candidate that makes
+  each slot's own connection sum smallest. `work_budget`: for the enumeration (see closest_vector()).
 */
-inline double choose_loop_periods(const std::vector<std::vector<int>>& free_slots, const std::vector<Loop_metric>& metrics,
-                                  const std::vector<Eigen::VectorXd>& y, double unit, const std::vector<char>& prescribed,
-                                  const std::vector<double>& holonomy, double work_budget,
-                                  std::vector<std::int64_t>& periods, bool& proven)
+inline Loop_period_choice choose_loop_periods(const std::vector<std::vector<int>>& free_slots,
+                                              const std::vector<Loop_metric>& metrics,
+                                              const std::vector<Reduced_lattice>& lattices,
+                                              const std::vector<Eigen::VectorXd>& y, double unit,
+                                              const std::vector<char>& prescribed, const std::vector<double>& holonomy,
+                                              double work_budget, std::vector<std::int64_t>& periods)
 {
-  proven = true;
-  double rounding_part = 0;
+  Loop_period_choice choice;
   for(std::size_t c = 0; c < free_slots.size(); ++c) {
     const std::vector<int>& free = free_slots[c];
     if(free.empty())
@@ -54,17 +75,21 @@ inline double choose_loop_periods(const std::vector<std::vector<int>>& free_slot
       (prescribed[free[a]] ? fixed : chosen).push_back(Eigen::Index(a));
     const Eigen::Index kc = Eigen::Index(chosen.size());
     if(kc == 0) {
-      rounding_part += y[c].dot(metric.inverse * y[c]);
+      const double fixed_part = y[c].dot(metric.inverse * y[c]);
+      choice.rounding_part += fixed_part;
+      choice.lower_bound_part += fixed_part;
       continue;
     }
     // With G = S^-1 and the prescribed part t_P = y_P fixed, t^T G t = (t_Q - t_Q*)^T G_QQ (t_Q - t_Q*) +
     // const with t_Q* = -G_QQ^-1 G_QP y_P: the minimiser of (m - center)^T G_QQ (m - center), with
-    // center = (t_Q* - y_Q) / unit. Without prescribed slots G_QQ = G, whose factor is kept.
+    // center = (t_Q* - y_Q) / unit. Without prescribed slots G_QQ = G, whose reduced lattice is kept; with
+    // them G_QQ is reduced here.
     Eigen::VectorXd center(kc);
     double constant = 0;
-    Eigen::MatrixXd G_QQ, R_Q;
+    Reduced_lattice partial;
+    Eigen::MatrixXd G_QQ;
+    const Reduced_lattice* lattice = &lattices[c];
     const Eigen::MatrixXd* G = &metric.inverse;
-    const Eigen::MatrixXd* R = &metric.inverse_factor;
     if(fixed.empty()) {
       center = -y[c] / unit;
     } else {
@@ -82,7 +107,6 @@ inline double choose_loop_periods(const std::vector<std::vector<int>>& free_slot
       const Eigen::LLT<Eigen::MatrixXd> llt(G_QQ);
       if(llt.info() != Eigen::Success)
         throw Invalid_input(Error_code::solver_failure, "the metric of the loop integers is not positive definite");
-      R_Q = llt.matrixU();
       const Eigen::VectorXd g = G_QP * y_P;
       const Eigen::VectorXd t_star = -llt.solve(g);
       for(Eigen::Index i = 0; i < kc; ++i)
@@ -92,8 +116,9 @@ inline double choose_loop_periods(const std::vector<std::vector<int>>& free_slot
         for(Eigen::Index j = 0; j < Eigen::Index(fixed.size()); ++j)
           fixed_part += y_P[i] * metric.inverse(fixed[i], fixed[j]) * y_P[j];
       constant = fixed_part + g.dot(t_star); // y_P^T (G_PP - G_PQ G_QQ^-1 G_QP) y_P
+      partial = reduce_lattice(G_QQ, llt.matrixU(), lattice_reduction_budget(kc));
+      lattice = &partial;
       G = &G_QQ;
-      R = &R_Q;
     }
     std::vector<std::int64_t> rounded(kc), own(kc);
     for(Eigen::Index a = 0; a < kc; ++a) {
@@ -101,14 +126,15 @@ inline double choose_loop_periods(const std::vector<std::vector<int>>& free_slot
       // each slot on its own: the integer making its own connection sum smallest
       own[a] = std::int64_t(std::llround(holonomy[free[chosen[a]]] / unit));
     }
-    const Closest_vector_result best = closest_vector(*G, *R, center, {rounded, own}, work_budget);
-    proven = proven && best.proven;
+    const Closest_vector_result best = closest_vector(*lattice, *G, center, {rounded, own}, work_budget);
+    choice.proven = choice.proven && best.proven;
     // t^T S^-1 t = unit^2 q(m) + constant
-    rounding_part += unit * unit * best.candidate_values[0] + constant;
+    choice.rounding_part += unit * unit * best.candidate_values[0] + constant;
+    choice.lower_bound_part += unit * unit * best.lower_bound + constant;
     for(Eigen::Index a = 0; a < kc; ++a)
       periods[free[chosen[a]]] = best.m[a];
   }
-  return rounding_part;
+  return choice;
 }
 
 // t = y + unit m per component over its free slots, for the chosen integers (the prescribed ones are in y)

@@ -223,7 +223,7 @@ inline double greedy_descent(const Eigen::MatrixXd& H, Eigen::VectorXd& z, Eigen
 /*
   The closest vector in `lattice` (reduce_lattice() of G) to c; the result is locally optimal against every
   single-coordinate change in both bases (or proven optimal). The enumeration may do `work_budget`
-  multiply-adds, and at least 2 k^2 (a first descent costs about k^2 / 2).
+  multiply-adds, and at least k^2 (a first descent costs about k^2 / 2).
 */
 inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, const Eigen::MatrixXd& G,
                                             const Eigen::VectorXd& c,
@@ -252,21 +252,28 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
     best.candidate_values.push_back(q);
     if(q < best_value) { best_value = q; best_z = z; }
   }
+  Eigen::VectorXd d(k), Hd(k);
   {
-    Eigen::VectorXd d(k); // z - w
+    Eigen::VectorXd Rd(k); // R (z - w), for q and H (z - w) = R^T R (z - w) without a product by H
     for(Eigen::Index i = k - 1; i >= 0; --i) {
-      const double shift = R.row(i).tail(k - 1 - i).dot(d.tail(k - 1 - i)) / R(i, i);
-      z[i] = std::round(w[i] - shift);
+      const double tail = R.row(i).tail(k - 1 - i).dot(d.tail(k - 1 - i));
+      z[i] = std::round(w[i] - tail / R(i, i));
       d[i] = z[i] - w[i];
+      Rd[i] = R(i, i) * d[i] + tail;
     }
-    const double q = quadratic_distance(R, w, z);
-    if(q < best_value) { best_value = q; best_z = z; }
+    const double q = Rd.squaredNorm();
+    if(q < best_value) {
+      best_value = q;
+      best_z = z;
+      Hd.noalias() = R.transpose().triangularView<Eigen::Lower>() * Rd;
+    } else {
+      d = best_z - w;
+      Hd.noalias() = H * d;
+    }
   }
-  Eigen::VectorXd d = best_z - w;
-  Eigen::VectorXd Hd = H * d;
   best_value = greedy_descent(H, best_z, d, Hd);
 
-  const double budget = (std::max)(work_budget, 2. * double(k) * double(k));
+  const double budget = (std::max)(work_budget, double(k) * double(k));
   Enumeration e(R, w, best_z, best_value);
   // 1. complete passes in growing balls, for the lower bound (and the optimum when the ball of the best value
   // fits), with half the budget: the first in the ball whose expected work is an eighth of it, each next one
@@ -311,9 +318,22 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
   }
   best.work = used;
   if(e.improved) {
-    best_z = e.best_z;
-    d = best_z - w;
-    Hd.noalias() = H * d;
+    // H d follows the coordinates that changed (few, usually), and is formed again when many did
+    std::vector<Eigen::Index> changed;
+    for(Eigen::Index i = 0; i < k; ++i)
+      if(e.best_z[i] != best_z[i])
+        changed.push_back(i);
+    if(4 * Eigen::Index(changed.size()) > k) {
+      best_z = e.best_z;
+      d = best_z - w;
+      Hd.noalias() = H * d;
+    } else {
+      for(Eigen::Index i : changed) {
+        Hd += (e.best_z[i] - best_z[i]) * H.col(i);
+        best_z[i] = e.best_z[i];
+        d[i] = best_z[i] - w[i];
+      }
+    }
     best_value = d.dot(Hd);
     if(!proven)
       best_value = greedy_descent(H, best_z, d, Hd); // a pruned or interrupted pass's point may not be locally optimal
@@ -321,16 +341,18 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
   Eigen::VectorXd m = lattice.reduced ? Eigen::VectorXd(lattice.basis * best_z) : best_z;
   if(!proven && lattice.reduced) {
     // locally optimal in the loop basis too (single-loop changes are what a user tries first), then in the
-    // reduced one again, until neither moves
+    // reduced one again, until neither moves. With m - c = U d: G (m - c) = U^-T H d and H d = U^T G (m - c),
+    // sparse products.
     for(int round = 0; round < 10; ++round) {
-      Eigen::VectorXd dm = m - c, Gdm = G * dm;
+      Eigen::VectorXd dm = m - c;
+      Eigen::VectorXd Gdm = lattice.inverse_basis.transpose() * Hd;
       const double before = best_value;
       best_value = greedy_descent(G, m, dm, Gdm);
       if(!(best_value < before - 1e-12 * (1 + std::abs(before))))
         break;
       best_z = lattice.inverse_basis * m;
       d = best_z - w;
-      Hd.noalias() = H * d;
+      Hd = lattice.basis.transpose() * Gdm;
       const double after_loop_basis = best_value;
       best_value = greedy_descent(H, best_z, d, Hd);
       m = lattice.basis * best_z;

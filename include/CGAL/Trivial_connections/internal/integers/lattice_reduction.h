@@ -138,7 +138,12 @@ inline Reduced_lattice reduce_lattice(const Eigen::MatrixXd& G, const Eigen::Mat
   Reduced_lattice lattice;
   lattice.gram = G;
   lattice.factor = factor_of_G;
-  bool stopped = k < 2 || !s.read_factor(factor_of_G);
+  if(k < 2) { // nothing to reduce
+    lattice.basis = Eigen::MatrixXd::Identity(k, k).sparseView();
+    lattice.inverse_basis = lattice.basis;
+    return lattice;
+  }
+  bool stopped = !s.read_factor(factor_of_G);
   // H and its factor from G and the integer U, without the drift of the updates, into `lattice`; the
   // Gram-Schmidt data again from them
   auto store = [&G, k](Reduced_lattice& lattice, lattice_reduction_detail::State& s) {

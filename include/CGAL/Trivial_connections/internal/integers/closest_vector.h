@@ -39,7 +39,7 @@ namespace internal {
        q below its radius; one that runs out still proves q >= the smallest partial cost left on its stack
        (the zig-zag order visits the children of a node by increasing cost). That is the lower bound.
     2. with what is left of the budget, passes pruned linearly (the first d levels may use at most
-       min(1, a d / k) of the best value) with a = 2, 8, 32, ...: a heuristic search for better points whose
+       min(1, a d / k) of the best value) with a = 4, 64, 1024, ...: a heuristic search for better points whose
        last pass, once a >= k, is complete and proves the optimum.
   `proven`: the optimum is certain (up to rounding); `lower_bound` <= q of every integer point, = `value`
   when proven.
@@ -284,7 +284,7 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
     rho = cost.radius_for(budget / 8, best_value);
   double used = 0, lower_bound = 0;
   bool proven = false;
-  while(true) {
+  for(int pass = 0; pass < 4; ++pass) { // each pass starts with a descent of about k^2 / 2
     e.radius = rho;
     e.start(budget / 2 - used);
     e.search(k - 1, 0.);
@@ -302,7 +302,7 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
   }
   // 2. pruned passes with the rest of the budget, each wider than the one before
   e.radius = std::numeric_limits<double>::infinity();
-  for(double a = 2; !proven && used < budget; a *= 4) {
+  for(double a = 4; !proven && used < budget; a *= 16) {
     e.pruning = a >= double(k) ? 0. : a;
     e.start(budget - used);
     e.search(k - 1, 0.);

@@ -143,7 +143,8 @@ inline Reduced_lattice reduce_lattice(const Eigen::MatrixXd& G, const Eigen::Mat
     lattice.inverse_basis = lattice.basis;
     return lattice;
   }
-  bool stopped = !s.read_factor(factor_of_G);
+  bool stopped = !s.read_factor(factor_of_G), failed = stopped;
+  std::size_t stored_at = 0; // s.operations when `lattice` last got the basis (0: the loop basis)
   // H and its factor from G and the integer U, without the drift of the updates, into `lattice`; the
   // Gram-Schmidt data again from them
   auto store = [&G, k](Reduced_lattice& lattice, lattice_reduction_detail::State& s) {
@@ -165,7 +166,6 @@ inline Reduced_lattice reduce_lattice(const Eigen::MatrixXd& G, const Eigen::Mat
   // a reduction stopped by its budget still leaves a basis reduced everywhere
   for(const double delta : {0.6, 0.99}) {
     for(int round = 0; round < 3 && !stopped; ++round) {
-      const std::size_t operations_before = s.operations;
       Eigen::Index i = 1;
       while(i < k) {
         if(s.work > work_budget || s.too_large) {
@@ -202,12 +202,15 @@ inline Reduced_lattice reduce_lattice(const Eigen::MatrixXd& G, const Eigen::Mat
         }
         ++i;
       }
-      if(s.operations == operations_before)
+      if(s.operations == stored_at)
         break; // the stored basis is this one
+      if(delta < 0.99 && !stopped)
+        break; // straight on to the strong condition, whose end is checked
       if(!store(lattice, s)) {
-        stopped = true;
+        stopped = failed = true;
         break;
       }
+      stored_at = s.operations;
       if(stopped)
         break;
       bool reduced = true;
@@ -220,6 +223,8 @@ inline Reduced_lattice reduce_lattice(const Eigen::MatrixXd& G, const Eigen::Mat
         break;
     }
   }
+  if(!failed && s.operations != stored_at && !store(lattice, s))
+    stopped = true; // a budget stop in the first pass: its basis
   lattice.complete = !stopped;
   if(lattice.basis.size() == 0) { // no round finished: the loop basis
     lattice.basis = Eigen::MatrixXd::Identity(k, k).sparseView();

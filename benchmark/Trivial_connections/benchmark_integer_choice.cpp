@@ -45,6 +45,8 @@
 #include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 
+#include "benchmark_support.h"
+
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -70,14 +72,15 @@ using Mesh = CGAL::Surface_mesh<Point>;
 using Vertex = Mesh::Vertex_index;
 using Singularities = std::vector<std::pair<Vertex, TC::Singularity_index>>;
 using Solver = TC::Trivial_connection_solver<Mesh>;
-using Clock = std::chrono::steady_clock;
+using Clock = tc_bench::Clock;
 
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
 constexpr int iterations = 9; // solves timed per benchmark (the medians are over them)
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using tc_bench::seconds_since;
+using tc_bench::Phase_times;
 
 double median(std::vector<double> v)
 {
@@ -87,35 +90,6 @@ double median(std::vector<double> v)
   const std::size_t h = v.size() / 2;
   return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 }
-
-// ---------------------------------------------------------------------------------------------------------
-// Phase times from the progress callback: time stamps at fraction 0 and 1, summed per phase.
-
-constexpr int number_of_phases = int(TC::Phase::field) + 1;
-
-struct Phase_times
-{
-  std::array<double, number_of_phases> seconds{};
-  std::array<Clock::time_point, number_of_phases> started{};
-  std::array<bool, number_of_phases> open{};
-
-  TC::Progress_callback callback()
-  {
-    return [this](TC::Phase phase, double fraction) {
-      const int p = int(phase);
-      if(p < 0 || p >= number_of_phases)
-        return;
-      if(fraction <= 0) {
-        started[p] = Clock::now();
-        open[p] = true;
-      } else if(fraction >= 1 && open[p]) {
-        seconds[p] += seconds_since(started[p]);
-        open[p] = false;
-      }
-    };
-  }
-  double operator[](TC::Phase p) const { return seconds[int(p)]; }
-};
 
 // ---------------------------------------------------------------------------------------------------------
 // Generated meshes. The jitter comes from a fixed-seed linear congruential generator (the same meshes on
@@ -290,14 +264,7 @@ Case_state& case_state(const Case_spec& spec)
 Singularities singularities_for(const Mesh& mesh, const Solver& solver, int n, int set)
 {
   const std::size_t nc = solver.components().size();
-  std::vector<std::vector<Vertex>> interior(nc);
-  std::vector<int> component(num_vertices(mesh), -1);
-  for(auto f : faces(mesh))
-    for(auto v : vertices_around_face(halfedge(f, mesh), mesh))
-      component[std::size_t(v)] = int(solver.component(f));
-  for(auto v : vertices(mesh))
-    if(component[std::size_t(v)] >= 0 && !mesh.is_border(v, true))
-      interior[std::size_t(component[std::size_t(v)])].push_back(v);
+  const std::vector<std::vector<Vertex>> interior = tc_bench::interior_vertices_by_component(mesh, solver);
 
   Singularities s;
   for(std::size_t c = 0; c < nc; ++c) {

@@ -38,6 +38,8 @@
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 
+#include "benchmark_support.h"
+
 #include <benchmark/benchmark.h>
 
 #include <Eigen/SparseCholesky>
@@ -72,7 +74,7 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<K::Point_3>;
 using Vertex = Mesh::Vertex_index;
 using Singularities = std::vector<std::pair<Vertex, TC::Singularity_index>>;
-using Clock = std::chrono::steady_clock;
+using Clock = tc_bench::Clock;
 
 #ifndef TC_BENCH_DEFAULT_MESH_CACHE
 #define TC_BENCH_DEFAULT_MESH_CACHE "benchmark-meshes"
@@ -80,7 +82,8 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using tc_bench::seconds_since;
+using tc_bench::Phase_times;
 
 // ---------------------------------------------------------------------------------------------------------
 // Memory: VmHWM is reset to the current resident size by writing 5 to /proc/self/clear_refs (Linux >= 4.0).
@@ -111,35 +114,6 @@ double status_bytes(const char* field)
     }
   return -1;
 }
-
-// ---------------------------------------------------------------------------------------------------------
-// Phase times from the progress callback: time stamps at fraction 0 and 1, summed per phase.
-
-constexpr int number_of_phases = int(TC::Phase::field) + 1;
-
-struct Phase_times
-{
-  std::array<double, number_of_phases> seconds{};
-  std::array<Clock::time_point, number_of_phases> started{};
-  std::array<bool, number_of_phases> open{};
-
-  TC::Progress_callback callback()
-  {
-    return [this](TC::Phase phase, double fraction) {
-      const int p = int(phase);
-      if(p < 0 || p >= number_of_phases)
-        return;
-      if(fraction <= 0) {
-        started[p] = Clock::now();
-        open[p] = true;
-      } else if(fraction >= 1 && open[p]) {
-        seconds[p] += seconds_since(started[p]);
-        open[p] = false;
-      }
-    };
-  }
-  double operator[](TC::Phase p) const { return seconds[int(p)]; }
-};
 
 // ---------------------------------------------------------------------------------------------------------
 // Meshes
@@ -234,14 +208,7 @@ template <class Solver>
 Singularities singularities_for(const Mesh& mesh, const Solver& solver, int set)
 {
   const std::size_t nc = solver.components().size();
-  std::vector<std::vector<Vertex>> interior(nc);
-  std::vector<int> component(num_vertices(mesh), -1);
-  for(auto f : faces(mesh))
-    for(auto v : vertices_around_face(halfedge(f, mesh), mesh))
-      component[std::size_t(v)] = int(solver.component(f));
-  for(auto v : vertices(mesh))
-    if(component[std::size_t(v)] >= 0 && !mesh.is_border(v, true))
-      interior[std::size_t(component[std::size_t(v)])].push_back(v);
+  const std::vector<std::vector<Vertex>> interior = tc_bench::interior_vertices_by_component(mesh, solver);
 
   Singularities s;
   for(std::size_t c = 0; c < nc; ++c) {

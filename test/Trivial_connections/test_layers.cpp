@@ -52,6 +52,24 @@ struct Layers
   int edges() const { return geometry.number_of_interior_edges(); }
 };
 
+// The prefactored system of the layers, loaded, factored and with its metrics as the solver makes them; M,
+// dense, into `dense` when given (loading releases M)
+void prefactor(const Layers& l, TCI::Prefactored_system<TC::Default_solver_traits>& system,
+               Eigen::MatrixXd* dense = nullptr)
+{
+  std::vector<int> node_start, node_rows;
+  l.topology.node_adjacency(l.arrays, node_start, node_rows);
+  Eigen::SparseMatrix<double> M = TCI::system_in_row_order(l.arrays, l.rows, node_start, node_rows);
+  if(dense)
+    *dense = Eigen::MatrixXd(M);
+  std::vector<int> node_order;
+  TCI::Fill_reducing_ordering<TC::Default_solver_traits>::compute(l.topology.number_of_nodes, node_start, node_rows,
+                                                                  node_order);
+  system.load(l.rows, M, node_order);
+  system.factor(l.rows);
+  system.compute_metrics(l.rows, l.links, l.topology.components.size());
+}
+
 // A x for every unit x_e and every unit slack, as dense columns: the definition of the system's matrix
 Eigen::MatrixXd constraint_matrix(const Layers& l, Eigen::MatrixXd& slack_columns)
 {
@@ -359,16 +377,8 @@ TEST(Loop_periods, better_than_local_searches_in_any_basis_and_bounded)
   std::normal_distribution<double> normal(0, 1);
   for(const Case& m : cases) {
     Layers l(m.mesh, {}, {}, m.align);
-    std::vector<int> node_start, node_rows;
-    l.topology.node_adjacency(l.arrays, node_start, node_rows);
-    Eigen::SparseMatrix<double> M = TCI::system_in_row_order(l.arrays, l.rows, node_start, node_rows);
-    std::vector<int> node_order;
-    TCI::Fill_reducing_ordering<TC::Default_solver_traits>::compute(l.topology.number_of_nodes, node_start, node_rows,
-                                                                    node_order);
     TCI::Prefactored_system<TC::Default_solver_traits> system;
-    system.load(l.rows, M, node_order);
-    system.factor(l.rows);
-    system.compute_metrics(l.rows, l.links, l.topology.components.size());
+    prefactor(l, system);
     const std::vector<TCI::Reduced_lattice> lattices = TCI::reduced_loop_lattices(system.metrics());
     ASSERT_EQ(l.rows.free_slots.size(), 1u) << m.name;
     const Eigen::Index k = Eigen::Index(l.rows.free_slots[0].size());
@@ -643,17 +653,9 @@ TEST(Prefactored_system, split_solve_matches_a_dense_solve)
   const Surface_mesh mesh = genus2();
   const int nf = int(num_faces(mesh));
   Layers l(mesh, spread_faces(nf, 3, 1), spread_faces(nf, 2, 9), false, 2.);
-  std::vector<int> node_start, node_rows;
-  l.topology.node_adjacency(l.arrays, node_start, node_rows);
-  Eigen::SparseMatrix<double> M = TCI::system_in_row_order(l.arrays, l.rows, node_start, node_rows);
-  const Eigen::MatrixXd dense = Eigen::MatrixXd(M);
-  std::vector<int> node_order;
-  TCI::Fill_reducing_ordering<TC::Default_solver_traits>::compute(l.topology.number_of_nodes, node_start, node_rows,
-                                                                  node_order);
+  Eigen::MatrixXd dense;
   TCI::Prefactored_system<TC::Default_solver_traits> system;
-  system.load(l.rows, M, node_order);
-  system.factor(l.rows);
-  system.compute_metrics(l.rows, l.links, l.topology.components.size());
+  prefactor(l, system, &dense);
   ASSERT_TRUE(system.loop_rows_in_factor());
 
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(dense.rows(), -0.5, 0.8);

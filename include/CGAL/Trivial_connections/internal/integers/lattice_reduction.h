@@ -64,23 +64,28 @@ struct State
     return true;
   }
 
-  // b_i -= q b_j, j < i
+  // b_i -= q b_j, j < i; refused (too_large set) when an entry of U or U^-1 could pass 2^40, so that every
+  // entry stays an exact integer in double precision
   void subtract(Eigen::Index i, Eigen::Index j, double q)
   {
+    const double limit = 1099511627776.; // 2^40
+    if(!(std::abs(q) * U.col(j).cwiseAbs().maxCoeff() + U.col(i).cwiseAbs().maxCoeff() <= limit) ||
+       !(std::abs(q) * V.row(i).cwiseAbs().maxCoeff() + V.row(j).cwiseAbs().maxCoeff() <= limit)) {
+      too_large = true;
+      return;
+    }
     U.col(i) -= q * U.col(j);
     V.row(j) += q * V.row(i);
     mu.col(i).head(j) -= q * mu.col(j).head(j);
     mu(j, i) -= q;
-    too_large = too_large || U.col(i).cwiseAbs().maxCoeff() > 1099511627776. || // 2^40
-                V.row(j).cwiseAbs().maxCoeff() > 1099511627776.;
-    work += 3. * double(U.rows());
+    work += 5. * double(U.rows());
     ++operations;
   }
 
   // size reduction of b_i against b_j for j < i, from j = i - 1 down to `last`
   void size_reduce(Eigen::Index i, Eigen::Index last = 0)
   {
-    for(Eigen::Index j = i - 1; j >= last; --j)
+    for(Eigen::Index j = i - 1; j >= last && !too_large; --j)
       if(std::abs(mu(j, i)) > 0.51)
         subtract(i, j, std::round(mu(j, i)));
   }
@@ -125,7 +130,7 @@ struct State
   broken. H = U^T G U and its Cholesky factor are formed from G and the final U.
 
   `work_budget` bounds the multiply-adds of the reduction: when it is used up, or when an entry of U or U^-1
-  would exceed 2^40, the reduction stops with the basis it has (a basis of the same lattice, only less
+  would exceed 2^40 (the step is then not made), the reduction stops with the basis it has (a basis of the same lattice, only less
   reduced) and `complete` is false.
 */
 inline Reduced_lattice reduce_lattice(const Eigen::MatrixXd& G, const Eigen::MatrixXd& factor_of_G,

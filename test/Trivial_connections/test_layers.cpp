@@ -229,6 +229,25 @@ TEST(Lattice_reduction, unimodular_and_reduced)
   }
 }
 
+// A metric whose reduction needs a quotient beyond 2^40: the step is not made, the basis stays exact (the loop
+// basis here) and the search still answers, no worse than rounding
+TEST(Lattice_reduction, stops_before_entries_lose_exactness)
+{
+  const double s = 2e12, t = 2e6; // b_1 - s b_0 is short: G = B^T B, B = [1 s; 0 t]
+  Eigen::MatrixXd G(2, 2);
+  G << 1, s, s, s * s + t * t;
+  const TCI::Reduced_lattice L = TCI::reduce_lattice(G, G.llt().matrixU(), 1e9);
+  EXPECT_FALSE(L.complete);
+  const Eigen::MatrixXd U(L.basis), V(L.inverse_basis);
+  EXPECT_EQ((U * V - Eigen::MatrixXd::Identity(2, 2)).cwiseAbs().maxCoeff(), 0.);
+  EXPECT_LE(U.cwiseAbs().maxCoeff(), 1099511627776.);
+  const Eigen::VectorXd c = Eigen::Vector2d(0.3, -0.2);
+  const TCI::Closest_vector_result r = TCI::closest_vector(L, G, c, {{0, 0}}, 1e5);
+  EXPECT_TRUE(std::isfinite(r.value));
+  EXPECT_LE(r.value, r.candidate_values[0] * (1 + 1e-12));
+  EXPECT_LE(r.lower_bound, r.value);
+}
+
 // the exact minimum of q: every integer point of the box that bounds the ellipsoid q(m) <= q_max, whose
 // half-widths are sqrt(q_max (G^-1)_ii); nullopt when the box has more than `limit` points
 std::optional<double> brute_force_in_ellipsoid(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, double q_max,

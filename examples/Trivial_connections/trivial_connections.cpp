@@ -414,8 +414,9 @@ void print_loops(std::ostream& out, const Options& o, const TC::Solve_report& re
       << (report.integers_proven_optimal ? "proven optimal" : "not proven optimal");
   if(!report.integers_proven_optimal) {
     const double minimised = report.energy + report.guidance_energy;
-    out << " (no choice gives less than " << std::setprecision(10) << report.energy_lower_bound << ": within "
-        << std::setprecision(3) << 100 * (minimised - report.energy_lower_bound) / minimised << " % of the optimum)";
+    out << " (no choice gives less than " << std::setprecision(10) << report.energy_lower_bound
+        << ": the optimum is at most " << std::setprecision(3)
+        << 100 * (minimised - report.energy_lower_bound) / minimised << " % below this energy)";
   }
   out << "\n";
   const std::size_t max_loops = 20;

@@ -356,12 +356,12 @@ public:
         update.refactored = true;
         update.links = m_links.links.size();
       }
+      m_lattices = internal::reduced_loop_lattices(m_system.metrics());
     } catch(...) {
       rebuild({}, {});
       m_lattices = internal::reduced_loop_lattices(m_system.metrics());
       throw;
     }
-    m_lattices = internal::reduced_loop_lattices(m_system.metrics());
     return update;
   }
 

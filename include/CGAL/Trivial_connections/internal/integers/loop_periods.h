@@ -88,10 +88,14 @@ inline Loop_period_choice choose_loop_periods(const std::vector<std::vector<int>
     double constant = 0;
     Reduced_lattice partial;
     Eigen::MatrixXd G_QQ;
-    const Reduced_lattice* lattice = &lattices[c];
+    const Reduced_lattice* lattice = c < lattices.size() ? &lattices[c] : nullptr;
     const Eigen::MatrixXd* G = &metric.inverse;
     if(fixed.empty()) {
       center = -y[c] / unit;
+      if(!lattice || lattice->dimension() != kc) { // not reduced for this metric (not through the solver)
+        partial = reduce_lattice(metric.inverse, metric.inverse_factor, lattice_reduction_budget(kc));
+        lattice = &partial;
+      }
     } else {
       G_QQ.resize(kc, kc);
       Eigen::MatrixXd G_QP(kc, Eigen::Index(fixed.size()));

@@ -115,25 +115,36 @@ double q_of(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, const std::vecto
   return d.dot(G * d);
 }
 
-// the minimum of q over the integer box of half-width `r` around the rounded center, by enumeration
-double brute_force_minimum(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, int r)
+// the minimum of q over the integer box low <= m <= high, by enumeration
+double minimum_over_box(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, const std::vector<std::int64_t>& low,
+                        const std::vector<std::int64_t>& high)
 {
   const Eigen::Index k = c.size();
-  std::vector<std::int64_t> m(k), low(k);
-  for(Eigen::Index i = 0; i < k; ++i)
-    low[i] = m[i] = std::int64_t(std::llround(c[i])) - r;
+  std::vector<std::int64_t> m = low;
   double best = std::numeric_limits<double>::infinity();
   while(true) {
     best = (std::min)(best, q_of(G, c, m));
     Eigen::Index i = 0;
     for(; i < k; ++i) {
-      if(++m[i] <= low[i] + 2 * r)
+      if(++m[i] <= high[i])
         break;
       m[i] = low[i];
     }
     if(i == k)
       return best;
   }
+}
+
+// the minimum of q over the integer box of half-width `r` around the rounded center
+double brute_force_minimum(const Eigen::MatrixXd& G, const Eigen::VectorXd& c, int r)
+{
+  const Eigen::Index k = c.size();
+  std::vector<std::int64_t> low(k), high(k);
+  for(Eigen::Index i = 0; i < k; ++i) {
+    low[i] = std::int64_t(std::llround(c[i])) - r;
+    high[i] = low[i] + 2 * r;
+  }
+  return minimum_over_box(G, c, low, high);
 }
 
 // a random symmetric positive definite matrix, badly conditioned on purpose (rounding is then far from optimal)
@@ -255,7 +266,7 @@ std::optional<double> brute_force_in_ellipsoid(const Eigen::MatrixXd& G, const E
 {
   const Eigen::Index k = c.size();
   const Eigen::MatrixXd inverse = G.inverse();
-  std::vector<std::int64_t> low(k), high(k), m(k);
+  std::vector<std::int64_t> low(k), high(k);
   double points = 1;
   for(Eigen::Index i = 0; i < k; ++i) {
     const double r = std::sqrt(q_max * inverse(i, i)) + 1e-9;
@@ -265,19 +276,7 @@ std::optional<double> brute_force_in_ellipsoid(const Eigen::MatrixXd& G, const E
   }
   if(points > limit)
     return std::nullopt;
-  double best = std::numeric_limits<double>::infinity();
-  m = low;
-  while(true) {
-    best = (std::min)(best, q_of(G, c, m));
-    Eigen::Index i = 0;
-    for(; i < k; ++i) {
-      if(++m[i] <= high[i])
-        break;
-      m[i] = low[i];
-    }
-    if(i == k)
-      return best;
-  }
+  return minimum_over_box(G, c, low, high);
 }
 
 // Random lattices of dimension 2 to 12: the search proves the optimum, which brute force confirms, and its lower

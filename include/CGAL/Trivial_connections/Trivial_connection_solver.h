@@ -85,6 +85,10 @@ struct Trivial_connection_solver_types
                 "CGAL_EIGEN3_ENABLED) or pass a model of SparseLinearAlgebraWithFactorTraits_d as SolverTraits");
 };
 
+// read-only access to the solver's layers for the placement functions (placement/), which build on them
+template <class Solver>
+struct Solver_access;
+
 } // namespace internal
 
 /*!
@@ -386,6 +390,14 @@ public:
         `constrained_faces` (the direction the field must have there, as one of its n directions) and as
         `guided_faces` (the guide), projected onto the face. Required when the solver has such faces}
     \cgalParamNEnd
+    \cgalParamNBegin{energy_gradient}
+      \cgalParamDescription{a writable property map `vertex_descriptor -> double` that receives, at every interior
+        vertex v, g_v = dE / dk_v: the derivative of the minimised energy E (`energy + guidance_energy`) with
+        respect to the index of v, the integers kept, the change balanced by the node whose row is dropped
+        (see the class description; g is 0 there and at boundary and isolated vertices). Moving a part d of an
+        index from v to w changes E by d (g_w - g_v) to first order, plus a positive second-order term. It is
+        4 pi times v's Lagrange multiplier, so it costs nothing more than the solve}
+    \cgalParamNEnd
   \cgalNamedParamsEnd
   \throws Invalid_input `invalid_symmetry_order`, `invalid_vertex`, `singularity_on_boundary`,
           `duplicate_singularity`, `index_not_multiple`, `poincare_hopf_violated`, `invalid_loop_periods`,
@@ -433,6 +445,8 @@ public:
     else
       lambda = m_system.solve(m_rows, b);
 
+    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::energy_gradient_t>::value)
+      write_energy_gradient(lambda, CGAL::parameters::get_parameter(np, tc_np::energy_gradient));
     internal::Constraint_sums sums;
     const Eigen::VectorXd xe = internal::checked_connection(
       m_rows, [&](const Eigen::VectorXd& r) { return m_system.solve(m_rows, r); }, b, lambda, sums);
@@ -502,6 +516,20 @@ public:
   }
 
 private:
+  template <class S>
+  friend struct internal::Solver_access;
+
+  // E = b^T lambda with M lambda = b, so dE/db = 2 lambda, and a vertex's b is 2 pi k_v - K_v
+  template <class VertexDoubleMap>
+  void write_energy_gradient(const Eigen::VectorXd& lambda, VertexDoubleMap gradient) const
+  {
+    for(int v = 0; v < m_mesh.nv; ++v) {
+      const int node = m_topology.node_of_vertex[v];
+      const int r = node >= 0 && !m_geometry.on_boundary[v] ? m_rows.row_of_node[node] : -1;
+      put(gradient, m_mesh.vertex_descriptors[v], r >= 0 ? 4 * CGAL_PI * lambda[r] : 0.);
+    }
+  }
+
   template <class NamedParameters>
   static Progress_callback progress_of(const NamedParameters& np)
   {
@@ -593,6 +621,19 @@ private:
   std::vector<internal::Reduced_lattice> m_lattices;    // integers/: per component, the reduced lattice of its integers
 };
 
+namespace internal {
+
+template <class TriangleMesh, class GeomTraits, class SolverTraits>
+struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverTraits>>
+{
+  using Solver = Trivial_connection_solver<TriangleMesh, GeomTraits, SolverTraits>;
+  static const TriangleMesh& triangle_mesh(const Solver& s) { return s.m_tm; }
+  static const Mesh_arrays<TriangleMesh>& mesh(const Solver& s) { return s.m_mesh; }
+  static const Mesh_geometry& geometry(const Solver& s) { return s.m_geometry; }
+  static const Mesh_topology& topology(const Solver& s) { return s.m_topology; }
+};
+
+} // namespace internal
 } // namespace Trivial_connections
 } // namespace CGAL
 

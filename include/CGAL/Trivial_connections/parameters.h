@@ -35,6 +35,13 @@ enum guided_faces_t { guided_faces };
 enum guidance_weight_t { guidance_weight };
 enum maximum_faces_per_ray_t { maximum_faces_per_ray };
 enum triangulate_t { triangulate };
+enum energy_gradient_t { energy_gradient };
+enum alignment_guide_t { alignment_guide };
+enum alignment_strength_t { alignment_strength };
+enum fixed_singularities_t { fixed_singularities };
+enum fixed_vertices_t { fixed_vertices };
+enum cancel_pairs_t { cancel_pairs };
+enum maximum_trials_t { maximum_trials };
 } // namespace tc_np
 
 /*!
@@ -130,6 +137,43 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(maximum_faces_per_ray)
 /// \param value `true` to triangulate such faces
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(triangulate)
+
+/// a writable property map `vertex_descriptor -> double`; read by `solve()`, which writes there the derivative of
+/// the minimised energy with respect to the index of every interior vertex (0 at the others), the integers fixed
+/// (see `Trivial_connection_solver::solve()`)
+/// \param value the map
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(energy_gradient)
+/// a readable property map `face_descriptor -> Vector_3`: per face a guide direction whose length is its weight
+/// (0: no guide there); read by `place_singularities()`, which then places the singularities of the field
+/// aligned with it (for example `principal_curvature_guide()`)
+/// \param value the map
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(alignment_guide)
+/// `double` > 0, default 100: how closely the aligned field of `place_singularities()` follows its guide (see the
+/// user manual)
+/// \param value the strength, positive and finite
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(alignment_strength)
+/// a range of singularities (pairs of a `vertex_descriptor` and a `Singularity_index`) that
+/// `place_singularities()` keeps, placing the others around them
+/// \param value the range
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(fixed_singularities)
+/// a range of `vertex_descriptor` whose singularities `refine_singularities()` does not move (and onto which it
+/// moves none)
+/// \param value the range
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(fixed_vertices)
+/// `bool`, default `false`: `refine_singularities()` may also cancel a singularity against a neighbour of
+/// opposite sign, one unit of 1/n at a time
+/// \param value whether pairs may cancel
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(cancel_pairs)
+/// `std::size_t`, default 500: the solves `refine_singularities()` may try
+/// \param value the budget of trial solves
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(maximum_trials)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
 } // namespace parameters

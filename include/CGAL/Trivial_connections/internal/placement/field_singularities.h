@@ -1,0 +1,198 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_FIELD_SINGULARITIES_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_FIELD_SINGULARITIES_H
+
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/mesh/geometry.h>
+#include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
+
+#include <CGAL/number_type_config.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+// The indices a face field has at the vertices, with what reading them cost.
+struct Field_singularities
+{
+  std::vector<std::int64_t> k;        // per vertex: n times its index (0 on boundary and isolated vertices)
+  double connection_energy = 0;       // sum_e w_e (d_e / n)^2: the energy of the connection making the field parallel
+  double max_rounding = 0;            // largest distance of (n K_v + sum d) / 2 pi from the integer taken
+};
+
+/*
+  The index of every interior vertex for the face field whose n-th powers are `u`: going counter-clockwise
+  around v (the crossings of the corner halfedges that end at v), d = the change of n times the angle across
+  the edge beyond n times the transport, wrapped to (-pi, pi]; then n k_v = (n K_v + sum d) / 2 pi, an integer
+  up to rounding. The connection x = d / n makes the field parallel and has exactly these singularities, so
+  every closed component's n k_v sum to n chi: each d enters the sums of its edge's two ends with opposite signs
+  and the n K_v sum to 2 pi n chi. This is checked, and a component whose sum rounding broke (a vertex whose
+  sum lies near a half-integer, which only a numerically degenerate field gives) is an error.
+*/
+template <class TriangleMesh>
+Field_singularities field_singularities(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
+                                        const Mesh_topology& t, const std::vector<std::complex<double>>& u, int n)
+{
+  for(int f = 0; f < m.nf; ++f)
+    if(!(std::abs(u[f]) > 0) || !std::isfinite(std::abs(u[f])))
+      throw Invalid_input(Error_code::solver_failure,
+                          "the smoothest field vanishes or is not finite on face " + std::to_string(f) +
+                            ": its singularities cannot be read", std::size_t(f));
+  Field_singularities result;
+  std::vector<double> turn(std::size_t(m.nv), 0.);
+  for(int e = 0; e < g.number_of_interior_edges(); ++e) {
+    const int i = g.edge_corner[e];
+    const int f = Mesh_arrays<TriangleMesh>::face_of(i), h = Mesh_arrays<TriangleMesh>::face_of(m.opposite_corner[i]);
+    const double d = wrap_angle(std::arg(u[h]) - std::arg(u[f]) - n * g.transport[e]);
+    turn[m.target_of(i)] += d;
+    turn[m.source_of(i)] -= d;
+    result.connection_energy += g.weight[e] * (d / n) * (d / n);
+  }
+  result.k.assign(std::size_t(m.nv), 0);
+  std::vector<std::int64_t> sums(t.components.size(), 0);
+  for(int v = 0; v < m.nv; ++v) {
+    if(m.faces_at_vertex[v] == 0 || g.on_boundary[v])
+      continue;
+    const double value = (n * g.angle_defect(v) + turn[v]) / (2 * CGAL_PI);
+    const double k = std::round(value);
+    result.max_rounding = (std::max)(result.max_rounding, std::abs(value - k));
+    result.k[v] = std::int64_t(k);
+    sums[t.component_of_node[t.node_of_vertex[v]]] += result.k[v];
+  }
+  for(std::size_t c = 0; c < t.components.size(); ++c) {
+    const Mesh_topology::Component& comp = t.components[c];
+    if(comp.boundary_loops > 0)
+      continue;
+    const std::int64_t chi = std::int64_t(comp.vertices) - comp.edges + comp.faces;
+    if(sums[c] != n * chi)
+      throw Invalid_input(Error_code::solver_failure,
+                          "the singularities read off the smoothest field of component " + std::to_string(c) +
+                            " sum to " + std::to_string(sums[c]) + "/" + std::to_string(n) + " instead of its Euler "
+                            "characteristic " + std::to_string(chi) + " (rounding error up to " +
+                            std::to_string(result.max_rounding) + " of a unit: the field is numerically degenerate)",
+                          c);
+  }
+  return result;
+}
+
+/*
+  Combines a user's fixed singularities with an automatic placement `automatic` (n times the indices per vertex):
+  on the fixed vertices the fixed index is taken; elsewhere the automatic singularities nearest to the fixed ones
+  (graph distance) give way, one unit of 1/n at a time, until each component's index sum is that of the automatic
+  placement again (chi on a closed component). When no automatic singularity of the needed sign is left, a closed
+  component gets units of the opposite sign at the interior vertices farthest from every singularity. Counts the
+  units removed and added.
+*/
+template <class TriangleMesh>
+std::vector<std::int64_t> combine_with_fixed(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
+                                             const Mesh_topology& t, const std::vector<std::int64_t>& automatic,
+                                             const std::vector<std::int64_t>& fixed_k, const std::vector<char>& fixed,
+                                             std::size_t& removed, std::size_t& added)
+{
+  std::vector<std::int64_t> k(automatic);
+  const std::size_t nc = t.components.size();
+  std::vector<std::int64_t> excess(nc, 0);
+  for(int v = 0; v < m.nv; ++v) {
+    if(m.faces_at_vertex[v] == 0)
+      continue;
+    const int c = t.component_of_node[t.node_of_vertex[v]];
+    if(fixed[v]) {
+      excess[c] += fixed_k[v] - automatic[v];
+      k[v] = fixed_k[v];
+    }
+  }
+  // vertex adjacency through the corner halfedges (both directions: border edges have one corner)
+  auto distances_from = [&](const std::vector<int>& sources) {
+    std::vector<int> distance(std::size_t(m.nv), -1);
+    std::vector<std::vector<int>> neighbours(std::size_t(m.nv));
+    for(int i = 0; i < 3 * m.nf; ++i) {
+      neighbours[m.source_of(i)].push_back(m.target_of(i));
+      neighbours[m.target_of(i)].push_back(m.source_of(i));
+    }
+    std::deque<int> queue;
+    for(int s : sources) {
+      distance[s] = 0;
+      queue.push_back(s);
+    }
+    while(!queue.empty()) {
+      const int v = queue.front();
+      queue.pop_front();
+      for(int w : neighbours[v])
+        if(distance[w] < 0) {
+          distance[w] = distance[v] + 1;
+          queue.push_back(w);
+        }
+    }
+    return distance;
+  };
+  removed = added = 0;
+  bool any = false;
+  for(std::int64_t e : excess)
+    any = any || e != 0;
+  if(!any)
+    return k;
+  std::vector<int> fixed_vertices;
+  for(int v = 0; v < m.nv; ++v)
+    if(fixed[v])
+      fixed_vertices.push_back(v);
+  const std::vector<int> near = distances_from(fixed_vertices);
+  std::vector<int> by_distance;
+  for(int v = 0; v < m.nv; ++v)
+    if(!fixed[v] && k[v] != 0)
+      by_distance.push_back(v);
+  std::stable_sort(by_distance.begin(), by_distance.end(), [&](int a, int b) { return near[a] < near[b]; });
+  for(int v : by_distance) {
+    const int c = t.component_of_node[t.node_of_vertex[v]];
+    while(excess[c] != 0 && k[v] != 0 && (k[v] > 0) == (excess[c] > 0)) {
+      const std::int64_t s = excess[c] > 0 ? 1 : -1;
+      k[v] -= s;
+      excess[c] -= s;
+      ++removed;
+    }
+  }
+  // what removal could not balance: units of the missing sign, far from every singularity (closed components)
+  std::vector<int> singular;
+  for(int v = 0; v < m.nv; ++v)
+    if(k[v] != 0)
+      singular.push_back(v);
+  const std::vector<int> far = distances_from(singular);
+  std::vector<int> candidates;
+  for(int v = 0; v < m.nv; ++v)
+    if(m.faces_at_vertex[v] > 0 && !g.on_boundary[v] && !fixed[v] && k[v] == 0)
+      candidates.push_back(v);
+  std::stable_sort(candidates.begin(), candidates.end(), [&](int a, int b) { return far[a] > far[b]; });
+  for(int v : candidates) {
+    const int c = t.component_of_node[t.node_of_vertex[v]];
+    if(excess[c] == 0 || t.components[c].boundary_loops > 0)
+      continue;
+    const std::int64_t s = excess[c] > 0 ? 1 : -1;
+    k[v] = -s;
+    excess[c] -= s;
+    ++added;
+  }
+  for(std::size_t c = 0; c < nc; ++c)
+    if(excess[c] != 0 && t.components[c].boundary_loops == 0)
+      throw Invalid_input(Error_code::poincare_hopf_violated,
+                          "the fixed singularities of component " + std::to_string(c) +
+                            " cannot be completed to satisfy Poincare-Hopf (not enough free interior vertices)", c);
+  return k;
+}
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_FIELD_SINGULARITIES_H

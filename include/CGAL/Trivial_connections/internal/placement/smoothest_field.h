@@ -1,0 +1,290 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_SMOOTHEST_FIELD_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_SMOOTHEST_FIELD_H
+
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/mesh/geometry.h>
+#include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  The globally smoothest n-direction field of Knoeppel, Crane, Pinkall and Schroeder (SIGGRAPH 2013) on faces:
+  one complex unknown u_f per face, the n-th power of the direction in the face's frame, and the Hermitian
+  pencil (A, B) with
+      u^H A u = sum over interior edges of w_e |u_g - r^n u_f|^2,   r = exp(i rho) the transport from f to g,
+      u^H B u = sum over faces of area_f |u_f|^2.
+  A is the connection Laplacian of the dual graph; it is block diagonal over the components.
+*/
+struct Smoothest_field_problem
+{
+  using Complex = std::complex<double>;
+  using Sparse = Eigen::SparseMatrix<Complex>;
+
+  Sparse A;                          // lower triangle and diagonal (the factorization reads only those)
+  std::vector<double> area;          // per face: B's diagonal
+  std::vector<Complex> start;        // per face: the first vector of the inverse iteration
+  std::vector<int> component_of_face;
+  int components = 0;
+
+  template <class TriangleMesh>
+  Smoothest_field_problem(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g, const Mesh_topology& t, int n)
+    : component_of_face(t.component_of_face), components(int(t.components.size()))
+  {
+    area.resize(std::size_t(m.nf));
+    start.resize(std::size_t(m.nf));
+    for(int f = 0; f < m.nf; ++f) {
+      const Vec3& p0 = m.points[m.corner_vertex[3 * f]];
+      const Vec3& p1 = m.points[m.corner_vertex[3 * f + 1]];
+      const Vec3& p2 = m.points[m.corner_vertex[3 * f + 2]];
+      area[f] = norm(cross(sub(p1, p0), sub(p2, p0))) / 2;
+      // The start is the projection of an ambient field of the barycentre with incommensurate frequencies: it
+      // depends on the geometry only (not on the numbering, nor on the frames), and has no symmetry a mesh
+      // could share. A start built from the frames (u_f = 1) is symmetric on a subdivided icosahedron and
+      // orthogonal to its smallest eigenvectors, which then never appear.
+      const double x = (p0[0] + p1[0] + p2[0]) / 3, y = (p0[1] + p1[1] + p2[1]) / 3, z = (p0[2] + p1[2] + p2[2]) / 3;
+      const Vec3 v = {{std::sin(1.31 * x + 2.17 * y + 0.73 * z + 0.3), std::cos(0.61 * x - 1.79 * y + 2.41 * z + 1.1),
+                       std::sin(2.03 * x + 0.37 * y - 1.53 * z + 2.2) + 0.5}};
+      Vec3 ex, ey;
+      Mesh_geometry::frame(m, f, ex, ey);
+      const double a = dot(v, ex), b = dot(v, ey);
+      start[f] = std::polar(std::hypot(a, b), n * std::atan2(b, a));
+    }
+    std::vector<Eigen::Triplet<Complex>> entries;
+    entries.reserve(std::size_t(3 * g.number_of_interior_edges() + m.nf));
+    std::vector<double> diagonal(std::size_t(m.nf), 0.);
+    for(int e = 0; e < g.number_of_interior_edges(); ++e) {
+      const int i = g.edge_corner[e];
+      const int f = Mesh_arrays<TriangleMesh>::face_of(i), h = Mesh_arrays<TriangleMesh>::face_of(m.opposite_corner[i]);
+      const double w = g.weight[e];
+      diagonal[f] += w;
+      diagonal[h] += w;
+      // the pairing of u_h and u_f is -w r^n (row h, column f), its conjugate above the diagonal
+      const Complex coupling = -w * std::polar(1., n * g.transport[e]);
+      if(h > f)
+        entries.emplace_back(h, f, coupling);
+      else if(h < f)
+        entries.emplace_back(f, h, std::conj(coupling));
+      else
+        diagonal[f] -= 2 * w * std::cos(n * g.transport[e]); // an edge with one face on both sides (not manifold)
+    }
+    for(int f = 0; f < m.nf; ++f)
+      entries.emplace_back(f, f, Complex(diagonal[f], 0.));
+    A.resize(m.nf, m.nf);
+    A.setFromTriplets(entries.begin(), entries.end());
+  }
+
+  // A u (A stored as its lower triangle)
+  Eigen::VectorXcd apply(const Eigen::VectorXcd& u) const
+  {
+    return A.selfadjointView<Eigen::Lower>() * u;
+  }
+};
+
+// Result of one of the solves below
+struct Smoothest_field
+{
+  std::vector<std::complex<double>> u;      // per face
+  std::vector<double> rayleigh_quotient;    // per component: u^H A u / u^H B u
+  int iterations = 0;                       // inverse iterations (0: linear solves only)
+};
+
+/*
+  The factor of A + shift B, with Eigen's simplicial LDL^T on the complex Hermitian matrix (one complex
+  factor rather than real 2x2 blocks: a quarter of the index storage, the same flops).
+*/
+class Smoothest_field_factor
+{
+public:
+  using Complex = std::complex<double>;
+
+  Smoothest_field_factor(const Smoothest_field_problem& p, double shift) : m_problem(&p)
+  {
+    Smoothest_field_problem::Sparse S = p.A;
+    for(int f = 0; f < int(p.area.size()); ++f)
+      S.coeffRef(f, f) += shift * p.area[f];
+    m_ldlt.compute(S);
+    if(m_ldlt.info() != Eigen::Success)
+      throw Invalid_input(Error_code::solver_failure, "the factorization of the smoothest-field pencil failed");
+  }
+
+  Eigen::VectorXcd solve(const Eigen::VectorXcd& r) const
+  {
+    Eigen::VectorXcd u = m_ldlt.solve(r);
+    if(!u.allFinite())
+      throw Invalid_input(Error_code::solver_failure, "a solve of the smoothest-field pencil did not give finite values");
+    return u;
+  }
+
+private:
+  const Smoothest_field_problem* m_problem;
+  Eigen::SimplicialLDLT<Smoothest_field_problem::Sparse, Eigen::Lower, Eigen::AMDOrdering<int>> m_ldlt;
+};
+
+// per component, sum over its faces of area |v_f|^2
+inline std::vector<double> component_norms(const Smoothest_field_problem& p, const Eigen::VectorXcd& v)
+{
+  std::vector<double> s(std::size_t(p.components), 0.);
+  for(Eigen::Index f = 0; f < v.size(); ++f)
+    s[p.component_of_face[f]] += p.area[f] * std::norm(v[f]);
+  return s;
+}
+
+// a scale of A's spectrum: its largest diagonal entry over the face's area (an upper bound of the largest
+// eigenvalue up to a factor 2, by Gershgorin)
+inline double spectral_scale(const Smoothest_field_problem& p)
+{
+  double s = 0;
+  for(int f = 0; f < int(p.area.size()); ++f)
+    s = (std::max)(s, p.A.coeff(f, f).real() / p.area[f]);
+  return s;
+}
+
+/*
+  The smallest eigenvector of the pencil on every component, by inverse iteration on one factor of
+  A + sigma B (sigma = 1e-9 times the spectral scale: A is singular when a component carries a parallel field,
+  a flat torus for instance, and the shift changes no eigenvector). The components are independent blocks:
+  one solve per iteration serves all, each normalised on its own. Stopping rule: every component's Rayleigh
+  quotient lambda_k changed by at most 1e-10 (lambda_k + 1e-8 scale) in the last iteration, after at least
+  three, and at most `max_iterations`. The quotient converges as the square of the vector, so the directions
+  are then within about 1e-5 of the eigenvector's (or of the eigenspace's when the smallest eigenvalue is
+  multiple, as on a sphere: any field of it is as smooth).
+  `fixed` (optional, per face, with `fixed_value`): faces whose u is prescribed (the boundary alignment); a
+  component with such faces is solved once, with these Dirichlet values, instead of iterated.
+*/
+inline Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vector<char>& fixed,
+                                       const std::vector<std::complex<double>>& fixed_value, int max_iterations = 100)
+{
+  using Complex = std::complex<double>;
+  const int nf = int(p.area.size());
+  const double scale = spectral_scale(p);
+  const double shift = 1e-9 * scale;
+
+  std::vector<char> dirichlet(std::size_t(p.components), 0);
+  for(int f = 0; f < nf; ++f)
+    if(!fixed.empty() && fixed[f])
+      dirichlet[p.component_of_face[f]] = 1;
+
+  // with fixed faces, the free faces' unknowns solve A_FF u_F = -A_FP u_P: the fixed faces become identity rows
+  // and their couplings move to the right-hand side
+  Eigen::VectorXcd dirichlet_rhs = Eigen::VectorXcd::Zero(nf);
+  Smoothest_field_problem reduced = p;
+  if(!fixed.empty()) {
+    std::vector<Eigen::Triplet<Complex>> entries;
+    for(int c = 0; c < p.A.outerSize(); ++c)
+      for(Smoothest_field_problem::Sparse::InnerIterator it(p.A, c); it; ++it) {
+        const int r = int(it.row()), col = int(it.col());
+        if(r == col) {
+          entries.emplace_back(r, r, fixed[r] ? Complex(1., 0.) : it.value());
+        } else if(fixed[r] && fixed[col]) {
+        } else if(fixed[col]) {
+          dirichlet_rhs[r] -= it.value() * fixed_value[col];
+        } else if(fixed[r]) {
+          dirichlet_rhs[col] -= std::conj(it.value()) * fixed_value[r];
+        } else {
+          entries.emplace_back(r, col, it.value());
+        }
+      }
+    for(int f = 0; f < nf; ++f)
+      if(fixed[f]) {
+        dirichlet_rhs[f] = fixed_value[f];
+        reduced.area[f] = 0; // no shift on an identity row
+      }
+    reduced.A.setZero();
+    reduced.A.setFromTriplets(entries.begin(), entries.end());
+  }
+  Smoothest_field_factor factor(reduced, shift);
+
+  Smoothest_field result;
+  result.rayleigh_quotient.assign(std::size_t(p.components), 0.);
+  Eigen::VectorXcd u = Eigen::Map<const Eigen::VectorXcd>(p.start.data(), nf);
+  std::vector<double> previous(std::size_t(p.components), -1.);
+  const bool any_eigen = std::find(dirichlet.begin(), dirichlet.end(), 0) != dirichlet.end();
+  for(int it = 0;; ++it) {
+    Eigen::VectorXcd r(nf);
+    for(int f = 0; f < nf; ++f)
+      r[f] = dirichlet[p.component_of_face[f]] ? dirichlet_rhs[f] : p.area[f] * u[f];
+    u = factor.solve(r);
+    const std::vector<double> norms = component_norms(p, u);
+    for(int f = 0; f < nf; ++f)
+      if(!dirichlet[p.component_of_face[f]] && norms[p.component_of_face[f]] > 0)
+        u[f] /= std::sqrt(norms[p.component_of_face[f]]);
+    const Eigen::VectorXcd Au = p.apply(u);
+    std::vector<double> energy(std::size_t(p.components), 0.);
+    for(int f = 0; f < nf; ++f)
+      energy[p.component_of_face[f]] += std::real(std::conj(u[f]) * Au[f]);
+    const std::vector<double> normalised = component_norms(p, u);
+    bool converged = it + 1 >= 3;
+    for(int c = 0; c < p.components; ++c) {
+      const double q = normalised[c] > 0 ? energy[c] / normalised[c] : 0.;
+      if(!dirichlet[c] && !(std::abs(q - previous[c]) <= 1e-10 * (q + 1e-8 * scale)))
+        converged = false;
+      previous[c] = q;
+      result.rayleigh_quotient[c] = q;
+    }
+    result.iterations = any_eigen ? it + 1 : 0;
+    if(!any_eigen || converged || it + 1 >= max_iterations)
+      break;
+  }
+  result.u.assign(u.data(), u.data() + nf);
+  return result;
+}
+
+/*
+  Knoeppel et al.'s field aligned with a guide q (per face, the n-th power of the guide's direction times its
+  weight): the minimiser of u^H A u + s |u - q|_B^2, i.e. (A + s B) u = s B q, one linear solve. s has the
+  units of A / B (1 / length^2); it is `strength` divided by the area of the component, so that the trade-off
+  does not depend on the mesh's scale or resolution: the field follows the guide over distances longer than
+  about sqrt(area / strength) and smooths it over shorter ones.
+*/
+inline Smoothest_field aligned_field(const Smoothest_field_problem& p, const std::vector<std::complex<double>>& q,
+                                     double strength)
+{
+  const int nf = int(p.area.size());
+  std::vector<double> component_area(std::size_t(p.components), 0.);
+  for(int f = 0; f < nf; ++f)
+    component_area[p.component_of_face[f]] += p.area[f];
+  // one shift per component would need one factor per component; the shift of each is applied through B's
+  // scaling instead: (A + s_c B) on the block of c is A + strength * B / area_c
+  Smoothest_field_problem scaled = p;
+  for(int f = 0; f < nf; ++f)
+    scaled.area[f] = p.area[f] / component_area[p.component_of_face[f]];
+  Smoothest_field_factor factor(scaled, strength);
+  Eigen::VectorXcd r(nf);
+  for(int f = 0; f < nf; ++f)
+    r[f] = strength * scaled.area[f] * q[f];
+  const Eigen::VectorXcd u = factor.solve(r);
+  Smoothest_field result;
+  result.u.assign(u.data(), u.data() + nf);
+  const Eigen::VectorXcd Au = p.apply(u);
+  result.rayleigh_quotient.assign(std::size_t(p.components), 0.);
+  std::vector<double> energy(std::size_t(p.components), 0.);
+  for(int f = 0; f < nf; ++f)
+    energy[p.component_of_face[f]] += std::real(std::conj(u[f]) * Au[f]);
+  const std::vector<double> norms = component_norms(p, u);
+  for(int c = 0; c < p.components; ++c)
+    result.rayleigh_quotient[c] = norms[c] > 0 ? energy[c] / norms[c] : 0.;
+  return result;
+}
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_SMOOTHEST_FIELD_H

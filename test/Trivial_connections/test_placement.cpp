@@ -1,0 +1,530 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+// Automatic placement (the smoothest field's singularities), curvature alignment and the refinement that moves
+// singularities: known answers on meshes the tests make (rounded cube, torus of revolution, ellipsoid, sphere,
+// flat pieces), the invariants of test_support.h on the trivial connections they give, and CGAL's real meshes.
+
+#include "test_support.h"
+
+#include <CGAL/Trivial_connections/singularity_placement.h>
+#include <CGAL/Trivial_connections/singularity_refinement.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <iterator>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace tc_test;
+using Solver = TC::Trivial_connection_solver<Surface_mesh>;
+using Access = TC::internal::Solver_access<Solver>;
+
+// the soup with every point mapped by `f`
+template <class F>
+Soup mapped(Soup s, F f)
+{
+  for(Point& p : s.points) {
+    const V3 q = f(V3{{p.x(), p.y(), p.z()}});
+    p = Point(q[0], q[1], q[2]);
+  }
+  return s;
+}
+
+// an icosphere pushed onto the superquadric |x|^8 + |y|^8 + |z|^8 = 1: a cube with rounded edges and corners
+Soup rounded_cube_soup(int level)
+{
+  return mapped(icosphere_soup(level), [](const V3& p) {
+    const double l = std::pow(std::pow(std::abs(p[0]), 8) + std::pow(std::abs(p[1]), 8) + std::pow(std::abs(p[2]), 8), 1. / 8);
+    return (1 / l) * p;
+  });
+}
+
+Soup ellipsoid_soup(int level, double a, double b, double c)
+{
+  return mapped(icosphere_soup(level), [&](const V3& p) { return V3{{a * p[0], b * p[1], c * p[2]}}; });
+}
+
+// an open cylinder of radius r about z, height h: `rings` x `sectors` quads, two triangles each
+Soup cylinder_soup(double r, double h, int rings, int sectors)
+{
+  Soup s;
+  for(int i = 0; i <= rings; ++i)
+    for(int j = 0; j < sectors; ++j) {
+      const double t = two_pi * (j + 0.5 * (i % 2)) / sectors;
+      s.points.emplace_back(r * std::cos(t), r * std::sin(t), h * i / rings);
+    }
+  auto id = [&](int i, int j) { return i * sectors + (j + sectors) % sectors; };
+  for(int i = 0; i < rings; ++i)
+    for(int j = 0; j < sectors; ++j) {
+      // counter-clockwise seen from outside: around increases with t, up with i
+      if(i % 2 == 0) {
+        s.faces.push_back({{id(i, j), id(i, j + 1), id(i + 1, j)}});
+        s.faces.push_back({{id(i, j + 1), id(i + 1, j + 1), id(i + 1, j)}});
+      } else {
+        s.faces.push_back({{id(i, j), id(i + 1, j + 1), id(i + 1, j)}});
+        s.faces.push_back({{id(i, j), id(i, j + 1), id(i + 1, j + 1)}});
+      }
+    }
+  return s;
+}
+
+// a face map over values already computed (Mesh_view::face_map() resets its vector: for outputs)
+Indexed_map<Surface_mesh::Face_index, Vector> values_of(const Mesh_view<Surface_mesh>& view, std::vector<Vector>& v)
+{
+  return Indexed_map<Surface_mesh::Face_index, Vector>{&view.fid, &v};
+}
+
+struct Placed
+{
+  Singularities singularities; // by vertex number of the view
+  TC::Placement_report report;
+};
+
+template <class NP = TC::parameters::Default_named_parameters>
+Placed place(const Mesh_view<Surface_mesh>& view, const Solver& solver, const NP& np = TC::parameters::default_values())
+{
+  std::vector<std::pair<Solver::vertex_descriptor, TC::Singularity_index>> out;
+  Placed p;
+  p.report = TC::place_singularities(solver, std::back_inserter(out), np);
+  for(const auto& s : out)
+    p.singularities.emplace_back(view.vid.at(s.first), s.second);
+  return p;
+}
+
+Index sum_of(const Singularities& s, int n)
+{
+  long long t = 0;
+  for(const auto& p : s)
+    t += p.second.times(n);
+  return Index(t, n);
+}
+
+// the field's angle in the package's frame of every face (for the index reader)
+std::vector<std::complex<double>> field_powers(const Solver& solver, const Mesh_view<Surface_mesh>& view,
+                                               const std::vector<Vector>& field, int n)
+{
+  const auto& m = Access::mesh(solver);
+  std::vector<std::complex<double>> u(std::size_t(m.nf));
+  for(int f = 0; f < m.nf; ++f) {
+    TC::internal::Vec3 ex, ey;
+    TC::internal::Mesh_geometry::frame(m, f, ex, ey);
+    const Vector& d = field[view.fid.at(m.face_descriptors[f])];
+    const TC::internal::Vec3 v = {{d.x(), d.y(), d.z()}};
+    u[f] = std::polar(1., n * std::atan2(TC::internal::dot(v, ey), TC::internal::dot(v, ex)));
+  }
+  return u;
+}
+
+// placement, then the trivial connection with exactly those singularities, checked; its energy is at most the
+// smooth field's connection energy (that connection is trivial with the same singularities) when its integers
+// are proven optimal
+TC::Solve_report place_and_solve(const Mesh_view<Surface_mesh>& view, Solver& solver, int n, Placed& p)
+{
+  p = place(view, solver, TC::parameters::symmetry_order(n));
+  EXPECT_LT(p.report.max_rounding, 1e-6);
+  const Solution<Surface_mesh> s = solve_and_check(view, solver, p.singularities, n);
+  if(s.report.integers_proven_optimal)
+    EXPECT_LE(s.report.energy, p.report.field_energy * (1 + 1e-9) + 1e-12);
+  return s.report;
+}
+
+TEST(Placement, rounded_cube_cross_field_has_eight_quarter_singularities_one_near_each_corner)
+{
+  const Surface_mesh tm = to_surface_mesh(rounded_cube_soup(4));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  Placed p;
+  place_and_solve(view, solver, 4, p);
+  ASSERT_EQ(p.singularities.size(), 8u);
+  std::set<int> octants;
+  const double corner = std::pow(3., -1. / 8); // the superquadric's corner is (±1, ±1, ±1) times this
+  for(const auto& s : p.singularities) {
+    EXPECT_EQ(s.second, Index(1, 4));
+    const V3 q = view.P[s.first];
+    const V3 c = {{q[0] > 0 ? corner : -corner, q[1] > 0 ? corner : -corner, q[2] > 0 ? corner : -corner}};
+    // within a tenth of the cube's edge (2 * corner) from its corner: nearer than to any other corner by far
+    EXPECT_LT(norm(q - c), 0.2 * corner) << "vertex " << s.first;
+    octants.insert((q[0] > 0) + 2 * (q[1] > 0) + 4 * (q[2] > 0));
+  }
+  EXPECT_EQ(octants.size(), 8u);
+  EXPECT_EQ(p.report.singularities_per_index.size(), 1u);
+  EXPECT_EQ(p.report.singularities_per_index[0].second, 8u);
+}
+
+// A slender torus of revolution (R = 6 r). On a fat one (R = 3 r or less) the Dirichlet energy of the n-th powers
+// prefers, for n = 4, rings of +1/4 and -1/4 singularities to the singularity-free field (whose n-th power turns
+// n times as fast): measured, and said in the user manual; the trivial connection with no singularity is then
+// the cheaper one, which the refinement cannot reach by local moves.
+TEST(Placement, torus_of_revolution_gets_no_singularity)
+{
+  const Surface_mesh tm = torus(6, 1, 96, 16);
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  for(int n : {1, 2, 4}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    Placed p;
+    place_and_solve(view, solver, n, p);
+    EXPECT_TRUE(p.singularities.empty());
+  }
+}
+
+TEST(Placement, sphere_vector_field_indices_sum_to_two_and_components_are_independent)
+{
+  const Surface_mesh tm = to_surface_mesh(concatenate(icosphere_soup(3), torus_soup(2, 0.5, 40, 16)));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  for(int n : {1, 2, 3, 4, 5, 6, 8}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    Placed p;
+    place_and_solve(view, solver, n, p);
+    Singularities sphere, torus_part;
+    for(const auto& s : p.singularities)
+      (view.P[s.first][0] < 1.2 && std::abs(view.P[s.first][2]) <= 1.01 && norm(view.P[s.first]) < 1.01 ? sphere
+                                                                                                          : torus_part)
+        .push_back(s);
+    EXPECT_EQ(sum_of(sphere, n), Index(2));
+    EXPECT_EQ(sum_of(torus_part, n), Index(0));
+    EXPECT_EQ(p.report.rayleigh_quotients.size(), 2u);
+    if(n == 1) // the smoothest vector field on a round sphere: two +1 singularities (a multiple eigenvalue, any pair)
+      EXPECT_EQ(sphere.size(), 2u);
+  }
+}
+
+// A flat disk and an open cylinder carry parallel fields: A is singular there, the shift makes the inverse
+// iteration converge to them, and no singularity is read (not NaN).
+TEST(Placement, flat_pieces_with_a_parallel_field_get_no_singularity)
+{
+  for(const Soup& soup : {disk_soup(8, 24), cylinder_soup(1, 2, 10, 24)}) {
+    const Surface_mesh tm = to_surface_mesh(soup);
+    const Mesh_view<Surface_mesh> view(tm);
+    Solver solver(tm);
+    for(int n : {1, 2, 4, 6}) {
+      SCOPED_TRACE("n = " + std::to_string(n));
+      Placed p;
+      place_and_solve(view, solver, n, p);
+      EXPECT_TRUE(p.singularities.empty());
+      ASSERT_EQ(p.report.rayleigh_quotients.size(), 1u);
+      EXPECT_LT(p.report.rayleigh_quotients[0], 1e-8);
+      EXPECT_TRUE(std::isfinite(p.report.field_energy));
+      EXPECT_LT(p.report.field_energy, 1e-12);
+    }
+  }
+}
+
+// The index reader recovers the singularities of a field the package made: the field of a trivial connection
+// with prescribed singularities is parallel for it, so reading its indices must give them back.
+TEST(Placement, index_reader_recovers_the_singularities_of_a_trivial_connection_field)
+{
+  const Surface_mesh tm = to_surface_mesh(warped(icosphere_soup(4), 0.03));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  const int n = 4;
+  Singularities sing;
+  for(int v : spread_interior_vertices(view, 0, 8))
+    sing.emplace_back(v, Index(1, 4));
+  const Solution<Surface_mesh> s = solve_and_check(view, solver, sing, n);
+  // the reader takes the smallest rotation across each edge: it reads the connection's indices when every
+  // |n x| < pi, which this fine mesh must give
+  double largest = 0;
+  for(int h : view.interior_halfedges)
+    largest = std::max(largest, std::abs(n * s.x[h]));
+  ASSERT_LT(largest, pi - 0.05) << "the mesh is too coarse for this test";
+  const std::vector<std::complex<double>> u = field_powers(solver, view, s.field, n);
+  const TC::internal::Field_singularities read =
+    TC::internal::field_singularities(Access::mesh(solver), Access::geometry(solver), Access::topology(solver), u, n);
+  std::vector<long long> expected = scaled_indices(view.nv(), sing, n);
+  const auto& m = Access::mesh(solver);
+  for(int v = 0; v < m.nv; ++v)
+    EXPECT_EQ(read.k[v], expected[view.vid.at(m.vertex_descriptors[v])]) << "vertex " << v;
+  EXPECT_LT(read.max_rounding, 1e-6);
+  // and the connection the reader recovers is the solver's: the same energy
+  EXPECT_NEAR(read.connection_energy, s.report.energy, 1e-9 * s.report.energy);
+}
+
+TEST(Placement, independent_of_vertex_and_face_numbering)
+{
+  const Soup soup = ellipsoid_soup(3, 1.3, 1.0, 0.7);
+  for(int n : {1, 4}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    std::vector<std::set<std::pair<std::array<double, 3>, long long>>> sets;
+    for(unsigned seed : {0u, 7u}) {
+      const Soup s = seed == 0 ? soup : renumbered(soup, seed, nullptr, true);
+      const Surface_mesh tm = to_surface_mesh(s);
+      const Mesh_view<Surface_mesh> view(tm);
+      Solver solver(tm);
+      const Placed p = place(view, solver, TC::parameters::symmetry_order(n));
+      std::set<std::pair<std::array<double, 3>, long long>> set;
+      for(const auto& q : p.singularities)
+        set.insert({view.P[q.first], q.second.times(n)});
+      sets.push_back(set);
+    }
+    EXPECT_EQ(sets[0], sets[1]);
+    EXPECT_FALSE(sets[0].empty());
+  }
+}
+
+// umbilics of x^2/a^2 + y^2/b^2 + z^2/c^2 = 1 with a > b > c: (±a sqrt((a²-b²)/(a²-c²)), 0, ±c sqrt((b²-c²)/(a²-c²)))
+TEST(Placement, curvature_aligned_line_field_on_an_ellipsoid_has_its_four_half_singularities_at_the_umbilics)
+{
+  const double a = 1.6, b = 1.2, c = 0.8;
+  const Surface_mesh tm = to_surface_mesh(ellipsoid_soup(4, a, b, c));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  std::vector<Vector> guide(view.nf());
+  TC::principal_curvature_guide(solver, view.face_map(guide));
+  const Placed p = place(view, solver, TC::parameters::alignment_guide(values_of(view, guide), TC::parameters::symmetry_order(2)));
+  EXPECT_TRUE(p.report.aligned);
+  ASSERT_EQ(p.singularities.size(), 4u);
+  const double ux = a * std::sqrt((a * a - b * b) / (a * a - c * c)), uz = c * std::sqrt((b * b - c * c) / (a * a - c * c));
+  std::set<int> quadrants;
+  for(const auto& s : p.singularities) {
+    EXPECT_EQ(s.second, Index(1, 2));
+    const V3 q = view.P[s.first];
+    const V3 umbilic = {{q[0] > 0 ? ux : -ux, 0., q[2] > 0 ? uz : -uz}};
+    EXPECT_LT(norm(q - umbilic), 0.15) << "vertex " << s.first;
+    quadrants.insert((q[0] > 0) + 2 * (q[2] > 0));
+  }
+  EXPECT_EQ(quadrants.size(), 4u);
+  solve_and_check(view, solver, p.singularities, 2);
+}
+
+// Away from umbilics, the curvature-aligned cross field is close to the principal directions.
+TEST(Placement, curvature_aligned_cross_field_follows_the_principal_directions)
+{
+  struct Case
+  {
+    const char* what;
+    Soup soup;
+    double threshold_degrees;
+  };
+  const double a = 1.6, b = 1.2, c = 0.8;
+  const double ux = a * std::sqrt((a * a - b * b) / (a * a - c * c)), uz = c * std::sqrt((b * b - c * c) / (a * a - c * c));
+  for(const Case& k : {Case{"cylinder", cylinder_soup(1, 3, 24, 48), 1.}, Case{"ellipsoid", ellipsoid_soup(4, a, b, c), 10.}}) {
+    SCOPED_TRACE(k.what);
+    const Surface_mesh tm = to_surface_mesh(k.soup);
+    const Mesh_view<Surface_mesh> view(tm);
+    Solver solver(tm);
+    std::vector<Vector> guide(view.nf());
+    TC::principal_curvature_guide(solver, view.face_map(guide));
+    const Placed p = place(view, solver, TC::parameters::alignment_guide(values_of(view, guide), TC::parameters::symmetry_order(4)));
+    // the trivial connection with these singularities, guided towards the curvature on spread faces
+    std::vector<Solver::face_descriptor> guided;
+    for(int f = 0; f < view.nf(); f += std::max(1, view.nf() / 64))
+      guided.push_back(view.faces[f]);
+    solver.set_constraints(TC::parameters::guided_faces(guided));
+    std::vector<double> x;
+    std::vector<Vector> field;
+    const TC::Solve_report r = solver.solve(descriptors(view, p.singularities), view.halfedge_map(x),
+                                            TC::parameters::face_directions(values_of(view, guide), TC::parameters::symmetry_order(4)));
+    solver.compute_field(view.halfedge_map_const(x), view.face_map(field),
+                         TC::parameters::face_directions(values_of(view, guide), TC::parameters::symmetry_order(4)));
+    EXPECT_EQ(r.guidance.size(), guided.size());
+    double worst = 0;
+    for(int f = 0; f < view.nf(); ++f) {
+      const V3 d = {{field[f].x(), field[f].y(), field[f].z()}}, g = {{guide[f].x(), guide[f].y(), guide[f].z()}};
+      const V3 q = view.bary[f];
+      // away from the umbilics (ellipsoid) and from the cylinder's ends
+      bool far = norm(g) > 0;
+      if(std::string(k.what) == "ellipsoid")
+        for(double sx : {-1., 1.})
+          for(double sz : {-1., 1.})
+            far = far && norm(q - V3{{sx * ux, 0., sz * uz}}) > 0.4;
+      else
+        far = far && q[2] > 0.3 && q[2] < 2.7;
+      if(!far)
+        continue;
+      const double t = std::abs(wrap(signed_angle(unit(g), d, view.N[f]) * 4)) / 4;
+      worst = std::max(worst, t);
+    }
+    EXPECT_LT(worst * 180 / pi, k.threshold_degrees);
+    RecordProperty(std::string(k.what) + "_worst_degrees", std::to_string(worst * 180 / pi));
+  }
+}
+
+// The energy gradient of solve(): E is quadratic in the indices (for fixed integers), so the central difference
+// of a move of one unit of 1/n is exactly d (g_w - g_v).
+TEST(Placement, energy_gradient_is_the_exact_central_difference)
+{
+  const Surface_mesh tm = to_surface_mesh(warped(icosphere_soup(3), 0.05));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  const int n = 64;
+  const std::vector<int> spread = spread_interior_vertices(view, 0, 4);
+  const Singularities base = {{spread[0], Index(1)}, {spread[1], Index(1)}};
+  auto energy = [&](const Singularities& s, std::vector<double>* gradient) {
+    std::vector<double> x, g(view.nv(), 0.);
+    std::map<Solver::vertex_descriptor, double> gm;
+    boost::associative_property_map<std::map<Solver::vertex_descriptor, double>> map(gm);
+    const TC::Solve_report r =
+      solver.solve(descriptors(view, s), view.halfedge_map(x), TC::parameters::energy_gradient(map, TC::parameters::symmetry_order(n)));
+    if(gradient) {
+      gradient->assign(view.nv(), 0.);
+      for(const auto& kv : gm)
+        (*gradient)[view.vid.at(kv.first)] = kv.second;
+    }
+    return r.energy;
+  };
+  std::vector<double> g;
+  const double e0 = energy(base, &g);
+  const int v = spread[2], w = spread[3];
+  const double d = 1. / n;
+  const double plus = energy({base[0], base[1], {v, Index(-1, n)}, {w, Index(1, n)}}, nullptr);
+  const double minus = energy({base[0], base[1], {v, Index(1, n)}, {w, Index(-1, n)}}, nullptr);
+  EXPECT_NEAR((plus - minus) / 2, d * (g[w] - g[v]), 1e-9 * e0);
+  EXPECT_GT(plus + minus - 2 * e0, 0); // the second-order term is positive
+}
+
+TEST(Refinement, moves_two_close_singularities_on_a_sphere_apart_without_raising_the_energy)
+{
+  const Surface_mesh tm = to_surface_mesh(icosphere_soup(3));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  const int a = nearest_interior_vertex(view, V3{{0, 0, 1}});
+  // a vertex two rings away from a
+  int b = -1;
+  for(int v = 0; v < view.nv(); ++v)
+    if(b < 0 && v != a && norm(view.P[v] - view.P[a]) > 0.25 && norm(view.P[v] - view.P[a]) < 0.45)
+      b = v;
+  ASSERT_GE(b, 0);
+  const Singularities start = {{a, Index(1)}, {b, Index(1)}};
+  std::vector<double> x;
+  const auto r = TC::refine_singularities(solver, descriptors(view, start), view.halfedge_map(x),
+                                          TC::parameters::maximum_trials(std::size_t(400), TC::parameters::symmetry_order(1)));
+  EXPECT_LT(r.energy_after, r.energy_before);
+  EXPECT_FALSE(r.moves.empty());
+  double previous = r.energy_before;
+  for(const auto& m : r.moves) {
+    EXPECT_LT(m.energy, previous);
+    previous = m.energy;
+  }
+  ASSERT_EQ(r.singularities.size(), 2u);
+  Singularities end;
+  for(const auto& s : r.singularities)
+    end.emplace_back(view.vid.at(s.first), s.second);
+  EXPECT_EQ(sum_of(end, 1), Index(2));
+  EXPECT_GT(norm(view.P[end[0].first] - view.P[end[1].first]), norm(view.P[a] - view.P[b]) + 0.3);
+  // the connection written is that of the refined set
+  check_connection(view, solver, end, 1, x, r.report);
+}
+
+TEST(Refinement, keeps_fixed_vertices_and_cancels_pairs_when_asked)
+{
+  const Surface_mesh tm = to_surface_mesh(icosphere_soup(3));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  const int n = 4;
+  const int top = nearest_interior_vertex(view, V3{{0, 0, 1}}), bottom = nearest_interior_vertex(view, V3{{0, 0, -1}});
+  // +1 at the poles, and a +1/4, -1/4 pair on adjacent vertices at the equator
+  const int p = nearest_interior_vertex(view, V3{{1, 0, 0}});
+  int q = -1;
+  for(int h = 0; h < view.nh(); ++h)
+    if(view.src[h] == p && q < 0)
+      q = view.tgt[h];
+  const Singularities start = {{top, Index(1)}, {bottom, Index(1)}, {p, Index(1, 4)}, {q, Index(-1, 4)}};
+  std::vector<double> x;
+  const std::vector<Solver::vertex_descriptor> fixed = {view.vertices[top], view.vertices[bottom]};
+  const auto r = TC::refine_singularities(
+    solver, descriptors(view, start), view.halfedge_map(x),
+    TC::parameters::maximum_trials(std::size_t(200), TC::parameters::cancel_pairs(true, TC::parameters::fixed_vertices(fixed, TC::parameters::symmetry_order(n)))));
+  EXPECT_LT(r.energy_after, r.energy_before);
+  std::map<int, Index> end;
+  for(const auto& s : r.singularities)
+    end[view.vid.at(s.first)] = s.second;
+  EXPECT_EQ(end.size(), 2u); // the pair cancelled
+  EXPECT_EQ(end[top], Index(1));
+  EXPECT_EQ(end[bottom], Index(1));
+  for(const auto& m : r.moves) {
+    EXPECT_NE(view.vid.at(m.from), top);
+    EXPECT_NE(view.vid.at(m.to), bottom);
+  }
+}
+
+// fixed singularities kept, the automatic ones nearest to them give way, Poincare-Hopf holds
+TEST(Placement, fixed_singularities_are_kept_and_completed_to_poincare_hopf)
+{
+  const Surface_mesh tm = to_surface_mesh(rounded_cube_soup(3));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  const Placed automatic = place(view, solver, TC::parameters::symmetry_order(4));
+  ASSERT_EQ(automatic.singularities.size(), 8u);
+  // the user puts +1/2 at the centre of the top face, and +1/4 on the first automatic corner's vertex's neighbour
+  const int top = nearest_interior_vertex(view, V3{{0, 0, 1}});
+  const Singularities fixed = {{top, Index(1, 2)}};
+  const Placed p = place(view, solver, TC::parameters::fixed_singularities(descriptors(view, fixed), TC::parameters::symmetry_order(4)));
+  EXPECT_EQ(sum_of(p.singularities, 4), Index(2));
+  EXPECT_EQ(p.report.fixed, 1u);
+  EXPECT_EQ(p.report.units_removed, 2u);
+  bool kept = false;
+  for(const auto& s : p.singularities)
+    kept = kept || (s.first == top && s.second == Index(1, 2));
+  EXPECT_TRUE(kept);
+  // the two corners that gave way are on the top face's side (z > 0)
+  std::size_t top_corners = 0;
+  for(const auto& s : p.singularities)
+    if(s.first != top && view.P[s.first][2] > 0)
+      ++top_corners;
+  EXPECT_EQ(top_corners, 2u);
+  solve_and_check(view, solver, p.singularities, 4);
+}
+
+TEST(Placement, bad_parameters_are_errors)
+{
+  const Surface_mesh tm = icosphere(2);
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  auto code_of = [&](auto&& f) {
+    try {
+      f();
+    } catch(const TC::Invalid_input& e) {
+      return std::string(TC::error_code_name(e.code()));
+    }
+    return std::string("none");
+  };
+  std::vector<std::pair<Solver::vertex_descriptor, Index>> out;
+  EXPECT_EQ(code_of([&] { TC::place_singularities(solver, std::back_inserter(out), TC::parameters::symmetry_order(0)); }),
+            "invalid_symmetry_order");
+  EXPECT_EQ(code_of([&] {
+              TC::place_singularities(solver, std::back_inserter(out), TC::parameters::alignment_strength(-1.));
+            }),
+            "invalid_argument");
+  const Singularities off = {{0, Index(1, 3)}};
+  EXPECT_EQ(code_of([&] {
+              TC::place_singularities(solver, std::back_inserter(out),
+                                      TC::parameters::fixed_singularities(descriptors(view, off), TC::parameters::symmetry_order(4)));
+            }),
+            "index_not_multiple");
+  std::vector<double> x;
+  const Singularities unbalanced = {{0, Index(1)}};
+  EXPECT_EQ(code_of([&] { TC::refine_singularities(solver, descriptors(view, unbalanced), view.halfedge_map(x)); }),
+            "poincare_hopf_violated");
+}
+
+// Real meshes of every kind: closed of genus 0 to 3, bordered, several components; n = 1, 4
+TEST(Placement, real_meshes_every_invariant_holds)
+{
+  for(const char* name : {"cow.off", "knot1.off", "elephant.off", "pig.off", "mesh_with_border.off", "bones.off", "b9_mesh.off", "elephant-with-holes.off"}) {
+    SCOPED_TRACE(name);
+    Surface_mesh tm;
+    TC_READ_CGAL_MESH_OR_SKIP(name, tm);
+    const Mesh_view<Surface_mesh> view(tm);
+    Solver solver(tm);
+    for(int n : {1, 4}) {
+      SCOPED_TRACE("n = " + std::to_string(n));
+      Placed p;
+      place_and_solve(view, solver, n, p);
+      EXPECT_EQ(p.report.number_of_singularities, p.singularities.size());
+    }
+  }
+}
+
+} // namespace

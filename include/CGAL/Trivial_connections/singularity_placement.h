@@ -124,7 +124,8 @@ the aligned field and the boundary.
   \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd
   \cgalParamNBegin{align_with_boundary}
     \cgalParamDescription{the smooth field is prescribed on the boundary faces (along their border edge, as the
-      solver's boundary alignment) instead of free there}
+      solver's boundary alignment) instead of free there; with `alignment_guide`, the boundary directions are
+      guides of the aligned field instead, as strong as the strongest guide of their component}
     \cgalParamType{`bool`} \cgalParamDefault{`false`}
   \cgalParamNEnd
   \cgalParamNBegin{alignment_guide}
@@ -170,10 +171,25 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
   std::vector<std::complex<double>> fixed_values;
   if(align_boundary)
     internal::boundary_powers(m, g, n, fixed_faces, fixed_values);
+  // what the inverse iteration reads to know that its singularities are settled (Eigen vectors are contiguous)
+  auto singularities_of = [&](const Eigen::VectorXcd& u) {
+    return internal::read_field_singularities(m, g, std::vector<std::complex<double>>(u.data(), u.data() + u.size()), n).k;
+  };
   internal::Smoothest_field field;
   if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::alignment_guide_t>::value) {
-    const std::vector<std::complex<double>> q =
+    std::vector<std::complex<double>> q =
       internal::guide_powers(m, solver.geom_traits(), CGAL::parameters::get_parameter(np, tc_np::alignment_guide), n);
+    // an aligned boundary is one more guide, as strong as the strongest of its component (1 without one)
+    if(align_boundary) {
+      std::vector<double> strongest(t.components.size(), 0.);
+      for(int f = 0; f < m.nf; ++f)
+        strongest[t.component_of_face[f]] = (std::max)(strongest[t.component_of_face[f]], std::abs(q[f]));
+      for(int f = 0; f < m.nf; ++f)
+        if(fixed_faces[f]) {
+          const double s = strongest[t.component_of_face[f]];
+          q[f] = fixed_values[f] * (s > 0 ? s : 1.);
+        }
+    }
     std::vector<double> weight(t.components.size(), 0.);
     for(int f = 0; f < m.nf; ++f)
       weight[t.component_of_face[f]] += std::abs(q[f]);
@@ -183,11 +199,11 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
       any_unguided = any_unguided || (unguided[c] = !(weight[c] > 0));
     field = internal::aligned_field(problem, q, strength);
     report.aligned = true;
-    if(any_unguided || align_boundary) {
-      // the components without a guide, and the aligned boundary, from the smoothest field
-      const internal::Smoothest_field smooth = internal::smoothest_field(problem, fixed_faces, fixed_values);
+    if(any_unguided) {
+      // the components without a guide: the smoothest field
+      const internal::Smoothest_field smooth = internal::smoothest_field(problem, fixed_faces, fixed_values, singularities_of);
       for(int f = 0; f < m.nf; ++f)
-        if(unguided[t.component_of_face[f]] || (align_boundary && fixed_faces[f]))
+        if(unguided[t.component_of_face[f]])
           field.u[f] = smooth.u[f];
       for(std::size_t c = 0; c < weight.size(); ++c)
         if(unguided[c])
@@ -195,7 +211,7 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
       field.iterations = smooth.iterations;
     }
   } else {
-    field = internal::smoothest_field(problem, fixed_faces, fixed_values);
+    field = internal::smoothest_field(problem, fixed_faces, fixed_values, singularities_of);
   }
   report.rayleigh_quotients = field.rayleigh_quotient;
   report.iterations = field.iterations;

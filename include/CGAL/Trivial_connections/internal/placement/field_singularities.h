@@ -43,14 +43,9 @@ struct Field_singularities
   sum lies near a half-integer, which only a numerically degenerate field gives) is an error.
 */
 template <class TriangleMesh>
-Field_singularities field_singularities(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
-                                        const Mesh_topology& t, const std::vector<std::complex<double>>& u, int n)
+Field_singularities read_field_singularities(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
+                                             const std::vector<std::complex<double>>& u, int n)
 {
-  for(int f = 0; f < m.nf; ++f)
-    if(!(std::abs(u[f]) > 0) || !std::isfinite(std::abs(u[f])))
-      throw Invalid_input(Error_code::solver_failure,
-                          "the smoothest field vanishes or is not finite on face " + std::to_string(f) +
-                            ": its singularities cannot be read", std::size_t(f));
   Field_singularities result;
   std::vector<double> turn(std::size_t(m.nv), 0.);
   for(int e = 0; e < g.number_of_interior_edges(); ++e) {
@@ -62,16 +57,32 @@ Field_singularities field_singularities(const Mesh_arrays<TriangleMesh>& m, cons
     result.connection_energy += g.weight[e] * (d / n) * (d / n);
   }
   result.k.assign(std::size_t(m.nv), 0);
-  std::vector<std::int64_t> sums(t.components.size(), 0);
   for(int v = 0; v < m.nv; ++v) {
     if(m.faces_at_vertex[v] == 0 || g.on_boundary[v])
       continue;
     const double value = (n * g.angle_defect(v) + turn[v]) / (2 * CGAL_PI);
     const double k = std::round(value);
     result.max_rounding = (std::max)(result.max_rounding, std::abs(value - k));
-    result.k[v] = std::int64_t(k);
-    sums[t.component_of_node[t.node_of_vertex[v]]] += result.k[v];
+    result.k[v] = std::abs(k) < 1e15 ? std::int64_t(k) : 0; // only a NaN or a numerically absurd field gets here
   }
+  return result;
+}
+
+// the same, checked: a field that vanishes or is not finite somewhere, and Poincare-Hopf on closed components
+template <class TriangleMesh>
+Field_singularities field_singularities(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
+                                        const Mesh_topology& t, const std::vector<std::complex<double>>& u, int n)
+{
+  for(int f = 0; f < m.nf; ++f)
+    if(!(std::abs(u[f]) > 0) || !std::isfinite(std::abs(u[f])))
+      throw Invalid_input(Error_code::solver_failure,
+                          "the smoothest field vanishes or is not finite on face " + std::to_string(f) +
+                            ": its singularities cannot be read", std::size_t(f));
+  Field_singularities result = read_field_singularities(m, g, u, n);
+  std::vector<std::int64_t> sums(t.components.size(), 0);
+  for(int v = 0; v < m.nv; ++v)
+    if(result.k[v] != 0)
+      sums[t.component_of_node[t.node_of_vertex[v]]] += result.k[v];
   for(std::size_t c = 0; c < t.components.size(); ++c) {
     const Mesh_topology::Component& comp = t.components[c];
     if(comp.boundary_loops > 0)

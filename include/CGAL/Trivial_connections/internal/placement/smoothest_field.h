@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <vector>
 
 namespace CGAL {
@@ -160,16 +161,21 @@ inline double spectral_scale(const Smoothest_field_problem& p)
   The smallest eigenvector of the pencil on every component, by inverse iteration on one factor of
   A + sigma B (sigma = 1e-9 times the spectral scale: A is singular when a component carries a parallel field,
   a flat torus for instance, and the shift changes no eigenvector). The components are independent blocks:
-  one solve per iteration serves all, each normalised on its own. Stopping rule: every component's Rayleigh
-  quotient lambda_k changed by at most 1e-10 (lambda_k + 1e-8 scale) in the last iteration, after at least
-  three, and at most `max_iterations`. The quotient converges as the square of the vector, so the directions
-  are then within about 1e-5 of the eigenvector's (or of the eigenspace's when the smallest eigenvalue is
-  multiple, as on a sphere: any field of it is as smooth).
+  one solve per iteration serves all, each normalised on its own.
+  Stopping rule, after at least three iterations: every component's Rayleigh quotient lambda_k changed by at most
+  1e-10 (lambda_k + 1e-8 scale) in the last iteration (converged: the quotient converges as the square of the
+  vector, so the directions are then within about 1e-5 of the eigenvector's); or the singularities the field has
+  (`singularities_of(u)`, n k_v per vertex) were the same in the last three iterations while every quotient
+  changed by at most 1e-6 (lambda_k + 1e-8 scale): what is read off the field is settled, though the vector may
+  still drift inside a cluster of nearly equal eigenvalues (on a surface of revolution, or a sphere, where any
+  field of the cluster is as smooth); or `max_iterations`.
   `fixed` (optional, per face, with `fixed_value`): faces whose u is prescribed (the boundary alignment); a
   component with such faces is solved once, with these Dirichlet values, instead of iterated.
 */
-inline Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vector<char>& fixed,
-                                       const std::vector<std::complex<double>>& fixed_value, int max_iterations = 100)
+template <class SingularityReader>
+Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vector<char>& fixed,
+                                const std::vector<std::complex<double>>& fixed_value,
+                                const SingularityReader& singularities_of, int max_iterations = 100)
 {
   using Complex = std::complex<double>;
   const int nf = int(p.area.size());
@@ -216,6 +222,8 @@ inline Smoothest_field smoothest_field(const Smoothest_field_problem& p, const s
   Eigen::VectorXcd u = Eigen::Map<const Eigen::VectorXcd>(p.start.data(), nf);
   std::vector<double> previous(std::size_t(p.components), -1.);
   const bool any_eigen = std::find(dirichlet.begin(), dirichlet.end(), 0) != dirichlet.end();
+  std::vector<std::int64_t> singularities, last_singularities;
+  int settled = 0; // iterations in a row with the same singularities
   for(int it = 0;; ++it) {
     Eigen::VectorXcd r(nf);
     for(int f = 0; f < nf; ++f)
@@ -230,17 +238,27 @@ inline Smoothest_field smoothest_field(const Smoothest_field_problem& p, const s
     for(int f = 0; f < nf; ++f)
       energy[p.component_of_face[f]] += std::real(std::conj(u[f]) * Au[f]);
     const std::vector<double> normalised = component_norms(p, u);
-    bool converged = it + 1 >= 3;
+    bool converged = it + 1 >= 3, nearly = it + 1 >= 3;
     for(int c = 0; c < p.components; ++c) {
       const double q = normalised[c] > 0 ? energy[c] / normalised[c] : 0.;
-      if(!dirichlet[c] && !(std::abs(q - previous[c]) <= 1e-10 * (q + 1e-8 * scale)))
-        converged = false;
+      const double change = std::abs(q - previous[c]), tolerance = q + 1e-8 * scale;
+      if(!dirichlet[c]) {
+        converged = converged && change <= 1e-10 * tolerance;
+        nearly = nearly && change <= 1e-6 * tolerance;
+      }
       previous[c] = q;
       result.rayleigh_quotient[c] = q;
     }
     result.iterations = any_eigen ? it + 1 : 0;
     if(!any_eigen || converged || it + 1 >= max_iterations)
       break;
+    if(nearly || settled > 0) {
+      singularities = singularities_of(u);
+      settled = singularities == last_singularities ? settled + 1 : 1;
+      last_singularities.swap(singularities);
+      if(nearly && settled >= 3)
+        break;
+    }
   }
   result.u.assign(u.data(), u.data() + nf);
   return result;

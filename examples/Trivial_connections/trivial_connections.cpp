@@ -29,6 +29,8 @@
 #include <CGAL/Trivial_connections/IO/viewer_files.h>
 #include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
+#include <CGAL/Trivial_connections/singularity_placement.h>
+#include <CGAL/Trivial_connections/singularity_refinement.h>
 
 #include "trivial_connections_command_line.h"
 
@@ -93,6 +95,16 @@ struct Inputs
   std::vector<face_descriptor> constrained_faces, guided_faces;
   Face_vectors directions;          // of the constrained and guided faces
   std::vector<char> in_constraints; // by face of the file
+  Singularities fixed;              // --auto with --singularities: the file's, kept
+  Face_vectors curvature;           // --align-curvature: the guide on every face
+};
+
+// What --auto, --align-curvature and --refine did
+struct Design
+{
+  std::optional<TC::Placement_report> placement;
+  std::optional<TC::Refinement_report<vertex_descriptor>> refinement;
+  std::size_t curvature_guides = 0;
 };
 
 struct Solution
@@ -104,7 +116,7 @@ struct Solution
 
 struct Timings
 {
-  double read = 0, setup = 0, solve = 0, write = 0;
+  double read = 0, setup = 0, placement = 0, solve = 0, write = 0;
 };
 
 // Sets `seconds` to its lifetime when it goes: it also times a step that returns the solver, which can
@@ -255,10 +267,72 @@ Solution solve(const Options& o, Inputs& in, Solver& solver, const TC::Progress_
   return s;
 }
 
+// --align-curvature: the guide (principal directions times anisotropy) on every face, and the faces guided towards
+// it in the trivial connection (the user's guided faces are none: the options exclude each other)
+void align_with_curvature(const Options& o, Inputs& in, Solver& solver, Design& design)
+{
+  in.curvature = in.mesh.add_property_map<face_descriptor, Kernel::Vector_3>("f:tc_curvature", CGAL::NULL_VECTOR).first;
+  TC::principal_curvature_guide(solver, in.curvature);
+  const std::vector<face_descriptor> guided = TC::spread_guided_faces(solver, in.curvature, 64);
+  design.curvature_guides = guided.size();
+  in.guided_faces = guided;
+  for(face_descriptor f : guided)
+    in.directions[f] = in.curvature[f];
+  naming_the_direction_file(o, in, [&] {
+    return solver.set_constraints(TC::parameters::guided_faces(in.guided_faces,
+                                                               TC::parameters::constrained_faces(in.constrained_faces)));
+  });
+}
+
+// --auto and --refine: the singularities the trivial connection gets
+void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& design, Timings& time)
+{
+  Stopwatch stopwatch{time.placement};
+  namespace P = TC::parameters;
+  if(o.align_curvature)
+    align_with_curvature(o, in, solver, design);
+  if(o.automatic) {
+    in.fixed = in.singularities;
+    Singularities placed;
+    const auto base = P::align_with_boundary(o.align_boundary, P::symmetry_order(o.n));
+    auto place = [&](const auto& np) {
+      if(o.align_curvature)
+        design.placement = TC::place_singularities(solver, std::back_inserter(placed),
+                                                   P::alignment_strength(o.alignment_strength,
+                                                                         P::alignment_guide(in.curvature, np)));
+      else
+        design.placement = TC::place_singularities(solver, std::back_inserter(placed), np);
+    };
+    if(in.fixed.empty())
+      place(base);
+    else
+      place(P::fixed_singularities(in.fixed, base));
+    in.singularities = placed;
+  }
+  if(o.refine) {
+    std::vector<vertex_descriptor> fixed_vertices;
+    for(const auto& s : in.fixed)
+      fixed_vertices.push_back(s.first);
+    auto x = in.mesh.add_property_map<halfedge_descriptor, double>("h:tc_refinement", 0.).first;
+    design.refinement = naming_the_direction_file(o, in, [&] {
+      return TC::refine_singularities(
+        solver, in.singularities, x,
+        P::cancel_pairs(o.cancel_pairs,
+                        P::fixed_vertices(fixed_vertices, P::face_directions(in.directions, P::symmetry_order(o.n)))));
+    });
+    in.mesh.remove_property_map(x);
+    in.singularities.assign(design.refinement->singularities.begin(), design.refinement->singularities.end());
+  }
+}
+
 std::string provenance(const Options& o)
 {
   return "# computed by trivial_connections from '" + o.mesh + "'" +
-         (o.singularities.empty() ? std::string(", no singularity") : ", singularities '" + o.singularities + "'") +
+         (o.automatic ? std::string(", singularities placed automatically") +
+                          (o.singularities.empty() ? "" : " around those of '" + o.singularities + "'")
+          : o.singularities.empty() ? std::string(", no singularity")
+                                    : ", singularities '" + o.singularities + "'") +
+         (o.align_curvature ? ", aligned with the curvature" : "") + (o.refine ? ", refined" : "") +
          (o.constraints.empty() ? std::string() : ", constraints '" + o.constraints + "'") +
          (o.align_boundary ? ", aligned with the boundary" : "") +
          (o.guidance.empty() ? std::string()
@@ -307,6 +381,21 @@ void write_outputs(const Options& o, const Inputs& in, const Solver& solver, con
     files.push_back({o.singularity_points, [&](std::ostream& os) {
                        TC::write_singularity_points(os << header, in.mesh, in.singularities);
                      }});
+  if(!o.write_singularities.empty()) {
+    // the vertices as numbered in the file
+    files.push_back({o.write_singularities, [&](std::ostream& os) {
+                       std::vector<std::size_t> file_index(num_vertices(in.mesh));
+                       for(std::size_t v = 0; v < in.order.vertices.size(); ++v)
+                         file_index[std::size_t(in.order.vertices[v])] = v;
+                       std::vector<std::pair<std::size_t, TC::Singularity_index>> lines;
+                       for(const auto& sv : in.singularities)
+                         lines.emplace_back(file_index[std::size_t(sv.first)], sv.second);
+                       std::sort(lines.begin(), lines.end(),
+                                 [](const auto& a, const auto& b) { return a.first < b.first; });
+                       os << header;
+                       TC::write_singularities(os, lines);
+                     }});
+  }
   std::vector<TC::Streamline<Mesh>> streamlines;
   if(!o.streamlines.empty()) {
     // a line across the mesh crosses about sqrt(faces) faces: 50 times that bounds recurrent ones
@@ -363,7 +452,7 @@ void print_energy(std::ostream& out, const Options& o, const Inputs& in, const T
       << (o.boundary_indices.empty() ? std::string() : "; boundary indices from " + o.boundary_indices)
       << "; n = " << o.n << "; weights " << o.weights_name << "\n";
   out << "energy: " << std::setprecision(10) << report.energy;
-  if(!in.guides.empty())
+  if(!in.guided_faces.empty())
     out << " + guidance " << report.guidance_energy << " = " << report.energy + report.guidance_energy;
   if(!report.loops.empty() || !report.constraints.empty())
     out << " (with the integers rounded one by one: " << report.rounding_energy << ")";
@@ -433,10 +522,38 @@ void print_loops(std::ostream& out, const Options& o, const TC::Solve_report& re
     out << "  ... and " << report.loops.size() - max_loops << " more loops\n";
 }
 
-void print_report(std::ostream& out, const Options& o, const Inputs& in, const Solution& s, const Timings& time)
+void print_design(std::ostream& out, const Options& o, const Design& d)
+{
+  if(d.placement) {
+    const TC::Placement_report& p = *d.placement;
+    out << "placement: " << (p.aligned ? "curvature-aligned field" : "smoothest field") << " (n = " << o.n;
+    if(p.iterations > 0)
+      out << ", " << p.iterations << " inverse iterations";
+    out << "), its connection energy " << std::setprecision(10) << p.field_energy << "; " << p.number_of_singularities
+        << " singularities:";
+    for(const auto& [index, count] : p.singularities_per_index)
+      out << " " << count << " x " << index;
+    if(p.fixed > 0)
+      out << "; " << p.fixed << " kept from " << o.singularities << ", " << p.units_removed << " units of 1/" << o.n
+          << " given way, " << p.units_added << " added";
+    out << "\n";
+  }
+  if(d.curvature_guides > 0)
+    out << "curvature guidance: " << d.curvature_guides << " faces, weight " << o.guidance_weight << "\n";
+  if(d.refinement) {
+    const auto& r = *d.refinement;
+    out << "refinement: energy " << std::setprecision(10) << r.energy_before << " -> " << r.energy_after << ", "
+        << r.moves.size() << " moves in " << r.trials << " trial solves"
+        << (r.local_minimum ? " (a local minimum)" : " (the budget of trials ran out)") << "\n";
+  }
+}
+
+void print_report(std::ostream& out, const Options& o, const Inputs& in, const Solution& s, const Design& design,
+                  const Timings& time)
 {
   const std::size_t interior_edges = number_of_interior_edges(in.mesh);
   print_mesh(out, o, in, s.report, interior_edges);
+  print_design(out, o, design);
   print_energy(out, o, in, s.report);
   print_design_controls(out, o, in, s.report);
   print_loops(out, o, s.report);
@@ -444,7 +561,10 @@ void print_report(std::ostream& out, const Options& o, const Inputs& in, const S
   out << "connection: " << std::filesystem::absolute(o.connection, ec).string() << " (" << interior_edges
       << " interior edges)\n";
   out << "field: " << std::filesystem::absolute(o.field, ec).string() << " (" << num_faces(in.mesh) << " faces)\n";
-  out << "time: read " << fixed(time.read, 3) << " s, set-up " << fixed(time.setup, 3) << " s, solve "
+  out << "time: read " << fixed(time.read, 3) << " s, set-up " << fixed(time.setup, 3) << " s, ";
+  if(o.automatic || o.refine || o.align_curvature)
+    out << "placement " << fixed(time.placement, 3) << " s, ";
+  out << "solve "
       << fixed(time.solve, 3) << " s, write " << fixed(time.write, 3) << " s\n";
 }
 
@@ -455,9 +575,11 @@ int run(const Options& o, Progress_printer& progress)
   Inputs in;
   read_inputs(o, progress, in, time);
   Solver solver = build_solver(o, in, solver_progress, time);
+  Design design;
+  design_singularities(o, in, solver, design, time);
   const Solution solution = solve(o, in, solver, solver_progress, time);
   write_outputs(o, in, solver, solution, progress, time);
-  print_report(std::cout, o, in, solution, time);
+  print_report(std::cout, o, in, solution, design, time);
   return 0;
 }
 

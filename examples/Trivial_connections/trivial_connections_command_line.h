@@ -47,7 +47,8 @@ inline const char* const usage_text =
   "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
   "                           [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT]\n"
   "                           [--singularity-points OUT] [--streamlines OUT] [--streamline-seeds K]\n"
-  "                           [--progress] [--help] [--version]\n"
+  "                           [--auto] [--align-curvature] [--alignment-strength S] [--refine]\n"
+  "                           [--cancel-pairs] [--write-singularities OUT] [--progress] [--help] [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
@@ -75,6 +76,18 @@ inline const char* const usage_text =
   "                        energy plus MU times the sum over these faces of the squared angle between the\n"
   "                        field and the guide (modulo 2pi/N), still with exactly the given singularities.\n"
   "  --guidance-weight MU  the weight MU > 0 of the guidance (default 1)\n"
+  "  --auto                place the singularities automatically: those of the globally smoothest N-direction\n"
+  "                        field (Knoeppel et al. 2013), then the trivial connection with exactly them. With\n"
+  "                        --singularities, the file's singularities are kept and the others placed around\n"
+  "                        them (the automatic ones nearest to them give way).\n"
+  "  --align-curvature     follow the principal curvature directions (N even): with --auto the placement is\n"
+  "                        that of the curvature-aligned field, and the trivial connection is guided (weight\n"
+  "                        --guidance-weight) towards them on 64 spread faces of strong anisotropy.\n"
+  "  --alignment-strength S  how closely the aligned placement follows the curvature (default 100)\n"
+  "  --refine              move singularities to neighbouring vertices while that lowers the energy (the\n"
+  "                        singularities of --singularities stay when --auto is given)\n"
+  "  --cancel-pairs        with --refine, a singularity may also cancel a neighbour of opposite sign\n"
+  "  --write-singularities OUT  the singularities used, in the --singularities format (edit, run again)\n"
   "  --n N                 symmetry order: 1 vector field, 2 line field, 4 cross field, ... (default 1)\n"
   "  --weights W           energy weights: hodge (|e|/|e*|, default) or unit\n"
   "  --connection OUT      connection file, one line 'i j x w' per interior edge\n"
@@ -138,6 +151,9 @@ struct Options
   std::string field;
   std::string vtk, ply, singularity_points, streamlines; // optional outputs for viewers
   std::size_t streamline_seeds = 100;
+  bool automatic = false, align_curvature = false, refine = false, cancel_pairs = false;
+  double alignment_strength = 100;
+  std::string write_singularities;
 };
 
 using String_field = std::string Options::*;
@@ -168,6 +184,14 @@ inline void parse_guidance_weight(Options& o, const std::string& text)
     throw Usage_error("--guidance-weight expects a positive finite number, got '" + text + "'");
 }
 
+inline void parse_alignment_strength(Options& o, const std::string& text)
+{
+  char* end = nullptr;
+  o.alignment_strength = std::strtod(text.c_str(), &end);
+  if(end != text.c_str() + text.size() || !(o.alignment_strength > 0) || !std::isfinite(o.alignment_strength))
+    throw Usage_error("--alignment-strength expects a positive finite number, got '" + text + "'");
+}
+
 inline void parse_weights(Options& o, const std::string& text)
 {
   if(text == "hodge")
@@ -195,7 +219,9 @@ struct Valued_option
 };
 
 // The options that take a value. Each may be given once, as `--name value` or `--name=value`.
-inline const std::array<Valued_option, 14> valued_options = {{
+inline const std::array<Valued_option, 16> valued_options = {{
+  {"--write-singularities", &Options::write_singularities, nullptr},
+  {"--alignment-strength", nullptr, parse_alignment_strength},
   {"--singularities", &Options::singularities, nullptr},
   {"--boundary-indices", &Options::boundary_indices, nullptr},
   {"--constraints", &Options::constraints, nullptr},
@@ -225,7 +251,7 @@ inline bool same_file(const std::string& a, const std::string& b)
 inline void check_outputs(const Options& o)
 {
   std::vector<const std::string*> outputs = {&o.connection, &o.field};
-  for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points, &o.streamlines})
+  for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points, &o.streamlines, &o.write_singularities})
     if(!extra->empty())
       outputs.push_back(extra);
   for(std::size_t a = 0; a < outputs.size(); ++a)
@@ -300,8 +326,14 @@ inline Options parse_arguments(int argc, char** argv)
       o.progress = true;
       continue;
     }
-    if(a == "--triangulate" || a == "--align-boundary") {
-      bool& flag = a == "--triangulate" ? o.triangulate : o.align_boundary;
+    if(a == "--triangulate" || a == "--align-boundary" || a == "--auto" || a == "--align-curvature" ||
+       a == "--refine" || a == "--cancel-pairs") {
+      bool& flag = a == "--triangulate"       ? o.triangulate
+                   : a == "--align-boundary"  ? o.align_boundary
+                   : a == "--auto"            ? o.automatic
+                   : a == "--align-curvature" ? o.align_curvature
+                   : a == "--refine"          ? o.refine
+                                              : o.cancel_pairs;
       if(flag)
         throw Usage_error("option " + a + " given twice");
       flag = true;
@@ -319,6 +351,12 @@ inline Options parse_arguments(int argc, char** argv)
   }
   if(o.mesh.empty())
     throw Usage_error("no mesh given (usage: trivial_connections MESH [options], see --help)");
+  if(o.align_curvature && o.n % 2 != 0)
+    throw Usage_error("--align-curvature needs an even --n (a principal direction has no sign)");
+  if(o.align_curvature && !o.guidance.empty())
+    throw Usage_error("--align-curvature and --guidance cannot be combined (both choose the guided faces)");
+  if(o.cancel_pairs && !o.refine)
+    throw Usage_error("--cancel-pairs is an option of --refine");
   const std::string stem = std::filesystem::path(o.mesh).stem().string();
   if(o.connection.empty())
     o.connection = stem + ".connection.txt";

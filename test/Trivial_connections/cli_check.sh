@@ -7,8 +7,13 @@
 #                     [--constraints FILE] [--align-boundary] [--guidance FILE] [--guidance-weight MU]
 #                     (then check_constraints.py checks the targets, the guides and the optimality; the checker
 #                     runs with --no-optimality)
+#                     [--auto] [--align-curvature] [--refine]  (automatic placement: the program writes the
+#                     singularities it used with --write-singularities, and the checker checks against them; with
+#                     the curvature guidance the checker runs with --no-optimality)
 set -euo pipefail
 cli="" checker="" python="" out="" mesh="" sing="none" n=1 weights=hodge boundary="" constraints="" align="" guidance="" guidance_weight=1
+design=()
+guided_by_curvature=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --cli) cli="$2"; shift 2 ;;
@@ -24,6 +29,7 @@ while [ $# -gt 0 ]; do
     --align-boundary) align="--align-boundary"; shift ;;
     --guidance) guidance="$2"; shift 2 ;;
     --guidance-weight) guidance_weight="$2"; shift 2 ;;
+    --auto|--align-curvature|--refine) design+=("$1"); shift ;;
     *) echo "cli_check.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -58,9 +64,21 @@ if [ -n "$constraints" ]; then constraint_args=(--constraints "$constraints"); f
 if [ -n "$align" ]; then constraint_args+=("$align"); fi
 if [ -n "$guidance" ]; then constraint_args+=(--guidance "$guidance" --guidance-weight "$guidance_weight"); fi
 
-echo "+ $cli $mesh ${sing_args[*]} ${boundary_args[*]} ${constraint_args[*]} --n $n --weights $weights --connection $conn --field $field"
-"$cli" "$mesh" "${sing_args[@]}" "${boundary_args[@]}" "${constraint_args[@]}" --n "$n" --weights "$weights" \
+if [ ${#design[@]} -gt 0 ]; then
+  rm -f "$out/used.sing"
+  design+=(--write-singularities "$out/used.sing")
+fi
+echo "+ $cli $mesh ${sing_args[*]} ${boundary_args[*]} ${constraint_args[*]} ${design[*]} --n $n --weights $weights --connection $conn --field $field"
+"$cli" "$mesh" "${sing_args[@]}" "${boundary_args[@]}" "${constraint_args[@]}" "${design[@]}" --n "$n" --weights "$weights" \
   --connection "$conn" --field "$field" | tee "$out/report.txt"
+if [ ${#design[@]} -gt 0 ]; then
+  # the singularities actually used; kept file singularities must be among them
+  if [ ! -f "$out/used.sing" ]; then echo "cli_check.sh: --write-singularities wrote nothing" >&2; exit 1; fi
+  sing_args=(--singularities "$out/used.sing")
+  for d in "${design[@]}"; do
+    if [ "$d" = "--align-curvature" ]; then guided_by_curvature=1; fi
+  done
+fi
 
 if [ -n "$boundary" ]; then
   given=$(grep -cvE '^[[:space:]]*(#|$)' "$boundary")
@@ -75,7 +93,7 @@ for f in "$conn" "$field"; do
 done
 
 optimality_args=()
-if [ ${#constraint_args[@]} -gt 0 ]; then optimality_args=(--no-optimality); fi
+if [ ${#constraint_args[@]} -gt 0 ] || [ "$guided_by_curvature" = 1 ]; then optimality_args=(--no-optimality); fi
 echo "+ $python $checker $mesh --connection $conn --field $field ${sing_args[*]} --n $n ${optimality_args[*]}"
 "$python" "$checker" "$mesh" --connection "$conn" --field "$field" "${sing_args[@]}" --n "$n" "${optimality_args[@]}"
 if [ ${#constraint_args[@]} -gt 0 ]; then

@@ -17,6 +17,7 @@
 
 #include <CGAL/boost/graph/named_params_helper.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -297,6 +298,67 @@ void principal_curvature_guide(const Solver& solver, FaceVectorMap guide,
     if(curvatures)
       (*curvatures)[f] = {c[f].first, c[f].second};
   }
+}
+
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+
+Chooses faces to guide (soft guidance, `guided_faces`) towards a guide such as `principal_curvature_guide()`:
+up to `count` faces, spread over the mesh, the strongest first: faces are taken by decreasing guide length and a
+face is skipped when a face already taken is within `d` steps in the dual graph, d = max(1, sqrt(F / count) / 2)
+with F the number of faces; faces with a zero guide are never taken.
+\param solver the solver of the mesh
+\param guide a readable property map `face_descriptor -> Vector_3`
+\param count the number of faces wanted
+\returns the faces, strongest guide first
+*/
+template <class Solver, class FaceVectorMap>
+std::vector<typename Solver::face_descriptor> spread_guided_faces(const Solver& solver, FaceVectorMap guide,
+                                                                  std::size_t count)
+{
+  using Access = internal::Solver_access<Solver>;
+  const auto& m = Access::mesh(solver);
+  const auto& traits = solver.geom_traits();
+  typename Solver::Geom_traits::Compute_squared_length_3 length2 = traits.compute_squared_length_3_object();
+  std::vector<double> strength(std::size_t(m.nf));
+  std::vector<int> order;
+  for(int f = 0; f < m.nf; ++f) {
+    strength[f] = CGAL::to_double(length2(get(guide, m.face_descriptors[f])));
+    if(strength[f] > 0 && std::isfinite(strength[f]))
+      order.push_back(f);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return strength[a] > strength[b]; });
+  const int d = count == 0 ? 0 : (std::max)(1, int(std::sqrt(double(m.nf) / double(count)) / 2));
+  std::vector<int> near(std::size_t(m.nf), -1); // steps from the nearest face taken, within d
+  std::vector<typename Solver::face_descriptor> taken;
+  std::vector<int> queue;
+  for(int f : order) {
+    if(taken.size() >= count)
+      break;
+    if(near[f] >= 0)
+      continue;
+    taken.push_back(m.face_descriptors[f]);
+    // mark the faces within d steps
+    queue.assign(1, f);
+    near[f] = 0;
+    for(std::size_t q = 0; q < queue.size(); ++q) {
+      const int g = queue[q];
+      if(near[g] >= d)
+        continue;
+      for(int k = 0; k < 3; ++k) {
+        const int o = m.opposite_corner[3 * g + k];
+        if(o < 0)
+          continue;
+        const int h = o / 3;
+        if(near[h] < 0 || near[h] > near[g] + 1) {
+          near[h] = near[g] + 1;
+          queue.push_back(h);
+        }
+      }
+    }
+  }
+  return taken;
 }
 
 } // namespace Trivial_connections

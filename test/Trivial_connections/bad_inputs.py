@@ -232,6 +232,20 @@ for value, words in (("0", ["--n must be at least 1"]), ("-4", ["--n must be at 
 case("unknown_option", {"m.off": TET}, ["m.off", "--frobnicate"], 2, ["unknown option '--frobnicate'"])
 case("option_without_value", {"m.off": TET}, ["m.off", "--connection"], 2, ["needs a value"], outputs=())
 case("no_mesh", {}, [], 2, ["no mesh given"], outputs=())
+# the automatic placement's options
+case("align_curvature_odd_n", {"m.off": TET}, ["m.off", "--auto", "--align-curvature", "--n", "3"], 2,
+     ["--align-curvature needs an even --n"])
+case("align_curvature_and_guidance", {"m.off": TET, "g.dirs": "0 1 0 0\n"},
+     ["m.off", "--align-curvature", "--n", "4", "--guidance", "g.dirs"], 2, ["cannot be combined"])
+case("cancel_pairs_without_refine", {"m.off": TET}, ["m.off", "--auto", "--cancel-pairs"], 2,
+     ["--cancel-pairs is an option of --refine"])
+case("alignment_strength_not_positive", {"m.off": TET}, ["m.off", "--auto", "--alignment-strength", "-3"], 2,
+     ["--alignment-strength expects a positive finite number"])
+case("auto_fixed_not_multiple", {"m.off": TET, "s.sing": "0 1/3\n"},
+     ["m.off", "--auto", "--n", "4", "--singularities", "s.sing"], 1, ["1/3", "not a multiple of 1/4"])
+case("write_singularities_over_input", {"m.off": TET, "s.sing": "0 2\n"},
+     ["m.off", "--auto", "--singularities", "s.sing", "--write-singularities", "s.sing"], 2,
+     ["would overwrite the singularity file"])
 
 # ---- outputs that cannot be written: nothing at all is left
 case("output_in_missing_directory", {"m.off": TET, "s.sing": "0 1\n1 1\n"},

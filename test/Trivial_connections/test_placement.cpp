@@ -84,6 +84,8 @@ Indexed_map<Surface_mesh::Face_index, Vector> values_of(const Mesh_view<Surface_
   return Indexed_map<Surface_mesh::Face_index, Vector>{&view.fid, &v};
 }
 
+using Singularities_of_solver = std::vector<std::pair<Solver::vertex_descriptor, Index>>;
+
 struct Placed
 {
   Singularities singularities; // by vertex number of the view
@@ -161,20 +163,42 @@ TEST(Placement, rounded_cube_cross_field_has_eight_quarter_singularities_one_nea
   EXPECT_EQ(p.report.singularities_per_index[0].second, 8u);
 }
 
-// A slender torus of revolution (R = 6 r). On a fat one (R = 3 r or less) the Dirichlet energy of the n-th powers
-// prefers, for n = 4, rings of +1/4 and -1/4 singularities to the singularity-free field (whose n-th power turns
-// n times as fast): measured, and said in the user manual; the trivial connection with no singularity is then
-// the cheaper one, which the refinement cannot reach by local moves.
+// A torus of revolution: none. On a slender one (R = 6 r) the placement gives none for n = 1, 2, 4. On a fat one
+// (R = 2.9 r) the Dirichlet energy of the n-th powers prefers, for n = 4, rings of +1/4 and -1/4 singularities to
+// the singularity-free field (whose n-th power turns four times as fast); the trivial connection with no
+// singularity is the cheaper one, and the refinement that cancels pairs finds it.
 TEST(Placement, torus_of_revolution_gets_no_singularity)
 {
-  const Surface_mesh tm = torus(6, 1, 96, 16);
+  {
+    const Surface_mesh tm = torus(6, 1, 96, 16);
+    const Mesh_view<Surface_mesh> view(tm);
+    Solver solver(tm);
+    for(int n : {1, 2, 4}) {
+      SCOPED_TRACE("slender, n = " + std::to_string(n));
+      Placed p;
+      place_and_solve(view, solver, n, p);
+      EXPECT_TRUE(p.singularities.empty());
+    }
+  }
+  const Surface_mesh tm = torus(2, 0.7, 48, 24);
   const Mesh_view<Surface_mesh> view(tm);
   Solver solver(tm);
   for(int n : {1, 2, 4}) {
-    SCOPED_TRACE("n = " + std::to_string(n));
+    SCOPED_TRACE("fat, n = " + std::to_string(n));
     Placed p;
     place_and_solve(view, solver, n, p);
-    EXPECT_TRUE(p.singularities.empty());
+    EXPECT_EQ(sum_of(p.singularities, n), Index(0));
+    std::vector<double> x;
+    const auto r = TC::refine_singularities(solver, descriptors(view, p.singularities), view.halfedge_map(x),
+                                            TC::parameters::cancel_pairs(true, TC::parameters::symmetry_order(n)));
+    EXPECT_TRUE(r.singularities.empty());
+    EXPECT_TRUE(r.local_minimum);
+    EXPECT_LE(r.energy_after, r.energy_before);
+    // the energy of the connection with no singularity, solved directly
+    std::vector<double> y;
+    const TC::Solve_report none = solver.solve(Singularities_of_solver(), view.halfedge_map(y), TC::parameters::symmetry_order(n));
+    EXPECT_NEAR(r.energy_after, none.energy, 1e-9 * none.energy);
+    check_connection(view, solver, Singularities(), n, x, r.report);
   }
 }
 
@@ -298,7 +322,11 @@ TEST(Placement, curvature_aligned_line_field_on_an_ellipsoid_has_its_four_half_s
   solve_and_check(view, solver, p.singularities, 2);
 }
 
-// Away from umbilics, the curvature-aligned cross field is close to the principal directions.
+// Away from umbilics, the curvature-aligned cross field is close to the principal directions. On the cylinder the
+// principal directions are parallel: the field follows them exactly (measured 0.000 degrees; threshold 1). On the
+// ellipsoid they turn against parallel transport (lines of curvature are not geodesics), so a trivial connection
+// guided on 64 faces can follow them only approximately between its guides: measured 4.5 degrees at worst more
+// than 0.4 from an umbilic (icosphere level 4, 5120 faces); threshold 10, about twice that.
 TEST(Placement, curvature_aligned_cross_field_follows_the_principal_directions)
 {
   struct Case

@@ -25,14 +25,14 @@ namespace Trivial_connections {
 
 /*!
 \ingroup PkgTrivialConnectionsRef
-One accepted move of `refine_singularities()`: `index` went from `from` to `to` (a whole singularity, or one unit
-of 1/n cancelling against an opposite one at `to`).
+One accepted move of `refine_singularities()`: `index` went from `from` to `to` (a whole singularity to a
+neighbouring vertex, or one unit of 1/n of a positive singularity cancelling one of a negative singularity at `to`).
 */
 template <class VertexDescriptor>
 struct Singularity_move
 {
   VertexDescriptor from;   ///< the vertex the index left
-  VertexDescriptor to;     ///< the neighbour it went to
+  VertexDescriptor to;     ///< the neighbour it went to, or the negative singularity it cancelled against
   Singularity_index index; ///< the index moved
   double energy = 0;       ///< the minimised energy after the move
 };
@@ -58,7 +58,8 @@ struct Refinement_report
 \ingroup PkgTrivialConnectionsRef
 
 Moves singularities to where they cost least: starting from a valid set (automatic or the user's), it
-repeatedly moves one singularity to a neighbouring interior vertex when that lowers the minimised energy of the
+repeatedly moves one singularity to a neighbouring interior vertex (or, with `cancel_pairs`, cancels a unit of a
+positive singularity against one of a negative singularity) when that lowers the minimised energy of the
 trivial connection (`energy + guidance_energy` of `solve()`, its integers chosen again for each trial). Each
 trial is one `solve()` on the prefactored solver (back-substitutions only). The candidates of a round are all
 moves of a free singularity to a free neighbour, tried in the order of their first-order change `k (g_w - g_v)`
@@ -79,8 +80,9 @@ Poincare-Hopf is kept: a move keeps every component's index sum.
     \cgalParamType{a range of `vertex_descriptor`} \cgalParamDefault{none}
   \cgalParamNEnd
   \cgalParamNBegin{cancel_pairs}
-    \cgalParamDescription{a singularity may also move one unit of 1/n onto a neighbour of opposite sign, where
-      they cancel (otherwise singularities never move onto each other)}
+    \cgalParamDescription{a pair of opposite singularities of a component may also cancel, one unit of 1/n each,
+      whatever their distance (candidates like the moves, by their first-order change `(g_w - g_v) / n`);
+      otherwise singularities never move onto each other}
     \cgalParamType{`bool`} \cgalParamDefault{`false`}
   \cgalParamNEnd
   \cgalParamNBegin{maximum_trials} \cgalParamType{`std::size_t`} \cgalParamDefault{500} \cgalParamNEnd
@@ -98,6 +100,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   using Access = internal::Solver_access<Solver>;
   const auto& m = Access::mesh(solver);
   const internal::Mesh_geometry& g = Access::geometry(solver);
+  const internal::Mesh_topology& t = Access::topology(solver);
   const int n = internal::checked_symmetry_order(
     CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::symmetry_order), 1));
   const bool cancel = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::cancel_pairs), false);
@@ -173,18 +176,27 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       if(k[v] == 0 || fixed[v])
         continue;
       for(int w : neighbours[v]) {
-        if(fixed[w] || g.on_boundary[w] || w == v)
+        if(fixed[w] || g.on_boundary[w] || w == v || k[w] != 0)
           continue;
-        std::int64_t units = k[v];
-        if(k[w] != 0) {
-          if(!cancel || (k[w] > 0) == (k[v] > 0))
-            continue;
-          units = k[v] > 0 ? 1 : -1;
-        }
-        const double predicted = double(units) / n * (gradient[w] - gradient[v]);
+        const double predicted = double(k[v]) / n * (gradient[w] - gradient[v]);
         if(predicted < 0)
-          candidates.push_back({v, w, units, predicted});
+          candidates.push_back({v, w, k[v], predicted});
       }
+    }
+    if(cancel) {
+      // one unit of a positive singularity onto a negative one of its component, at any distance: both lose a unit
+      std::vector<int> positive, negative;
+      for(int v = 0; v < m.nv; ++v)
+        if(k[v] != 0 && !fixed[v])
+          (k[v] > 0 ? positive : negative).push_back(v);
+      for(int v : positive)
+        for(int w : negative) {
+          if(t.component_of_node[t.node_of_vertex[v]] != t.component_of_node[t.node_of_vertex[w]])
+            continue;
+          const double predicted = (gradient[w] - gradient[v]) / n;
+          if(predicted < 0)
+            candidates.push_back({v, w, 1, predicted});
+        }
     }
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const Candidate& a, const Candidate& b) { return a.predicted < b.predicted; });

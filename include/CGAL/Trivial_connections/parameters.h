@@ -165,8 +165,8 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(fixed_singularities)
 /// \param value the range
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(fixed_vertices)
-/// `bool`, default `false`: `refine_singularities()` may also cancel a singularity against a neighbour of
-/// opposite sign, one unit of 1/n at a time
+/// `bool`, default `false`: `refine_singularities()` may also cancel opposite singularities of a component, at
+/// any distance, one unit of 1/n of each at a time
 /// \param value whether pairs may cancel
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(cancel_pairs)

@@ -528,7 +528,7 @@ void print_design(std::ostream& out, const Options& o, const Design& d)
     const TC::Placement_report& p = *d.placement;
     out << "placement: " << (p.aligned ? "curvature-aligned field" : "smoothest field") << " (n = " << o.n;
     if(p.iterations > 0)
-      out << ", " << p.iterations << " inverse iterations";
+      out << ", " << p.iterations << " iterations";
     out << "), its connection energy " << std::setprecision(10) << p.field_energy << "; " << p.number_of_singularities
         << " singularities:";
     for(const auto& [index, count] : p.singularities_per_index)

@@ -43,7 +43,7 @@ struct Placement_report
   /// per component, the smooth field's Rayleigh quotient `u^H A u / u^H B u` (its smallest eigenvalue
   /// unless aligned or with an aligned boundary)
   std::vector<double> rayleigh_quotients;
-  int iterations = 0;               ///< inverse iterations (0 when only linear solves were needed)
+  int iterations = 0;               ///< eigensolver iterations, one solve each (0 when only linear solves were needed)
   double max_rounding = 0;          ///< largest distance of a vertex's `n k_v` from the integer taken (about 1e-12)
   /// the number of singularities of each index, by increasing index
   std::vector<std::pair<Singularity_index, std::size_t>> singularities_per_index;
@@ -113,7 +113,7 @@ SIGGRAPH 2013), or of the field aligned with a guide, read at the vertices; they
 closed component by construction. `solver.solve()` then gives the trivial connection with exactly these
 singularities. The smooth field is the smallest eigenvector of the pencil (A, B) of its face-based Dirichlet
 energy (`sum_e w_e |u_g - r_e^n u_f|^2`, with the solver's weights and transport) and the face areas, computed
-per component by inverse iteration on one sparse Cholesky factor; see the user manual for the stopping rule,
+per component by LOBPCG preconditioned with one sparse Cholesky factor; see the user manual for the stopping rule,
 the aligned field and the boundary.
 
 \tparam Solver a `Trivial_connection_solver`
@@ -172,7 +172,7 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
   std::vector<std::complex<double>> fixed_values;
   if(align_boundary)
     internal::boundary_powers(m, g, n, fixed_faces, fixed_values);
-  // what the inverse iteration reads to know that its singularities are settled (Eigen vectors are contiguous)
+  // what the eigensolver reads to know that its singularities are settled (Eigen vectors are contiguous)
   auto singularities_of = [&](const Eigen::VectorXcd& u) {
     return internal::read_field_singularities(m, g, std::vector<std::complex<double>>(u.data(), u.data() + u.size()), n).k;
   };

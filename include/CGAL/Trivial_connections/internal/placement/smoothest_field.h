@@ -12,6 +12,7 @@
 #include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
@@ -40,7 +41,7 @@ struct Smoothest_field_problem
 
   Sparse A;                          // lower triangle and diagonal (the factorization reads only those)
   std::vector<double> area;          // per face: B's diagonal
-  std::vector<Complex> start;        // per face: the first vector of the inverse iteration
+  std::vector<Complex> start;        // per face: the first vector of the eigensolver
   std::vector<int> component_of_face;
   int components = 0;
 
@@ -103,7 +104,7 @@ struct Smoothest_field
 {
   std::vector<std::complex<double>> u;      // per face
   std::vector<double> rayleigh_quotient;    // per component: u^H A u / u^H B u
-  int iterations = 0;                       // inverse iterations (0: linear solves only)
+  int iterations = 0;                       // eigensolver iterations (0: linear solves only)
 };
 
 /*
@@ -157,11 +158,36 @@ inline double spectral_scale(const Smoothest_field_problem& p)
   return s;
 }
 
+// per component, the B inner product of a and b (sum over its faces of area conj(a) b)
+inline std::vector<std::complex<double>> component_products(const Smoothest_field_problem& p, const Eigen::VectorXcd& a,
+                                                            const Eigen::VectorXcd& b)
+{
+  std::vector<std::complex<double>> s(std::size_t(p.components), 0.);
+  for(Eigen::Index f = 0; f < a.size(); ++f)
+    s[p.component_of_face[f]] += p.area[f] * std::conj(a[f]) * b[f];
+  return s;
+}
+
+// per component, the A inner product, from a and A b
+inline std::vector<std::complex<double>> component_energies(const Smoothest_field_problem& p, const Eigen::VectorXcd& a,
+                                                            const Eigen::VectorXcd& Ab)
+{
+  std::vector<std::complex<double>> s(std::size_t(p.components), 0.);
+  for(Eigen::Index f = 0; f < a.size(); ++f)
+    s[p.component_of_face[f]] += std::conj(a[f]) * Ab[f];
+  return s;
+}
+
 /*
-  The smallest eigenvector of the pencil on every component, by inverse iteration on one factor of
-  A + sigma B (sigma = 1e-9 times the spectral scale: A is singular when a component carries a parallel field,
-  a flat torus for instance, and the shift changes no eigenvector). The components are independent blocks:
-  one solve per iteration serves all, each normalised on its own.
+  The smallest eigenvector of the pencil on every component, by the locally optimal block preconditioned conjugate
+  gradient method (LOBPCG, Knyazev 2001) with block size 1, preconditioned by one factor of A + sigma B
+  (sigma = 1e-9 times the spectral scale: A is singular when a component carries a parallel field, a flat torus for
+  instance, and the shift changes no eigenvector). Each iteration is one solve with that factor (the residual
+  A x - lambda B x preconditioned, which is inverse iteration's direction), then the Rayleigh-Ritz step over
+  x, that direction and the previous step, per component (the components are independent blocks: one solve serves
+  all). Plain inverse iteration converges as lambda_1 / lambda_2 per solve, which is slow where the smallest
+  eigenvalues cluster (60 solves on a 90k-face elephant); the Ritz step over three vectors converges about as the
+  square root of that.
   Stopping rule, after at least three iterations: every component's Rayleigh quotient lambda_k changed by at most
   1e-10 (lambda_k + 1e-8 scale) in the last iteration (converged: the quotient converges as the square of the
   vector, so the directions are then within about 1e-5 of the eigenvector's); or the singularities the field has
@@ -179,10 +205,11 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
 {
   using Complex = std::complex<double>;
   const int nf = int(p.area.size());
+  const int nc = p.components;
   const double scale = spectral_scale(p);
   const double shift = 1e-9 * scale;
 
-  std::vector<char> dirichlet(std::size_t(p.components), 0);
+  std::vector<char> dirichlet(std::size_t(nc), 0);
   for(int f = 0; f < nf; ++f)
     if(!fixed.empty() && fixed[f])
       dirichlet[p.component_of_face[f]] = 1;
@@ -218,49 +245,169 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
   Smoothest_field_factor factor(reduced, shift);
 
   Smoothest_field result;
-  result.rayleigh_quotient.assign(std::size_t(p.components), 0.);
-  Eigen::VectorXcd u = Eigen::Map<const Eigen::VectorXcd>(p.start.data(), nf);
-  std::vector<double> previous(std::size_t(p.components), -1.);
+  result.rayleigh_quotient.assign(std::size_t(nc), 0.);
+  const bool any_dirichlet = std::find(dirichlet.begin(), dirichlet.end(), 1) != dirichlet.end();
   const bool any_eigen = std::find(dirichlet.begin(), dirichlet.end(), 0) != dirichlet.end();
+  auto in_eigen = [&](int f) { return !dirichlet[p.component_of_face[f]]; };
+
+  // the Dirichlet components: one solve; the others start from the geometric start vector, B-normalised
+  Eigen::VectorXcd x = Eigen::Map<const Eigen::VectorXcd>(p.start.data(), nf);
+  if(any_dirichlet) {
+    Eigen::VectorXcd r = Eigen::VectorXcd::Zero(nf);
+    for(int f = 0; f < nf; ++f)
+      if(!in_eigen(f))
+        r[f] = dirichlet_rhs[f];
+    const Eigen::VectorXcd d = factor.solve(r);
+    for(int f = 0; f < nf; ++f)
+      if(!in_eigen(f))
+        x[f] = d[f];
+  }
+  // scales a vector per eigen component (by `coefficient`), leaving the Dirichlet components alone
+  auto normalise = [&](Eigen::VectorXcd& v, Eigen::VectorXcd* Av) {
+    const std::vector<double> norms = component_norms(p, v);
+    for(int f = 0; f < nf; ++f)
+      if(in_eigen(f) && norms[p.component_of_face[f]] > 0) {
+        const double s = 1 / std::sqrt(norms[p.component_of_face[f]]);
+        v[f] *= s;
+        if(Av)
+          (*Av)[f] *= s;
+      }
+  };
+  normalise(x, nullptr);
+  Eigen::VectorXcd Ax = p.apply(x);
+  Eigen::VectorXcd P = Eigen::VectorXcd::Zero(nf), AP = Eigen::VectorXcd::Zero(nf);
+  std::vector<double> lambda(std::size_t(nc), 0.);
+  {
+    const std::vector<Complex> e = component_energies(p, x, Ax);
+    for(int c = 0; c < nc; ++c)
+      lambda[c] = e[c].real();
+  }
+  std::vector<double> previous(lambda);
   std::vector<std::int64_t> singularities, last_singularities;
   int settled = 0; // iterations in a row with the same singularities
-  for(int it = 0;; ++it) {
+  bool have_step = false;
+  for(int it = 0; any_eigen; ++it) {
+    // the preconditioned residual
     Eigen::VectorXcd r(nf);
     for(int f = 0; f < nf; ++f)
-      r[f] = dirichlet[p.component_of_face[f]] ? dirichlet_rhs[f] : p.area[f] * u[f];
-    u = factor.solve(r);
-    const std::vector<double> norms = component_norms(p, u);
+      r[f] = in_eigen(f) ? Ax[f] - lambda[p.component_of_face[f]] * p.area[f] * x[f] : Complex(0., 0.);
+    Eigen::VectorXcd W = factor.solve(r);
     for(int f = 0; f < nf; ++f)
-      if(!dirichlet[p.component_of_face[f]] && norms[p.component_of_face[f]] > 0)
-        u[f] /= std::sqrt(norms[p.component_of_face[f]]);
-    const Eigen::VectorXcd Au = p.apply(u);
-    std::vector<double> energy(std::size_t(p.components), 0.);
-    for(int f = 0; f < nf; ++f)
-      energy[p.component_of_face[f]] += std::real(std::conj(u[f]) * Au[f]);
-    const std::vector<double> normalised = component_norms(p, u);
-    bool converged = it + 1 >= 3, nearly = it + 1 >= 3;
-    for(int c = 0; c < p.components; ++c) {
-      const double q = normalised[c] > 0 ? energy[c] / normalised[c] : 0.;
-      const double change = std::abs(q - previous[c]), tolerance = q + 1e-8 * scale;
-      if(!dirichlet[c]) {
-        converged = converged && change <= 1e-10 * tolerance;
-        nearly = nearly && change <= 1e-6 * tolerance;
+      if(!in_eigen(f))
+        W[f] = 0;
+    // per component, the B-orthonormal basis x, w, p (Gram-Schmidt; a vector whose remainder is below 1e-10 of
+    // its norm is dropped), with its A images
+    auto orthogonalise = [&](Eigen::VectorXcd& v, Eigen::VectorXcd& Av, const Eigen::VectorXcd& q,
+                             const Eigen::VectorXcd& Aq) {
+      const std::vector<Complex> d = component_products(p, q, v);
+      for(int f = 0; f < nf; ++f) {
+        const Complex c = d[p.component_of_face[f]];
+        v[f] -= c * q[f];
+        Av[f] -= c * Aq[f];
       }
-      previous[c] = q;
-      result.rayleigh_quotient[c] = q;
+    };
+    Eigen::VectorXcd AW = p.apply(W);
+    std::vector<double> before = component_norms(p, W);
+    orthogonalise(W, AW, x, Ax);
+    std::vector<char> keep_w(std::size_t(nc), 0), keep_p(std::size_t(nc), 0);
+    {
+      const std::vector<double> after = component_norms(p, W);
+      for(int c = 0; c < nc; ++c)
+        keep_w[c] = !dirichlet[c] && after[c] > 1e-20 * before[c] && after[c] > 0;
+      for(int f = 0; f < nf; ++f)
+        if(!keep_w[p.component_of_face[f]])
+          W[f] = AW[f] = 0;
+      normalise(W, &AW);
     }
-    result.iterations = any_eigen ? it + 1 : 0;
-    if(!any_eigen || converged || it + 1 >= max_iterations)
+    if(have_step) {
+      before = component_norms(p, P);
+      orthogonalise(P, AP, x, Ax);
+      orthogonalise(P, AP, W, AW);
+      const std::vector<double> after = component_norms(p, P);
+      for(int c = 0; c < nc; ++c)
+        keep_p[c] = !dirichlet[c] && after[c] > 1e-20 * before[c] && after[c] > 0;
+      for(int f = 0; f < nf; ++f)
+        if(!keep_p[p.component_of_face[f]])
+          P[f] = AP[f] = 0;
+      normalise(P, &AP);
+    }
+    // the Ritz step: per component, the smallest eigenvector of the (at most) 3 x 3 Hermitian matrix Q^H A Q
+    const Eigen::VectorXcd* basis[3] = {&x, &W, &P};
+    const Eigen::VectorXcd* images[3] = {&Ax, &AW, &AP};
+    std::vector<Eigen::Matrix3cd> H(std::size_t(nc), Eigen::Matrix3cd::Zero());
+    for(int a = 0; a < 3; ++a)
+      for(int b = a; b < 3; ++b) {
+        const std::vector<Complex> e = component_energies(p, *basis[a], *images[b]);
+        for(int c = 0; c < nc; ++c) {
+          H[c](a, b) = e[c];
+          H[c](b, a) = std::conj(e[c]);
+        }
+      }
+    std::vector<Eigen::Vector3cd> y(std::size_t(nc), Eigen::Vector3cd(1., 0., 0.));
+    for(int c = 0; c < nc; ++c) {
+      if(dirichlet[c])
+        continue;
+      const int k = 1 + (keep_w[c] ? 1 : 0) + (keep_p[c] ? 1 : 0);
+      // the kept vectors first (w may be dropped while p is kept)
+      int index[3] = {0, 1, 2}, used = 1;
+      if(keep_w[c])
+        index[used++] = 1;
+      if(keep_p[c])
+        index[used++] = 2;
+      Eigen::MatrixXcd h(k, k);
+      for(int a = 0; a < k; ++a)
+        for(int b = 0; b < k; ++b)
+          h(a, b) = H[c](index[a], index[b]);
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eigen(h);
+      if(eigen.info() != Eigen::Success)
+        throw Invalid_input(Error_code::solver_failure, "the Ritz step of the smoothest field failed");
+      Eigen::Vector3cd v = Eigen::Vector3cd::Zero();
+      for(int a = 0; a < k; ++a)
+        v[index[a]] = eigen.eigenvectors()(a, 0);
+      y[c] = v;
+      lambda[c] = eigen.eigenvalues()[0];
+    }
+    // the new x, and the step (its part orthogonal to the old x)
+    for(int f = 0; f < nf; ++f) {
+      if(!in_eigen(f))
+        continue;
+      const Eigen::Vector3cd& v = y[p.component_of_face[f]];
+      const Complex step = v[1] * W[f] + v[2] * P[f], Astep = v[1] * AW[f] + v[2] * AP[f];
+      x[f] = v[0] * x[f] + step;
+      Ax[f] = v[0] * Ax[f] + Astep;
+      P[f] = step;
+      AP[f] = Astep;
+    }
+    have_step = true;
+    normalise(x, &Ax); // against the drift of rounding: x is B-unit already
+    bool converged = it + 1 >= 3, nearly = it + 1 >= 3;
+    for(int c = 0; c < nc; ++c) {
+      if(dirichlet[c])
+        continue;
+      const double change = std::abs(lambda[c] - previous[c]), tolerance = std::abs(lambda[c]) + 1e-8 * scale;
+      converged = converged && change <= 1e-10 * tolerance;
+      nearly = nearly && change <= 1e-6 * tolerance;
+      previous[c] = lambda[c];
+    }
+    result.iterations = it + 1;
+    if(converged || it + 1 >= max_iterations)
       break;
     if(nearly || settled > 0) {
-      singularities = singularities_of(u);
+      singularities = singularities_of(x);
       settled = singularities == last_singularities ? settled + 1 : 1;
       last_singularities.swap(singularities);
       if(nearly && settled >= 3)
         break;
     }
   }
-  result.u.assign(u.data(), u.data() + nf);
+  // the quotients of the result, every component
+  {
+    const std::vector<Complex> e = component_energies(p, x, p.apply(x));
+    const std::vector<double> norms = component_norms(p, x);
+    for(int c = 0; c < nc; ++c)
+      result.rayleigh_quotient[c] = norms[c] > 0 ? e[c].real() / norms[c] : 0.;
+  }
+  result.u.assign(x.data(), x.data() + nf);
   return result;
 }
 

@@ -273,6 +273,14 @@ void align_with_curvature(const Options& o, Inputs& in, Solver& solver, Design& 
 {
   in.curvature = in.mesh.add_property_map<face_descriptor, Kernel::Vector_3>("f:tc_curvature", CGAL::NULL_VECTOR).first;
   TC::principal_curvature_guide(solver, in.curvature);
+  // no guide where the field is constrained: on the constrained faces, and on the boundary faces when aligned
+  for(face_descriptor f : in.constrained_faces)
+    in.curvature[f] = CGAL::NULL_VECTOR;
+  if(o.align_boundary)
+    for(face_descriptor f : in.order.faces)
+      for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, in.mesh), in.mesh))
+        if(CGAL::is_border(opposite(h, in.mesh), in.mesh))
+          in.curvature[f] = CGAL::NULL_VECTOR;
   const std::vector<face_descriptor> guided = TC::spread_guided_faces(solver, in.curvature, 64);
   design.curvature_guides = guided.size();
   in.guided_faces = guided;
@@ -294,7 +302,9 @@ void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& 
   if(o.automatic) {
     in.fixed = in.singularities;
     Singularities placed;
-    const auto base = P::align_with_boundary(o.align_boundary, P::symmetry_order(o.n));
+    // the holes' indices of --boundary-indices fix the index sums of their components
+    const auto base =
+      P::loop_periods(boundary_loop_periods(o, in, solver), P::align_with_boundary(o.align_boundary, P::symmetry_order(o.n)));
     auto place = [&](const auto& np) {
       if(o.align_curvature)
         design.placement = TC::place_singularities(solver, std::back_inserter(placed),
@@ -314,11 +324,15 @@ void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& 
     for(const auto& s : in.fixed)
       fixed_vertices.push_back(s.first);
     auto x = in.mesh.add_property_map<halfedge_descriptor, double>("h:tc_refinement", 0.).first;
+    // with the holes' indices of --boundary-indices, as the final solve has them
+    const Loop_periods loop_periods = boundary_loop_periods(o, in, solver);
     design.refinement = naming_the_direction_file(o, in, [&] {
       return TC::refine_singularities(
         solver, in.singularities, x,
-        P::cancel_pairs(o.cancel_pairs,
-                        P::fixed_vertices(fixed_vertices, P::face_directions(in.directions, P::symmetry_order(o.n)))));
+        P::loop_periods(loop_periods,
+                        P::cancel_pairs(o.cancel_pairs,
+                                        P::fixed_vertices(fixed_vertices, P::face_directions(in.directions,
+                                                                                             P::symmetry_order(o.n))))));
     });
     in.mesh.remove_property_map(x);
     in.singularities.assign(design.refinement->singularities.begin(), design.refinement->singularities.end());
@@ -534,8 +548,9 @@ void print_design(std::ostream& out, const Options& o, const Design& d)
     for(const auto& [index, count] : p.singularities_per_index)
       out << " " << count << " x " << index;
     if(p.fixed > 0)
-      out << "; " << p.fixed << " kept from " << o.singularities << ", " << p.units_removed << " units of 1/" << o.n
-          << " given way, " << p.units_added << " added";
+      out << "; " << p.fixed << " kept from " << o.singularities;
+    if(p.fixed > 0 || p.units_removed > 0 || p.units_added > 0)
+      out << "; " << p.units_removed << " units of 1/" << o.n << " given way, " << p.units_added << " added";
     out << "\n";
   }
   if(d.curvature_guides > 0)

@@ -99,5 +99,7 @@ echo "+ $python $checker $mesh --connection $conn --field $field ${sing_args[*]}
 if [ ${#constraint_args[@]} -gt 0 ]; then
   here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
   echo "+ $python $here/check_constraints.py $mesh --connection $conn --field $field ${constraint_args[*]} --n $n"
-  "$python" "$here/check_constraints.py" "$mesh" --connection "$conn" --field "$field" "${constraint_args[@]}" --n "$n"
+  skip=()
+  if [ "$guided_by_curvature" = 1 ]; then skip=(--no-optimality); fi # the program chose the guides
+  "$python" "$here/check_constraints.py" "$mesh" --connection "$conn" --field "$field" "${constraint_args[@]}" --n "$n" "${skip[@]}"
 fi

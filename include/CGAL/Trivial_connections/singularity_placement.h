@@ -13,6 +13,7 @@
 #include <CGAL/Trivial_connections/internal/placement/face_curvature.h>
 #include <CGAL/Trivial_connections/internal/placement/field_singularities.h>
 #include <CGAL/Trivial_connections/internal/placement/smoothest_field.h>
+#include <CGAL/Trivial_connections/internal/integers/loop_periods.h>
 #include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,8 +51,8 @@ struct Placement_report
   std::vector<std::pair<Singularity_index, std::size_t>> singularities_per_index;
   std::size_t number_of_singularities = 0; ///< vertices written
   std::size_t fixed = 0;            ///< of which given as `fixed_singularities`
-  std::size_t units_removed = 0;    ///< units of 1/n taken from automatic singularities near the fixed ones
-  std::size_t units_added = 0;      ///< units of 1/n added to balance a closed component (see the user manual)
+  std::size_t units_removed = 0;    ///< units of 1/n taken from automatic singularities near the fixed ones or holes
+  std::size_t units_added = 0;      ///< units of 1/n added to balance a component (see the user manual)
 };
 
 namespace internal {
@@ -141,6 +143,12 @@ the aligned field and the boundary.
       to them give way, one unit of 1/n at a time, until each component's index sum is that of the automatic
       placement again (see the user manual)}
   \cgalParamNEnd
+  \cgalParamNBegin{loop_periods}
+    \cgalParamDescription{as for `solve()`: on a component whose boundary loops all have an index, the vertex
+      indices must sum to its Euler characteristic minus theirs; the automatic singularities nearest to its boundary
+      give way (or units are added nearest to it) until they do. Other entries are ignored}
+    \cgalParamType{`std::vector<std::int64_t>` or `std::vector<std::optional<std::int64_t>>`}
+  \cgalParamNEnd
 \cgalNamedParamsEnd
 \throws Invalid_input `invalid_symmetry_order`, `invalid_argument` (a guide not finite, a strength not positive
         and finite), those of `solve()` for the fixed singularities (except Poincare-Hopf, which the placement
@@ -222,10 +230,13 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
   report.max_rounding = read.max_rounding;
   std::vector<std::int64_t> k = read.k;
 
+  // what the user prescribes: fixed singularities, and boundary indices (loop_periods), which fix the index sums
+  std::vector<std::int64_t> fixed_k(std::size_t(m.nv), 0);
+  std::vector<char> fixed(std::size_t(m.nv), 0);
+  std::vector<std::optional<std::int64_t>> target(t.components.size());
+  bool prescribed = false;
   if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::fixed_singularities_t>::value) {
     std::vector<Component_report> components = internal::component_reports(t);
-    std::vector<std::int64_t> fixed_k(std::size_t(m.nv), 0);
-    std::vector<char> fixed(std::size_t(m.nv), 0);
     const auto& given = CGAL::parameters::get_parameter(np, tc_np::fixed_singularities);
     // checked as solve() checks them, except the sums
     try {
@@ -242,8 +253,37 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
       fixed[std::size_t(get(m.vertex_index, s.first))] = 1;
       ++report.fixed;
     }
-    k = internal::combine_with_fixed(m, g, t, k, fixed_k, fixed, report.units_removed, report.units_added);
+    prescribed = true;
   }
+  if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::loop_periods_t>::value) {
+    // a copy: optional_periods() may return a reference into its argument, a temporary here
+    const std::vector<std::optional<std::int64_t>> periods = internal::optional_periods(
+      CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::loop_periods),
+                                         std::vector<std::int64_t>()));
+    if(periods.size() != t.loops.size())
+      throw Invalid_input(Error_code::invalid_loop_periods,
+                          "loop_periods has " + std::to_string(periods.size()) + " entries for " +
+                            std::to_string(t.loops.size()) + " loops");
+    // a component whose boundary loops all have an index: its vertex indices must sum to chi minus theirs
+    std::vector<std::int64_t> sum(t.components.size(), 0);
+    std::vector<char> complete(t.components.size(), 1);
+    for(std::size_t l = 0; l < t.loops.size(); ++l)
+      if(t.loops[l].kind == Loop_kind::boundary) {
+        if(periods[l])
+          sum[t.loops[l].component] += *periods[l];
+        else
+          complete[t.loops[l].component] = 0;
+      }
+    for(std::size_t c = 0; c < t.components.size(); ++c) {
+      const internal::Mesh_topology::Component& comp = t.components[c];
+      if(comp.boundary_loops > 0 && complete[c]) {
+        target[c] = n * (std::int64_t(comp.vertices) - comp.edges + comp.faces) - sum[c];
+        prescribed = true;
+      }
+    }
+  }
+  if(prescribed)
+    k = internal::combine_with_prescribed(m, g, t, k, fixed_k, fixed, target, report.units_removed, report.units_added);
 
   std::vector<std::pair<std::int64_t, std::size_t>> counts;
   for(int v = 0; v < m.nv; ++v) {

@@ -14,6 +14,8 @@
 #include <CGAL/number_type_config.h>
 
 #include <algorithm>
+#include <climits>
+#include <optional>
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -100,39 +102,53 @@ Field_singularities field_singularities(const Mesh_arrays<TriangleMesh>& m, cons
 }
 
 /*
-  Combines a user's fixed singularities with an automatic placement `automatic` (n times the indices per vertex):
-  on the fixed vertices the fixed index is taken; elsewhere the automatic singularities nearest to the fixed ones
-  (graph distance) give way, one unit of 1/n at a time, until each component's index sum is that of the automatic
-  placement again (chi on a closed component). When no automatic singularity of the needed sign is left, a closed
-  component gets units of the opposite sign at the interior vertices farthest from every singularity. Counts the
-  units removed and added.
+  Combines an automatic placement `automatic` (n times the indices per vertex) with what the user prescribes: fixed
+  singularities (`fixed`, `fixed_k`) and the index sums some components must have (`target`, n times the sum per
+  component, from prescribed boundary indices; empty: the automatic placement's sum, chi on a closed component).
+  On the fixed vertices the fixed index is taken; then the automatic singularities nearest (graph distance) to the
+  sources give way, one unit of 1/n at a time, until each component's sum is its target. The sources are the fixed
+  vertices and the boundary vertices of the components with a target: the singularities nearest to a hole whose
+  index is prescribed are the ones that were standing for it. When no automatic singularity of the needed sign is
+  left, units of the other sign are added at free interior vertices: nearest to the sources on a bordered
+  component with a target, farthest from every singularity on a closed one. Counts the units removed and added.
 */
 template <class TriangleMesh>
-std::vector<std::int64_t> combine_with_fixed(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
-                                             const Mesh_topology& t, const std::vector<std::int64_t>& automatic,
-                                             const std::vector<std::int64_t>& fixed_k, const std::vector<char>& fixed,
-                                             std::size_t& removed, std::size_t& added)
+std::vector<std::int64_t> combine_with_prescribed(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
+                                                  const Mesh_topology& t, const std::vector<std::int64_t>& automatic,
+                                                  const std::vector<std::int64_t>& fixed_k, const std::vector<char>& fixed,
+                                                  const std::vector<std::optional<std::int64_t>>& target,
+                                                  std::size_t& removed, std::size_t& added)
 {
   std::vector<std::int64_t> k(automatic);
   const std::size_t nc = t.components.size();
   std::vector<std::int64_t> excess(nc, 0);
+  auto component_of = [&](int v) { return t.component_of_node[t.node_of_vertex[v]]; };
   for(int v = 0; v < m.nv; ++v) {
     if(m.faces_at_vertex[v] == 0)
       continue;
-    const int c = t.component_of_node[t.node_of_vertex[v]];
-    if(fixed[v]) {
-      excess[c] += fixed_k[v] - automatic[v];
+    if(fixed[v])
       k[v] = fixed_k[v];
-    }
+    excess[component_of(v)] += k[v] - automatic[v];
   }
-  // vertex adjacency through the corner halfedges (both directions: border edges have one corner)
+  for(std::size_t c = 0; c < nc; ++c)
+    if(target[c]) {
+      std::int64_t sum = 0;
+      for(int v = 0; v < m.nv; ++v)
+        if(m.faces_at_vertex[v] > 0 && component_of(v) == int(c))
+          sum += k[v];
+      excess[c] = sum - *target[c];
+    }
+  removed = added = 0;
+  if(std::all_of(excess.begin(), excess.end(), [](std::int64_t e) { return e == 0; }))
+    return k;
+
+  std::vector<std::vector<int>> neighbours(std::size_t(m.nv));
+  for(int i = 0; i < 3 * m.nf; ++i) {
+    neighbours[m.source_of(i)].push_back(m.target_of(i));
+    neighbours[m.target_of(i)].push_back(m.source_of(i));
+  }
   auto distances_from = [&](const std::vector<int>& sources) {
     std::vector<int> distance(std::size_t(m.nv), -1);
-    std::vector<std::vector<int>> neighbours(std::size_t(m.nv));
-    for(int i = 0; i < 3 * m.nf; ++i) {
-      neighbours[m.source_of(i)].push_back(m.target_of(i));
-      neighbours[m.target_of(i)].push_back(m.source_of(i));
-    }
     std::deque<int> queue;
     for(int s : sources) {
       distance[s] = 0;
@@ -149,24 +165,22 @@ std::vector<std::int64_t> combine_with_fixed(const Mesh_arrays<TriangleMesh>& m,
     }
     return distance;
   };
-  removed = added = 0;
-  bool any = false;
-  for(std::int64_t e : excess)
-    any = any || e != 0;
-  if(!any)
-    return k;
-  std::vector<int> fixed_vertices;
+  std::vector<int> sources;
   for(int v = 0; v < m.nv; ++v)
-    if(fixed[v])
-      fixed_vertices.push_back(v);
-  const std::vector<int> near = distances_from(fixed_vertices);
+    if(m.faces_at_vertex[v] > 0 && (fixed[v] || (g.on_boundary[v] && target[component_of(v)])))
+      sources.push_back(v);
+  const std::vector<int> near = distances_from(sources);
+  // unreached vertices (a component without sources) last
+  auto nearer = [&](int a, int b) {
+    return (near[a] < 0 ? INT_MAX : near[a]) < (near[b] < 0 ? INT_MAX : near[b]);
+  };
   std::vector<int> by_distance;
   for(int v = 0; v < m.nv; ++v)
     if(!fixed[v] && k[v] != 0)
       by_distance.push_back(v);
-  std::stable_sort(by_distance.begin(), by_distance.end(), [&](int a, int b) { return near[a] < near[b]; });
+  std::stable_sort(by_distance.begin(), by_distance.end(), nearer);
   for(int v : by_distance) {
-    const int c = t.component_of_node[t.node_of_vertex[v]];
+    const int c = component_of(v);
     while(excess[c] != 0 && k[v] != 0 && (k[v] > 0) == (excess[c] > 0)) {
       const std::int64_t s = excess[c] > 0 ? 1 : -1;
       k[v] -= s;
@@ -174,7 +188,7 @@ std::vector<std::int64_t> combine_with_fixed(const Mesh_arrays<TriangleMesh>& m,
       ++removed;
     }
   }
-  // what removal could not balance: units of the missing sign, far from every singularity (closed components)
+  // what removal could not balance: units of the missing sign
   std::vector<int> singular;
   for(int v = 0; v < m.nv; ++v)
     if(k[v] != 0)
@@ -184,20 +198,24 @@ std::vector<std::int64_t> combine_with_fixed(const Mesh_arrays<TriangleMesh>& m,
   for(int v = 0; v < m.nv; ++v)
     if(m.faces_at_vertex[v] > 0 && !g.on_boundary[v] && !fixed[v] && k[v] == 0)
       candidates.push_back(v);
-  std::stable_sort(candidates.begin(), candidates.end(), [&](int a, int b) { return far[a] > far[b]; });
-  for(int v : candidates) {
-    const int c = t.component_of_node[t.node_of_vertex[v]];
-    if(excess[c] == 0 || t.components[c].boundary_loops > 0)
-      continue;
-    const std::int64_t s = excess[c] > 0 ? 1 : -1;
-    k[v] = -s;
-    excess[c] -= s;
-    ++added;
-  }
+  std::vector<int> closest(candidates), farthest(candidates);
+  std::stable_sort(closest.begin(), closest.end(), nearer);
+  std::stable_sort(farthest.begin(), farthest.end(), [&](int a, int b) { return far[a] > far[b]; });
+  for(int pass = 0; pass < 2; ++pass)
+    for(int v : pass == 0 ? farthest : closest) {
+      const int c = component_of(v);
+      const bool bordered = t.components[c].boundary_loops > 0;
+      if(excess[c] == 0 || k[v] != 0 || bordered != (pass == 1) || (bordered && !target[c]))
+        continue;
+      const std::int64_t s = excess[c] > 0 ? 1 : -1;
+      k[v] = -s;
+      excess[c] -= s;
+      ++added;
+    }
   for(std::size_t c = 0; c < nc; ++c)
-    if(excess[c] != 0 && t.components[c].boundary_loops == 0)
+    if(excess[c] != 0 && (t.components[c].boundary_loops == 0 || target[c]))
       throw Invalid_input(Error_code::poincare_hopf_violated,
-                          "the fixed singularities of component " + std::to_string(c) +
+                          "the prescribed singularities and boundary indices of component " + std::to_string(c) +
                             " cannot be completed to satisfy Poincare-Hopf (not enough free interior vertices)", c);
   return k;
 }

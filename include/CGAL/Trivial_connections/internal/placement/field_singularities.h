@@ -50,10 +50,13 @@ Field_singularities read_field_singularities(const Mesh_arrays<TriangleMesh>& m,
 {
   Field_singularities result;
   std::vector<double> turn(std::size_t(m.nv), 0.);
+  std::vector<double> angle(std::size_t(m.nf)); // once per face rather than twice per edge
+  for(int f = 0; f < m.nf; ++f)
+    angle[f] = std::arg(u[f]);
   for(int e = 0; e < g.number_of_interior_edges(); ++e) {
     const int i = g.edge_corner[e];
     const int f = Mesh_arrays<TriangleMesh>::face_of(i), h = Mesh_arrays<TriangleMesh>::face_of(m.opposite_corner[i]);
-    const double d = wrap_angle(std::arg(u[h]) - std::arg(u[f]) - n * g.transport[e]);
+    const double d = wrap_angle(angle[h] - angle[f] - n * g.transport[e]);
     turn[m.target_of(i)] += d;
     turn[m.source_of(i)] -= d;
     result.connection_energy += g.weight[e] * (d / n) * (d / n);

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace CGAL {
@@ -116,11 +117,16 @@ class Smoothest_field_factor
 public:
   using Complex = std::complex<double>;
 
-  Smoothest_field_factor(const Smoothest_field_problem& p, double shift) : m_problem(&p)
+  Smoothest_field_factor(const Smoothest_field_problem& p, double shift)
+    : Smoothest_field_factor(p, std::vector<double>(p.area.size(), shift))
+  {}
+
+  // A + diag(shift_f area_f)
+  Smoothest_field_factor(const Smoothest_field_problem& p, const std::vector<double>& shift)
   {
     Smoothest_field_problem::Sparse S = p.A;
     for(int f = 0; f < int(p.area.size()); ++f)
-      S.coeffRef(f, f) += shift * p.area[f];
+      S.coeffRef(f, f) += shift[f] * p.area[f];
     m_ldlt.compute(S);
     if(m_ldlt.info() != Eigen::Success)
       throw Invalid_input(Error_code::solver_failure, "the factorization of the smoothest-field pencil failed");
@@ -135,7 +141,6 @@ public:
   }
 
 private:
-  const Smoothest_field_problem* m_problem;
   Eigen::SimplicialLDLT<Smoothest_field_problem::Sparse, Eigen::Lower, Eigen::AMDOrdering<int>> m_ldlt;
 };
 
@@ -217,8 +222,9 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
   // with fixed faces, the free faces' unknowns solve A_FF u_F = -A_FP u_P: the fixed faces become identity rows
   // and their couplings move to the right-hand side
   Eigen::VectorXcd dirichlet_rhs = Eigen::VectorXcd::Zero(nf);
-  Smoothest_field_problem reduced = p;
+  std::optional<Smoothest_field_problem> reduced; // only with fixed faces: a copy of A costs as much as its assembly
   if(!fixed.empty()) {
+    reduced.emplace(p);
     std::vector<Eigen::Triplet<Complex>> entries;
     for(int c = 0; c < p.A.outerSize(); ++c)
       for(Smoothest_field_problem::Sparse::InnerIterator it(p.A, c); it; ++it) {
@@ -237,12 +243,12 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
     for(int f = 0; f < nf; ++f)
       if(fixed[f]) {
         dirichlet_rhs[f] = fixed_value[f];
-        reduced.area[f] = 0; // no shift on an identity row
+        reduced->area[f] = 0; // no shift on an identity row
       }
-    reduced.A.setZero();
-    reduced.A.setFromTriplets(entries.begin(), entries.end());
+    reduced->A.setZero();
+    reduced->A.setFromTriplets(entries.begin(), entries.end());
   }
-  Smoothest_field_factor factor(reduced, shift);
+  Smoothest_field_factor factor(reduced ? *reduced : p, shift);
 
   Smoothest_field result;
   result.rayleigh_quotient.assign(std::size_t(nc), 0.);
@@ -335,14 +341,16 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
     const Eigen::VectorXcd* basis[3] = {&x, &W, &P};
     const Eigen::VectorXcd* images[3] = {&Ax, &AW, &AP};
     std::vector<Eigen::Matrix3cd> H(std::size_t(nc), Eigen::Matrix3cd::Zero());
-    for(int a = 0; a < 3; ++a)
-      for(int b = a; b < 3; ++b) {
-        const std::vector<Complex> e = component_energies(p, *basis[a], *images[b]);
-        for(int c = 0; c < nc; ++c) {
-          H[c](a, b) = e[c];
-          H[c](b, a) = std::conj(e[c]);
-        }
-      }
+    for(int f = 0; f < nf; ++f) { // one pass for the six entries
+      Eigen::Matrix3cd& h = H[p.component_of_face[f]];
+      for(int a = 0; a < 3; ++a)
+        for(int b = a; b < 3; ++b)
+          h(a, b) += std::conj((*basis[a])[f]) * (*images[b])[f];
+    }
+    for(Eigen::Matrix3cd& h : H)
+      for(int a = 0; a < 3; ++a)
+        for(int b = 0; b < a; ++b)
+          h(a, b) = std::conj(h(b, a));
     std::vector<Eigen::Vector3cd> y(std::size_t(nc), Eigen::Vector3cd(1., 0., 0.));
     for(int c = 0; c < nc; ++c) {
       if(dirichlet[c])
@@ -425,15 +433,14 @@ inline Smoothest_field aligned_field(const Smoothest_field_problem& p, const std
   std::vector<double> component_area(std::size_t(p.components), 0.);
   for(int f = 0; f < nf; ++f)
     component_area[p.component_of_face[f]] += p.area[f];
-  // one shift per component would need one factor per component; the shift of each is applied through B's
-  // scaling instead: (A + s_c B) on the block of c is A + strength * B / area_c
-  Smoothest_field_problem scaled = p;
+  // one factor for every component, each block with its own s_c = strength / area_c
+  std::vector<double> shift(static_cast<std::size_t>(nf));
   for(int f = 0; f < nf; ++f)
-    scaled.area[f] = p.area[f] / component_area[p.component_of_face[f]];
-  Smoothest_field_factor factor(scaled, strength);
+    shift[f] = strength / component_area[p.component_of_face[f]];
+  Smoothest_field_factor factor(p, shift);
   Eigen::VectorXcd r(nf);
   for(int f = 0; f < nf; ++f)
-    r[f] = strength * scaled.area[f] * q[f];
+    r[f] = shift[f] * p.area[f] * q[f];
   const Eigen::VectorXcd u = factor.solve(r);
   Smoothest_field result;
   result.u.assign(u.data(), u.data() + nf);

@@ -2,12 +2,16 @@
 """Writes benchmark/RESULTS.md from the JSON files of trivial_connections_benchmark (Google Benchmark).
 
     python3 scripts/benchmark_table.py --out benchmark/RESULTS.md RESULT.json [RESULT.json ...]
+    python3 scripts/benchmark_table.py --section placement --out benchmark/RESULTS.md placement-*.json
 
 Standard library only. A benchmark is named BACKEND/MESH (BACKEND/program/MESH: the main program as a whole
 process); with repetitions, every counter is the median of
 the repetitions. When a mesh of a backend appears in several files, the newest file wins. One table per
 backend (times, ratios to the reference, memory), then the log-log slopes of every phase against the number
 of faces (least squares of log t over the meshes), and a header with the machine and the dates.
+BACKEND/placement/MESH (trivial_connections_placement_benchmark) makes the section "Automatic placement";
+with --section placement, only that section of --out is written (replaced in place, or inserted before the
+scaling slopes), the rest of the file kept as it is.
 """
 
 import argparse
@@ -69,7 +73,7 @@ def load(paths):
             if "/" not in name:
                 continue
             runs.setdefault(name, []).append(b)
-        if runs:
+        if any(not n.split("/", 1)[1].startswith(PLACEMENT_PREFIX) for n in runs if "/" in n):
             contexts.append((path, ctx))
         for name, reps in runs.items():
             backend, mesh = name.split("/", 1)
@@ -189,9 +193,148 @@ PROGRAM_PREFIX = "program/"
 CONTROLS_PREFIX = "controls/"
 
 
+PLACEMENT_PREFIX = "placement/"
+PLACEMENT_TITLE = "### Automatic placement"
+
+
 def pipelines(meshes):
-    """the per-mesh pipeline entries of one backend (without the program's and the design controls')"""
-    return {m: e for m, e in meshes.items() if not m.startswith(PROGRAM_PREFIX) and not m.startswith(CONTROLS_PREFIX)}
+    """the per-mesh pipeline entries of one backend (without the program's, the design controls' and the
+    placement's)"""
+    return {m: e for m, e in meshes.items() if not m.startswith(PROGRAM_PREFIX) and not m.startswith(CONTROLS_PREFIX)
+            and not m.startswith(PLACEMENT_PREFIX)}
+
+
+def fmt_ratio(x, target):
+    """a ratio to the reference, marked when it misses its target"""
+    if x is None or x <= 0:
+        return "–"
+    return fmt_num(x) + ("" if x <= target else " ✗")
+
+
+def placement_table(results, lines, command):
+    """the section "Automatic placement" (BACKEND/placement/MESH), with its own measurement line"""
+    rows = [(b, m[len(PLACEMENT_PREFIX):], e) for b in sorted(results, key=backend_order)
+            for m, e in results[b].items() if m.startswith(PLACEMENT_PREFIX)]
+    if not rows:
+        return
+    rows.sort(key=lambda r: (backend_order(r[0]), r[2]["counters"].get("faces", 0), r[1]))
+    ctxs = [e["context"] for _, _, e in rows]
+    dates = sorted({c.get("date", "")[:10] for c in ctxs if c.get("date")})
+    commits = sorted({c.get("commit") + (f" (binary built {c['built']})" if c.get("built") else "")
+                      for c in ctxs if c.get("commit")})
+    m = machine()
+    lines.append(PLACEMENT_TITLE)
+    lines.append("")
+    lines.append(f"Measured {', '.join(dates) if dates else 'on an unknown date'} on {m['nproc']} cores ({m['cpu']})"
+                 + (f", commit {', '.join(commits)}" if commits else "")
+                 + f", by `{command}` (`benchmark/Trivial_connections/benchmark_placement.cpp`); "
+                 "`+modified`: include/ differed from that commit.")
+    lines.append("")
+    lines.append("Per mesh, in one run, n = 4: the solver is built (`build`, with the backend); `place_singularities` "
+                 "places the singularities of the smoothest 4-direction field (`placement`, with the number of "
+                 "eigensolver (LOBPCG) iterations, `Placement_report::iterations`); the trivial connection is solved with them "
+                 "(`solve`); `principal_curvature_guide` + `place_singularities` with `alignment_guide` give the "
+                 "curvature-aligned placement (`aligned`, guide included, its time in parentheses); one refinement "
+                 "trial is what `refine_singularities` does per candidate move, one `solve()` with `energy_gradient` "
+                 "on the prefactored solver with one placed singularity moved to a neighbouring free interior vertex "
+                 "(`trial`, the median of 5 such moves). Then the **reference** of the tables above is timed: "
+                 "analysis + factorization of the same mesh's vertex Laplacian with the same backend. "
+                 "The placement factors its complex face pencil A + σB (one unknown per face, about twice the "
+                 "vertices) with Eigen's `SimplicialLDLT` whatever the backend; `pencil factor.` and `pencil solve` "
+                 "time that factorization and one solve with it (the median of 3) apart (the library's internal classes, as "
+                 "`place_singularities` calls them), and `split` divides the placement into that factorization, "
+                 "the eigensolver's solves (iterations × one solve) and the rest (assembly of the pencil, "
+                 "normalisations, reading the singularities off the field). Sing.: singularities placed (smoothest, "
+                 "aligned). Medians over the repetitions (`reps`).")
+    lines.append("")
+    lines.append("Issue targets (reported, not asserted): end-to-end = (build + placement + solve) / reference ≤ 3, "
+                 "and one trial / reference ≤ 0.1, on 50k–1.2M faces; ✗ marks a ratio above its target.")
+    lines.append("")
+    ok = [(b, mesh, e["counters"]) for b, mesh, e in rows if not e["error"]]
+    in_range = [r for r in ok if 50_000 <= r[2].get("faces", 0) <= 1_300_000]
+    if in_range:
+        ends = [c.get("r_end_to_end", 0) for _, _, c in in_range]
+        trials = [c.get("r_trial", 0) for _, _, c in in_range]
+        met_end = sum(1 for x in ends if 0 < x <= 3)
+        met_trial = sum(1 for x in trials if 0 < x <= 0.1)
+        lines.append(f"**Targets**: end-to-end ≤ 3 met on {met_end} of {len(in_range)} runs (mesh × backend) "
+                     f"of 50k–1.2M faces (ratios {fmt_num(min(ends))}–{fmt_num(max(ends))}); one trial ≤ 0.1 met on "
+                     f"{met_trial} of {len(in_range)} ({fmt_num(min(trials))}–{fmt_num(max(trials))}).")
+        lines.append("")
+    if ok:
+        factor = [c.get("r_pencil_factorization", 0) for _, _, c in ok]
+        share = [c.get("t_pencil_factorization", 0) / c["t_place"] for _, _, c in ok if c.get("t_place", 0) > 0]
+        solves = [c.get("eigensolver_iterations", 0) * c.get("t_pencil_solve", 0) / c["t_place"]
+                  for _, _, c in ok if c.get("t_place", 0) > 0]
+        iterations = [c.get("eigensolver_iterations", 0) for _, _, c in ok]
+        capped = sorted({mesh for _, mesh, c in ok if c.get("eigensolver_iterations", 0) >= 100})
+        aligned = [c.get("r_place_aligned", 0) for _, _, c in ok]
+        lines.append(f"**Where the time goes**: the factorization of the complex face pencil alone is "
+                     f"{fmt_num(min(factor))}–{fmt_num(max(factor))} × the reference ({100 * min(share):.0f}–"
+                     f"{100 * max(share):.0f} % of the placement); the eigensolver's solves take "
+                     f"{100 * min(solves):.0f}–{100 * max(solves):.0f} % ({min(iterations):.0f}–{max(iterations):.0f} "
+                     "iterations" + (f"; 100 is the eigensolver's cap, reached on {', '.join(capped)}" if capped else "")
+                     + f"). The aligned placement (guide, one factorization, one solve) is "
+                     f"{fmt_num(min(aligned))}–{fmt_num(max(aligned))} × the reference. The split is approximate: "
+                     "its parts are timed apart, on a machine shared with other jobs while measuring.")
+        lines.append("")
+    head = ["mesh", "backend", "faces", "genus", "reference", "build", "placement (iter.)", "solve",
+            "aligned (guide)", "trial", "sing. (aligned)", "pencil factor.", "pencil solve",
+            "split: factor. / solves / rest", "end-to-end / ref", "placement / ref", "aligned / ref",
+            "aligned end-to-end / ref", "pencil factor. / ref", "trial / ref", "peak B/face", "reps"]
+    lines.append("| " + " | ".join(head) + " |")
+    lines.append("|" + "|".join(["---", "---"] + ["---:"] * (len(head) - 2)) + "|")
+    for b, mesh, e in rows:
+        c = e["counters"]
+        if e["error"]:
+            lines.append(f"| {mesh} | {b} | " + " | ".join(["–"] * (len(head) - 3)) + f" | error: {e['error']} |")
+            continue
+        place = c.get("t_place", 0)
+        split = "–"
+        if place > 0:
+            factor = c.get("t_pencil_factorization", 0) / place
+            solves = c.get("eigensolver_iterations", 0) * c.get("t_pencil_solve", 0) / place
+            split = f"{100 * factor:.0f} / {100 * solves:.0f} / {100 * (1 - factor - solves):.0f} %"
+        lines.append("| " + " | ".join([
+            mesh, b, fmt_faces(c.get("faces", 0)), f"{c.get('genus', 0):.0f}", fmt_time(c.get("t_reference")),
+            fmt_time(c.get("t_build")), f"{fmt_time(place)} ({c.get('eigensolver_iterations', 0):.0f})",
+            fmt_time(c.get("t_solve")),
+            f"{fmt_time(c.get('t_guide', 0) + c.get('t_place_aligned', 0))} ({fmt_time(c.get('t_guide'))})",
+            fmt_time(c.get("t_trial")),
+            f"{c.get('singularities', 0):.0f} ({c.get('singularities_aligned', 0):.0f})",
+            fmt_time(c.get("t_pencil_factorization")), fmt_time(c.get("t_pencil_solve")), split,
+            fmt_ratio(c.get("r_end_to_end"), 3), fmt_num(c.get("r_place")), fmt_num(c.get("r_place_aligned")),
+            fmt_num(c.get("r_end_to_end_aligned")), fmt_num(c.get("r_pencil_factorization")),
+            fmt_ratio(c.get("r_trial"), 0.1), fmt_num(c.get("peak_bytes_per_face"), 4),
+            str(e["repetitions"])]) + " |")
+    lines.append("")
+
+
+def replace_section(path, title, section):
+    """replaces the section `title` of the file (up to the next ### heading) by the lines `section`, or inserts it
+    before the scaling slopes (else before the integer choice, else at the end)"""
+    with open(path) as f:
+        old = f.read().split("\n")
+    while old and not old[-1].strip():
+        old.pop()
+    heading = [i for i, line in enumerate(old) if line.startswith("### ")]
+    if title in old:
+        start = old.index(title)
+        end = next((i for i in heading if i > start), len(old))
+    else:
+        start = next((i for i in heading if old[i].startswith("### Scaling")),
+                     next((i for i in heading if old[i].startswith("### Integer choice")), len(old)))
+        end = start
+    body = list(section)
+    while body and not body[-1].strip():
+        body.pop()
+    if end < len(old):
+        body.append("")
+    elif start > 0 and old[start - 1].strip():
+        body.insert(0, "")
+    new = old[:start] + body + old[end:]
+    with open(path, "w") as f:
+        f.write("\n".join(new) + "\n")
 
 
 def controls_table(results, lines):
@@ -311,11 +454,23 @@ def main():
     ap.add_argument("json", nargs="+", help="Google Benchmark JSON outputs")
     ap.add_argument("--out", default="benchmark/RESULTS.md")
     ap.add_argument("--command", default="bash scripts/run_benchmarks.sh", help="how the numbers were made")
+    ap.add_argument("--section", choices=["placement"],
+                    help="write only this section of --out (replaced in place, the rest of the file kept)")
     args = ap.parse_args()
 
     results, contexts = load([p for p in args.json if os.path.exists(p)])
     if not any(results.values()):
         sys.exit("benchmark_table: no benchmark results in " + " ".join(args.json))
+    if args.section == "placement":
+        section = []
+        placement_table(results, section, args.command + " --placement")
+        if not section:
+            sys.exit("benchmark_table: no placement results in " + " ".join(args.json))
+        if not os.path.exists(args.out):
+            sys.exit(f"benchmark_table: {args.out} missing (run the suite first)")
+        replace_section(args.out, PLACEMENT_TITLE, section)
+        print(f"benchmark_table: wrote the section {PLACEMENT_TITLE[4:]!r} of {args.out}")
+        return
     m = machine()
     dates = sorted({ctx.get("date", "")[:10] for _, ctx in contexts if ctx.get("date")})
     commits = sorted({ctx.get("commit") + (f" (binary built {ctx['built']})" if ctx.get("built") else "")
@@ -359,6 +514,7 @@ def main():
             backend_table(backend, results[backend], lines)
     program_table(results, lines)
     controls_table(results, lines)
+    placement_table(results, lines, args.command + " --placement")
     lines.append("### Scaling: log–log slopes")
     lines.append("")
     lines.append("Least-squares slope of log(time) (or log(peak memory)) against log(faces), over all meshes of "

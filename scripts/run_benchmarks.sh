@@ -4,6 +4,8 @@
 #   bash scripts/run_benchmarks.sh [--sizes small|large|huge|all|LIST] [--backends ldlt,cholmod]
 #                                  [--repetitions N] [--no-build] [--table-only] [--out FILE]
 #   bash scripts/run_benchmarks.sh --integers [--no-build] [--out FILE]
+#   bash scripts/run_benchmarks.sh --placement [--sizes ...] [--backends ...] [--repetitions N] [--no-build]
+#                                  [--table-only] [--out FILE]
 #
 #   --sizes        small (default, a few minutes): CGAL meshes 5k-90k faces and a 300k subdivision;
 #                  large: ~1.2M faces (genus 0, 11, 133); huge: ~5M faces; all; or a comma list.
@@ -15,6 +17,12 @@
 #                  against their number, about 15 s, build-bench) into build-bench/integer-choice.json, and its
 #                  table as the section "Integer choice per dimension" at the end of FILE (replacing the one
 #                  there). Run it after the suite: the suite rewrites FILE without that section.
+#   --placement    instead of the suite: trivial_connections_placement_benchmark (automatic singularity placement
+#                  and one refinement trial, n = 4, against the suite's reference factorization; small: 52k-302k
+#                  faces, about 2 min per backend; large: ~1.2M faces, several minutes per mesh) into
+#                  build-bench/benchmark-results/placement-BACKEND-SIZE.json, and its table as the section
+#                  "Automatic placement" of FILE (replaced in place, the other sections kept as they are). The suite
+#                  also writes that section, from the same JSON files.
 #
 # JSON results go to build-bench/benchmark-results/BACKEND-SIZE.json and accumulate across runs: the table is
 # made from all of them (the newest result of each mesh wins), so the large meshes can be run separately.
@@ -31,6 +39,7 @@ TABLE_ONLY=0
 OUT="$ROOT/benchmark/RESULTS.md"
 JOBS="${JOBS:-2}"
 INTEGERS=0
+PLACEMENT=0
 
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -41,7 +50,8 @@ while [ $# -gt 0 ]; do
     --table-only) TABLE_ONLY=1; shift ;;
     --out) OUT="$2"; shift 2 ;;
     --integers) INTEGERS=1; shift ;;
-    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
+    --placement) PLACEMENT=1; shift ;;
+    -h|--help) sed -n '2,32p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -93,6 +103,14 @@ mkdir -p "$RESULTS_DIR" "$TC_BENCH_MESH_CACHE"
 PYTHON=python3
 command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
 
+# the suite, or the placement benchmark (its JSON files named placement-BACKEND-SIZE.json)
+TARGET=trivial_connections_benchmark
+PREFIX=""
+if [ "$PLACEMENT" = 1 ]; then
+  TARGET=trivial_connections_placement_benchmark
+  PREFIX=placement-
+fi
+
 build_dir() {
   case "$1" in
     ldlt) echo "$ROOT/build-bench" ;;
@@ -117,16 +135,16 @@ if [ "$TABLE_ONLY" = 0 ]; then
       [ "$backend" = cholmod ] && extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
       cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF \
             -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON "${extra[@]}" >/dev/null
-      cmake --build "$dir" -j "$JOBS" --target trivial_connections_benchmark
+      cmake --build "$dir" -j "$JOBS" --target "$TARGET"
     fi
-    exe="$dir/benchmark/trivial_connections_benchmark"
+    exe="$dir/benchmark/$TARGET"
     [ -x "$exe" ] || { echo "run_benchmarks.sh: $exe not built" >&2; exit 1; }
     built="$(date -u -r "$exe" +%Y-%m-%dT%H:%MZ)"
     for size in ${SIZES//,/ }; do
       reps=1
       [ "$size" = small ] && reps="$REPETITIONS"
-      json="$RESULTS_DIR/$backend-$size.json"
-      echo "== $backend, $size meshes, $reps repetition(s) -> $json"
+      json="$RESULTS_DIR/$PREFIX$backend-$size.json"
+      echo "== $TARGET: $backend, $size meshes, $reps repetition(s) -> $json"
       TC_BENCH_SIZES="$size" "$exe" \
         --benchmark_filter="^$backend/" \
         --benchmark_repetitions="$reps" --benchmark_display_aggregates_only=true \
@@ -138,6 +156,13 @@ if [ "$TABLE_ONLY" = 0 ]; then
 fi
 
 shopt -s nullglob
+if [ "$PLACEMENT" = 1 ]; then
+  files=("$RESULTS_DIR"/placement-*.json)
+  [ ${#files[@]} -gt 0 ] || { echo "run_benchmarks.sh: no placement results in $RESULTS_DIR" >&2; exit 1; }
+  [ -f "$OUT" ] || { echo "run_benchmarks.sh: $OUT missing (run the suite first)" >&2; exit 1; }
+  "$PYTHON" "$ROOT/scripts/benchmark_table.py" --section placement --out "$OUT" "${files[@]}"
+  exit 0
+fi
 files=("$RESULTS_DIR"/*.json)
 [ ${#files[@]} -gt 0 ] || { echo "run_benchmarks.sh: no results in $RESULTS_DIR" >&2; exit 1; }
 "$PYTHON" "$ROOT/scripts/benchmark_table.py" --out "$OUT" "${files[@]}"

@@ -30,26 +30,15 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
-#include <CGAL/Surface_mesh/IO/PLY.h>
-#include <CGAL/subdivision_method_3.h>
 
 #include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 
+#include "benchmark_meshes.h"
 #include "benchmark_support.h"
 
 #include <benchmark/benchmark.h>
-
-#include <Eigen/SparseCholesky>
-#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-#include <Eigen/CholmodSupport>
-#endif
-
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #include <algorithm>
 #include <array>
@@ -76,128 +65,23 @@ using Vertex = Mesh::Vertex_index;
 using Singularities = std::vector<std::pair<Vertex, TC::Singularity_index>>;
 using Clock = tc_bench::Clock;
 
-#ifndef TC_BENCH_DEFAULT_MESH_CACHE
-#define TC_BENCH_DEFAULT_MESH_CACHE "benchmark-meshes"
-#endif
-
 namespace {
 
 using tc_bench::seconds_since;
 using tc_bench::Phase_times;
-
-// ---------------------------------------------------------------------------------------------------------
-// Memory: VmHWM is reset to the current resident size by writing 5 to /proc/self/clear_refs (Linux >= 4.0).
-
-bool reset_peak_memory()
-{
-#if defined(__GLIBC__)
-  malloc_trim(0); // give freed heap back, so that the baseline is what is really in use
-#endif
-  std::ofstream out("/proc/self/clear_refs");
-  out << "5";
-  out.flush();
-  return bool(out);
-}
-
-// a "Vm...:   N kB" field of /proc/self/status in bytes, -1 if unavailable
-double status_bytes(const char* field)
-{
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  const std::string key = std::string(field) + ":";
-  while(std::getline(in, line))
-    if(line.compare(0, key.size(), key) == 0) {
-      std::istringstream s(line.substr(key.size()));
-      double kb = -1;
-      s >> kb;
-      return kb * 1024;
-    }
-  return -1;
-}
-
-// ---------------------------------------------------------------------------------------------------------
-// Meshes
-
-enum class Size { small, large, huge };
-
-struct Mesh_spec
-{
-  std::string name;   // benchmark name
-  std::string source; // file in CGAL's data set
-  int subdivisions;   // Loop subdivision steps (x4 faces each)
-  Size size;
-};
-
-const std::vector<Mesh_spec>& mesh_specs()
-{
-  static const std::vector<Mesh_spec> specs = {
-    {"cow", "cow.off", 0, Size::small},                   // genus 0, 5.8k faces, obtuse triangles
-    {"knot1", "knot1.off", 0, Size::small},               // genus 1, 6.4k
-    {"elephant", "elephant.off", 0, Size::small},         // genus 3, 5.6k
-    {"holes", "holes.off", 0, Size::small},               // bordered, 8.3k
-    {"bull", "bull.off", 0, Size::small},                 // genus 0, 12k: genus-0 neighbours of the 18k meshes
-    {"cow_loop1", "cow.off", 1, Size::small},             // genus 0, 23k
-    {"turbine", "turbine.off", 0, Size::small},           // genus 11, 18k
-    {"cheese", "cheese.off", 0, Size::small},             // genus 133, 18k
-    {"bunny00", "bunny00.off", 0, Size::small},           // genus 0, 75k
-    {"refined_elephant", "refined_elephant.off", 0, Size::small}, // genus 3, 89k
-    {"bunny00_loop1", "bunny00.off", 1, Size::small},     // genus 0, 302k
-    {"bunny00_loop2", "bunny00.off", 2, Size::large},     // genus 0, 1.2M
-    {"turbine_loop3", "turbine.off", 3, Size::large},     // genus 11, 1.2M
-    {"cheese_loop3", "cheese.off", 3, Size::large},       // genus 133, 1.1M
-    {"bunny00_loop3", "bunny00.off", 3, Size::huge},      // genus 0, 4.8M
-  };
-  return specs;
-}
-
-std::string mesh_cache_dir()
-{
-  const char* env = std::getenv("TC_BENCH_MESH_CACHE");
-  return env && *env ? std::string(env) : std::string(TC_BENCH_DEFAULT_MESH_CACHE);
-}
-
-bool file_exists(const std::string& path)
-{
-  struct stat st;
-  return ::stat(path.c_str(), &st) == 0;
-}
-
-// Loads a CGAL mesh, or its Loop subdivision from the cache (made and written there on first use).
-// Returns an empty string on success, the reason otherwise.
-std::string load_mesh(const Mesh_spec& spec, Mesh& mesh)
-{
-  const std::string source = std::string(TC_CGAL_DATA_DIR) + "/" + spec.source;
-  if(spec.subdivisions == 0)
-    return CGAL::IO::read_polygon_mesh(source, mesh) ? "" : "cannot read " + source + " (run scripts/fetch_cgal_data.sh)";
-
-  const std::string dir = mesh_cache_dir();
-  const std::string cached = dir + "/" + spec.name + ".ply";
-  if(file_exists(cached)) {
-    std::ifstream in(cached, std::ios::binary);
-    if(CGAL::IO::read_PLY(in, mesh) && num_faces(mesh) > 0)
-      return "";
-    mesh.clear();
-  }
-  if(!CGAL::IO::read_polygon_mesh(source, mesh))
-    return "cannot read " + source + " (run scripts/fetch_cgal_data.sh)";
-  const auto t0 = Clock::now();
-  CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(spec.subdivisions));
-  std::cerr << "[benchmark] " << spec.name << ": " << spec.subdivisions << " Loop subdivision steps of "
-            << spec.source << " -> " << num_faces(mesh) << " faces in " << seconds_since(t0) << " s" << std::endl;
-  ::mkdir(dir.c_str(), 0755);
-  const std::string tmp = cached + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if(!out || !CGAL::IO::write_PLY(out, mesh, CGAL::parameters::use_binary_mode(true))) {
-      std::cerr << "[benchmark] cannot write " << tmp << " (the subdivided mesh is not cached)" << std::endl;
-      std::remove(tmp.c_str());
-      return "";
-    }
-  }
-  if(std::rename(tmp.c_str(), cached.c_str()) != 0)
-    std::remove(tmp.c_str());
-  return "";
-}
+// the meshes and the reference (benchmark_meshes.h)
+using tc_bench::Mesh_spec;
+using tc_bench::Reference_result;
+using tc_bench::Weighted_edge;
+using tc_bench::file_exists;
+using tc_bench::laplacian_edges;
+using tc_bench::load_mesh;
+using tc_bench::mesh_cache_dir;
+using tc_bench::mesh_specs;
+using tc_bench::reference_factorization;
+using tc_bench::reset_peak_memory;
+using tc_bench::selected_sizes;
+using tc_bench::status_bytes;
 
 // ---------------------------------------------------------------------------------------------------------
 // Singularities satisfying Poincare-Hopf on every closed component: |chi| vertices of index sign(chi), spread
@@ -233,131 +117,6 @@ Singularities singularities_for(const Mesh& mesh, const Solver& solver, int set)
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// The reference: the vertex Laplacian with edge weights 1 / w_e, one vertex pinned per component, factored by
-// the backend as a user would call it, with its own fill-reducing ordering in the analysis (the solver's traits
-// may be set up differently, e.g. for a matrix the solver has already ordered).
-
-struct Weighted_edge
-{
-  int a, b;
-  double c;
-};
-
-struct Reference_result
-{
-  double seconds = 0;
-  double factor_nnz = 0;
-  double factor_flops = 0; // sum over the columns of L of nnz(column)^2 (diagonal included), as CHOLMOD counts
-  int ordering = -1; // CHOLMOD: the ordering its analysis chose (CHOLMOD_AMD, CHOLMOD_METIS, ...)
-  double peak_bytes = 0;
-  bool ok = true;
-};
-
-template <class EigenSolver>
-int chosen_ordering(const EigenSolver&) { return -1; }
-
-template <class EigenSolver>
-double factor_nonzeros(const EigenSolver& solver, Eigen::Index n)
-{
-  return double(solver.matrixL().nestedExpression().nonZeros()) + double(n); // strict L + diagonal D
-}
-
-template <class EigenSolver>
-double factor_flops(const EigenSolver& solver)
-{
-  const auto& L = solver.matrixL().nestedExpression();
-  double flops = 0;
-  for(Eigen::Index j = 0; j < L.outerSize(); ++j) {
-    double column = 1; // the diagonal
-    for(typename std::decay<decltype(L)>::type::InnerIterator it(L, j); it; ++it)
-      ++column;
-    flops += column * column;
-  }
-  return flops;
-}
-
-#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-template <class MatrixType, int UpLo>
-double factor_nonzeros(const Eigen::CholmodSupernodalLLT<MatrixType, UpLo>& solver, Eigen::Index)
-{
-  // nnz(L) from the analysis (excluding the zeros of supernodal amalgamation)
-  return const_cast<Eigen::CholmodSupernodalLLT<MatrixType, UpLo>&>(solver).cholmod().lnz;
-}
-
-template <class MatrixType, int UpLo>
-double factor_flops(const Eigen::CholmodSupernodalLLT<MatrixType, UpLo>& solver)
-{
-  return const_cast<Eigen::CholmodSupernodalLLT<MatrixType, UpLo>&>(solver).cholmod().fl;
-}
-
-template <class MatrixType, int UpLo>
-int chosen_ordering(const Eigen::CholmodSupernodalLLT<MatrixType, UpLo>& solver)
-{
-  cholmod_common& c = const_cast<Eigen::CholmodSupernodalLLT<MatrixType, UpLo>&>(solver).cholmod();
-  return c.selected >= 0 && c.selected < CHOLMOD_MAXMETHODS ? c.method[c.selected].ordering : -1;
-}
-#endif
-
-template <class ReferenceSolver>
-Reference_result reference_factorization(std::size_t nv, const std::vector<Weighted_edge>& edges)
-{
-  Reference_result result;
-  const double base = reset_peak_memory() ? status_bytes("VmRSS") : -1;
-  // union-find: pin the first vertex of each component (isolated vertices included)
-  std::vector<int> parent(nv);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int v) {
-    while(parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for(const Weighted_edge& e : edges) {
-    const int ra = find(e.a), rb = find(e.b);
-    if(ra != rb) parent[(std::max)(ra, rb)] = (std::min)(ra, rb);
-  }
-  std::vector<int> row(nv, -1);
-  int n = 0;
-  for(std::size_t v = 0; v < nv; ++v)
-    if(find(int(v)) != int(v))
-      row[v] = n++;
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(4 * edges.size());
-  for(const Weighted_edge& e : edges) {
-    const int a = row[e.a], b = row[e.b];
-    if(a >= 0) t.emplace_back(a, a, e.c);
-    if(b >= 0) t.emplace_back(b, b, e.c);
-    if(a >= 0 && b >= 0) { t.emplace_back(a, b, -e.c); t.emplace_back(b, a, -e.c); }
-  }
-  Eigen::SparseMatrix<double> L(n, n);
-  L.setFromTriplets(t.begin(), t.end());
-  L.makeCompressed();
-  std::vector<Eigen::Triplet<double>>().swap(t);
-
-  ReferenceSolver solver;
-  const auto t0 = Clock::now();
-  solver.analyzePattern(L);
-  solver.factorize(L);
-  result.seconds = seconds_since(t0);
-  result.ok = solver.info() == Eigen::Success;
-  result.factor_nnz = factor_nonzeros(solver, n);
-  result.factor_flops = factor_flops(solver);
-  result.ordering = chosen_ordering(solver);
-  result.peak_bytes = base >= 0 ? status_bytes("VmHWM") - base : -1;
-  return result;
-}
-
-// ---------------------------------------------------------------------------------------------------------
-
-// the edges of the reference Laplacian: the solver's interior edges, weighted 1/w_e
-template <class Solver>
-std::vector<Weighted_edge> laplacian_edges(const Mesh& mesh, const Solver& solver)
-{
-  std::vector<Weighted_edge> edges;
-  edges.reserve(num_edges(mesh));
-  for(auto e : CGAL::edges(mesh))
-    if(solver.is_interior(e))
-      edges.push_back({int(source(halfedge(e, mesh), mesh)), int(target(halfedge(e, mesh), mesh)), 1 / solver.weight(e)});
-  return edges;
-}
 
 template <class SolverTraits, class ReferenceSolver>
 void pipeline(benchmark::State& state, const Mesh_spec& spec)
@@ -632,23 +391,6 @@ void program_run(benchmark::State& state, const Mesh_spec& spec)
 }
 #endif
 
-// TC_BENCH_SIZES: comma list of small, large, huge, all
-std::vector<bool> selected_sizes()
-{
-  std::vector<bool> on(3, false);
-  const char* env = std::getenv("TC_BENCH_SIZES");
-  std::string list = env && *env ? env : "small";
-  std::stringstream ss(list);
-  std::string item;
-  while(std::getline(ss, item, ',')) {
-    if(item == "small") on[0] = true;
-    else if(item == "large") on[1] = true;
-    else if(item == "huge") on[2] = true;
-    else if(item == "all") on.assign(3, true);
-    else std::cerr << "[benchmark] TC_BENCH_SIZES: unknown size '" << item << "' (small, large, huge, all)\n";
-  }
-  return on;
-}
 
 template <class SolverTraits, class ReferenceSolver>
 void register_backend(const std::string& backend, const std::vector<bool>& sizes, bool program)

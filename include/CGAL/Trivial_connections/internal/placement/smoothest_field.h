@@ -312,30 +312,30 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
         Av[f] -= c * Aq[f];
       }
     };
+    // after orthogonalisation: per component, keep v (normalised) or drop it when its squared norm fell below
+    // 1e-20 of `before`
+    auto keep_remainder = [&](Eigen::VectorXcd& v, Eigen::VectorXcd& Av, const std::vector<double>& before,
+                              std::vector<char>& keep) {
+      const std::vector<double> after = component_norms(p, v);
+      for(int c = 0; c < nc; ++c)
+        keep[c] = !dirichlet[c] && after[c] > 1e-20 * before[c] && after[c] > 0;
+      for(int f = 0; f < nf; ++f)
+        if(!keep[p.component_of_face[f]])
+          v[f] = Av[f] = 0;
+      normalise(v, &Av);
+    };
     Eigen::VectorXcd AW = p.apply(W);
-    std::vector<double> before = component_norms(p, W);
-    orthogonalise(W, AW, x, Ax);
     std::vector<char> keep_w(std::size_t(nc), 0), keep_p(std::size_t(nc), 0);
     {
-      const std::vector<double> after = component_norms(p, W);
-      for(int c = 0; c < nc; ++c)
-        keep_w[c] = !dirichlet[c] && after[c] > 1e-20 * before[c] && after[c] > 0;
-      for(int f = 0; f < nf; ++f)
-        if(!keep_w[p.component_of_face[f]])
-          W[f] = AW[f] = 0;
-      normalise(W, &AW);
+      const std::vector<double> before = component_norms(p, W);
+      orthogonalise(W, AW, x, Ax);
+      keep_remainder(W, AW, before, keep_w);
     }
     if(have_step) {
-      before = component_norms(p, P);
+      const std::vector<double> before = component_norms(p, P);
       orthogonalise(P, AP, x, Ax);
       orthogonalise(P, AP, W, AW);
-      const std::vector<double> after = component_norms(p, P);
-      for(int c = 0; c < nc; ++c)
-        keep_p[c] = !dirichlet[c] && after[c] > 1e-20 * before[c] && after[c] > 0;
-      for(int f = 0; f < nf; ++f)
-        if(!keep_p[p.component_of_face[f]])
-          P[f] = AP[f] = 0;
-      normalise(P, &AP);
+      keep_remainder(P, AP, before, keep_p);
     }
     // the Ritz step: per component, the smallest eigenvector of the (at most) 3 x 3 Hermitian matrix Q^H A Q
     const Eigen::VectorXcd* basis[3] = {&x, &W, &P};

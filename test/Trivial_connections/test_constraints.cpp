@@ -901,6 +901,8 @@ TEST(Set_constraints, a_prefactored_solver_changes_its_faces_like_fresh_solvers)
   expect_set_constraints_like_fresh_solvers<TC::Default_solver_traits>(true);
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
   expect_set_constraints_like_fresh_solvers<TC::Cholmod_solver_traits>(true);
+  expect_set_constraints_like_fresh_solvers<TC::Automatic_solver_traits>(true);
+  expect_set_constraints_like_fresh_solvers<TC::Cost_based_solver_traits<Always_supernodal>>(true);
 #endif
   // Eigen's own AMD inside the backend: the solver cannot read the factor
   expect_set_constraints_like_fresh_solvers<CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>>(false);

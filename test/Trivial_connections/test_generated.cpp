@@ -531,6 +531,8 @@ TEST(Thread_safety, concurrent_solves_on_one_solver_give_the_sequential_answers)
   expect_concurrent_solves_like_sequential_ones<TC::Default_solver_traits>();
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
   expect_concurrent_solves_like_sequential_ones<TC::Cholmod_solver_traits>();
+  expect_concurrent_solves_like_sequential_ones<TC::Automatic_solver_traits>();
+  expect_concurrent_solves_like_sequential_ones<TC::Cost_based_solver_traits<Always_supernodal>>();
 #endif
   // a backend without factor access: its solves run under the solver's lock
   expect_concurrent_solves_like_sequential_ones<

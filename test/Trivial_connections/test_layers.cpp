@@ -816,3 +816,79 @@ TEST(Field, rotations_onto_targets_and_guides)
 }
 
 } // namespace
+
+/*
+  The cost of a factor predicted from the pattern alone (elimination tree, internal/factorization/factor_cost.h)
+  is Eigen's own symbolic analysis: the same nonzeros of L in any order. METIS's nested dissection (when built
+  with it) is a permutation whose factor is cheaper than the natural order's on a grid-like mesh. The backend
+  chosen by predicted cost (with CHOLMOD) keeps the simplicial factor on a small mesh, CHOLMOD when its crossover
+  says so, and solves as Eigen does either way.
+*/
+TEST(Factor_cost, predicted_from_the_pattern_as_the_analysis_counts_it)
+{
+  const Surface_mesh sm = icosphere(4);
+  const Layers l(sm);
+  std::vector<int> node_start, node_rows;
+  l.topology.node_adjacency(l.arrays, node_start, node_rows);
+  const int n = l.topology.number_of_nodes;
+  // an SPD matrix of that pattern (a shifted graph Laplacian): the analysis reads the pattern only
+  std::vector<Eigen::Triplet<double>> entries;
+  for(int c = 0; c < n; ++c)
+    for(int p = node_start[std::size_t(c)]; p < node_start[std::size_t(c) + 1]; ++p) {
+      const int r = node_rows[std::size_t(p)];
+      entries.emplace_back(r, c, r == c ? node_start[std::size_t(c) + 1] - node_start[std::size_t(c)] + 1. : -1.);
+    }
+  Eigen::SparseMatrix<double> nodes(n, n);
+  nodes.setFromTriplets(entries.begin(), entries.end());
+  std::vector<int> natural(static_cast<std::size_t>(n)), amd;
+  for(int i = 0; i < n; ++i) natural[std::size_t(i)] = i;
+  TCI::amd_order(n, node_start, node_rows, amd);
+  std::vector<std::vector<int>> orders = {natural, amd};
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_METIS
+  std::vector<int> nested;
+  ASSERT_TRUE(TCI::metis_order(n, node_start, node_rows, nested));
+  std::vector<int> sorted = nested;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, natural) << "METIS's order is a permutation";
+  EXPECT_LT(TCI::elimination_cost(n, node_start, node_rows, nested).flops,
+            TCI::elimination_cost(n, node_start, node_rows, natural).flops);
+  orders.push_back(nested);
+#endif
+  for(const std::vector<int>& order : orders) {
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(n);
+    for(int k = 0; k < n; ++k) P.indices()[order[std::size_t(k)]] = k; // row -> position
+    Eigen::SparseMatrix<double> ordered(n, n);
+    ordered = nodes.twistedBy(P);
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt(ordered);
+    ASSERT_EQ(ldlt.info(), Eigen::Success);
+    const TCI::Factor_cost cost = TCI::elimination_cost(n, node_start, node_rows, order);
+    EXPECT_EQ(cost.nonzeros, double(ldlt.matrixL().nestedExpression().nonZeros()));
+    EXPECT_GE(cost.flops, cost.nonzeros);
+  }
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(n);
+  for(int k = 0; k < n; ++k) P.indices()[amd[std::size_t(k)]] = k;
+  Eigen::SparseMatrix<double> full(n, n);
+  full = nodes.twistedBy(P);
+  CGAL::Eigen_sparse_matrix<double> ordered(n, n);
+  ordered.eigen_object() = full.triangularView<Eigen::Lower>();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1., 2.);
+  const Eigen::VectorXd expected = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(full).solve(b);
+  const TCI::Factor_cost cost = TCI::elimination_cost(n, node_start, node_rows, amd);
+  auto check = [&](auto& traits, TC::Factorization_backend backend) {
+    double d = 0;
+    ASSERT_TRUE(traits.factor(ordered, d));
+    EXPECT_EQ(traits.backend(), backend);
+    EXPECT_EQ(traits.factor_nonzeros(), cost.nonzeros);
+    EXPECT_EQ(traits.factor_flops(), cost.flops);
+    CGAL::Eigen_vector<double> rhs(n), x(n);
+    rhs.eigen_object() = b;
+    ASSERT_TRUE(traits.linear_solver(rhs, x));
+    EXPECT_LT((x.eigen_object() - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff());
+  };
+  TC::Automatic_solver_traits automatic; // 2.5k nodes: far below the crossover
+  check(automatic, TC::Factorization_backend::simplicial_ldlt);
+  TC::Cost_based_solver_traits<Always_supernodal> supernodal;
+  check(supernodal, TC::Factorization_backend::cholmod_supernodal);
+#endif
+}

@@ -216,6 +216,14 @@ TEST_P(Backends, agree)
     SCOPED_TRACE("CHOLMOD supernodal (metric from the supernodal factor)");
     expect_same_as_default<TC::Cholmod_solver_traits>(view, sm, sing, n, reference);
   }
+  {
+    SCOPED_TRACE("the choice by predicted cost (simplicial on these sizes, through every column)");
+    expect_same_as_default<TC::Automatic_solver_traits>(view, sm, sing, n, reference);
+  }
+  {
+    SCOPED_TRACE("the choice by predicted cost forced to CHOLMOD");
+    expect_same_as_default<TC::Cost_based_solver_traits<Always_supernodal>>(view, sm, sing, n, reference);
+  }
 #endif
 }
 

@@ -53,6 +53,14 @@
 namespace tc_test {
 
 namespace TC = CGAL::Trivial_connections;
+
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+// the crossover of Cost_based_solver_traits that every factor passes: always CHOLMOD
+struct Always_supernodal
+{
+  static constexpr double flops_per_nonzero = 0, fixed_flops = -1;
+};
+#endif
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = K::Point_3;
 using Vector = K::Vector_3;

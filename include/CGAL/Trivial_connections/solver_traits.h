@@ -8,6 +8,7 @@
 
 #include <CGAL/assertions.h>
 #include <CGAL/Eigen_solver_traits.h>
+#include <CGAL/Trivial_connections/internal/factorization/factor_cost.h>
 
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
@@ -17,6 +18,7 @@
 #endif
 
 #include <algorithm>
+#include <memory>
 #include <new>
 #include <vector>
 
@@ -60,8 +62,125 @@ public:
 /// \ingroup PkgTrivialConnectionsRef
 /// CGAL solver traits of `Cholmod_supernodal_factorization`
 using Cholmod_solver_traits = CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>;
-/// the solver the command-line program uses: CHOLMOD when it is available
-using Recommended_solver_traits = Cholmod_solver_traits;
+
+/// \ingroup PkgTrivialConnectionsRef
+/// the backend of a factorization of `Cost_based_solver_traits`
+enum class Factorization_backend { none, simplicial_ldlt, cholmod_supernodal };
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+Chooses its backend per factorization by predicted cost: Eigen's `SimplicialLDLT` or
+`Cholmod_supernodal_factorization`. The symbolic analysis of the simplicial factorization (which it reuses
+when it keeps that backend) gives the nonzeros `nnz` and the flops `sum c_j^2` of the factor, c_j its column
+counts; a simplicial factorization costs about `flops / 2.2e9` seconds on the machine of benchmark/RESULTS.md
+and a supernodal one (CHOLMOD with OpenBLAS) about `5e-8 nnz + 0.03` seconds, nearly independent of the flops
+per column. The factorization is supernodal when `flops > flops_per_nonzero * nnz + fixed_flops`, by default
+110 flops per nonzero and 6.6e7 flops (the crossover measured there: meshes with long columns, or of about
+150k vertices and more). Available with CHOLMOD (`CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD`); the command-line
+program uses it, with `Measured_crossover`.
+\tparam Crossover a class with `static constexpr double` members `flops_per_nonzero` and `fixed_flops`
+*/
+template <class Crossover>
+class Cost_based_solver_traits
+{
+public:
+  /// the number type
+  using NT = double;
+  /// the vector type
+  using Vector = CGAL::Eigen_vector<double>;
+  /// the matrix type (its lower triangle is read)
+  using Matrix = CGAL::Eigen_sparse_matrix<double>;
+  /// the index type
+  using Index = Eigen::Index;
+  /// the simplicial backend
+  using Simplicial = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>;
+  /// the backend of the last factorization
+  using Backend = Factorization_backend;
+
+  /// factors `A` (its lower triangle) with the backend of lower predicted cost; `D` is set to 1
+  /// \returns whether the factorization succeeded
+  bool factor(const Matrix& A, NT& D)
+  {
+    D = 1;
+    const Eigen::SparseMatrix<double>& M = A.eigen_object();
+    m_backend = Backend::none;
+    m_cholmod.reset();
+    m_simplicial = std::make_shared<Analysed_simplicial>();
+    m_simplicial->analyzePattern(M);
+    if(m_simplicial->info() != Eigen::Success)
+      return false;
+    const internal::Factor_cost cost = m_simplicial->cost();
+    m_nonzeros = cost.nonzeros;
+    m_flops = cost.flops;
+    if(m_flops <= Crossover::flops_per_nonzero * m_nonzeros + Crossover::fixed_flops) {
+      m_simplicial->factorize(M);
+      m_backend = Backend::simplicial_ldlt;
+      return m_simplicial->info() == Eigen::Success;
+    }
+    m_simplicial.reset();
+    m_cholmod = std::make_shared<Cholmod_supernodal_factorization>();
+    m_cholmod->compute(M);
+    m_backend = Backend::cholmod_supernodal;
+    return m_cholmod->info() == Eigen::Success;
+  }
+
+  /// `X = A^-1 B` with the last factorization
+  /// \returns whether the solve succeeded
+  bool linear_solver(const Vector& B, Vector& X)
+  {
+    CGAL_precondition(m_backend != Backend::none);
+    if(m_backend == Backend::simplicial_ldlt) {
+      X = m_simplicial->solve(B);
+      return m_simplicial->info() == Eigen::Success;
+    }
+    X = m_cholmod->solve(B);
+    return m_cholmod->info() == Eigen::Success;
+  }
+
+  /// the backend of the last factorization
+  Backend backend() const { return m_backend; }
+  /// the nonzeros below the diagonal of the last factor, from the symbolic analysis
+  double factor_nonzeros() const { return m_nonzeros; }
+  /// the flops `sum c_j^2` of the last factor, from the symbolic analysis
+  double factor_flops() const { return m_flops; }
+
+  /// the simplicial factorization (when `backend()` is `simplicial_ldlt`)
+  Simplicial& simplicial() { return *m_simplicial; }
+  /// the supernodal factorization (when `backend()` is `cholmod_supernodal`)
+  Cholmod_supernodal_factorization& cholmod() { return *m_cholmod; }
+
+private:
+  // the column counts of Eigen's analysis are protected
+  struct Analysed_simplicial : Simplicial
+  {
+    internal::Factor_cost cost() const
+    {
+      return internal::factor_cost_of_counts(this->m_nonZerosPerCol, std::size_t(this->m_nonZerosPerCol.size()));
+    }
+  };
+
+  double m_nonzeros = 0, m_flops = 0;
+  Backend m_backend = Backend::none;
+  std::shared_ptr<Analysed_simplicial> m_simplicial;
+  std::shared_ptr<Cholmod_supernodal_factorization> m_cholmod;
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+The crossover of `Cost_based_solver_traits` measured on the machine of benchmark/RESULTS.md (2 cores, OpenBLAS)
+*/
+struct Measured_crossover
+{
+  static constexpr double flops_per_nonzero = 110; ///< flops per nonzero of the factor
+  static constexpr double fixed_flops = 6.6e7;     ///< flops of the supernodal factorization's fixed cost
+};
+
+/// \ingroup PkgTrivialConnectionsRef
+/// the backend chosen by predicted cost, with the measured crossover
+using Automatic_solver_traits = Cost_based_solver_traits<Measured_crossover>;
+
+/// the solver the command-line program uses: the choice by predicted cost when CHOLMOD is available
+using Recommended_solver_traits = Automatic_solver_traits;
 #else
 /// the solver the command-line program uses: CHOLMOD when it is available
 using Recommended_solver_traits = Default_solver_traits;
@@ -74,27 +193,46 @@ namespace internal {
   backend would compute it on its own: the solver then moves the loop rows last and hands the backend
   the reordered matrix to factor as it is. Default: Eigen's AMD.
 */
+// Eigen's AMD of a symmetric pattern (both triangles and the diagonal, compressed columns, sorted), as
+// AMDOrdering without its copy into A + A^T; `order[position] = row`
+inline void amd_order(int n, const std::vector<int>& column_start, const std::vector<int>& rows, std::vector<int>& order)
+{
+  const Eigen::Index nnz = Eigen::Index(rows.size());
+  Eigen::SparseMatrix<double> pattern(n, n);
+  // the workspace minimum_degree_ordering resizes the matrix to, reserved so that nothing is copied
+  pattern.resizeNonZeros(nnz + nnz / 5 + 2 * Eigen::Index(n));
+  pattern.resizeNonZeros(nnz);
+  std::copy(column_start.begin(), column_start.end(), pattern.outerIndexPtr());
+  std::copy(rows.begin(), rows.end(), pattern.innerIndexPtr());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
+  if(n > 0)
+    Eigen::internal::minimum_degree_ordering(pattern, amd);
+  order.resize(std::size_t(n));
+  for(int i = 0; i < n; ++i)
+    order[std::size_t(i)] = amd.size() > 0 ? amd.indices()[i] : i;
+}
+
 template <class SolverTraits>
 struct Fill_reducing_ordering
 {
   // `column_start`, `rows`: a symmetric pattern, both triangles and the diagonal (compressed columns,
-  // sorted); `order[position] = row`. Eigen's AMD (as AMDOrdering, without its copy into A + A^T).
+  // sorted); `order[position] = row`. Eigen's AMD, or METIS's nested dissection where it pays (below).
   static void compute(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
                       std::vector<int>& order)
   {
-    const Eigen::Index nnz = Eigen::Index(rows.size());
-    Eigen::SparseMatrix<double> pattern(n, n);
-    // the workspace minimum_degree_ordering resizes the matrix to, reserved so that nothing is copied
-    pattern.resizeNonZeros(nnz + nnz / 5 + 2 * Eigen::Index(n));
-    pattern.resizeNonZeros(nnz);
-    std::copy(column_start.begin(), column_start.end(), pattern.outerIndexPtr());
-    std::copy(rows.begin(), rows.end(), pattern.innerIndexPtr());
-    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
-    if(n > 0)
-      Eigen::internal::minimum_degree_ordering(pattern, amd);
-    order.resize(std::size_t(n));
-    for(int i = 0; i < n; ++i)
-      order[std::size_t(i)] = amd.size() > 0 ? amd.indices()[i] : i;
+    amd_order(n, column_start, rows, order);
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_METIS
+    // METIS costs about 5 us per row, ten times AMD: it is tried when half of the predicted simplicial
+    // factorization with AMD would repay it (meshes of about 300k vertices and more), and its order is kept
+    // when its factor has fewer flops
+    const Factor_cost with_amd = elimination_cost(n, column_start, rows, order);
+    if(predicted_simplicial_seconds(with_amd) / 2 > 5e-6 * n) {
+      std::vector<int> nested;
+      if(metis_order(n, column_start, rows, nested) &&
+         elimination_cost(n, column_start, rows, nested).flops < with_amd.flops)
+        order.swap(nested);
+    }
+#endif
   }
 };
 
@@ -403,6 +541,117 @@ struct Fill_reducing_ordering<CGAL::Eigen_solver_traits<Cholmod_supernodal_facto
     if(symbolic != nullptr)
       cholmod_free_factor(&symbolic, &common);
     cholmod_finish(&common);
+  }
+};
+
+// Automatic_solver_traits: what its backend of the moment does
+template <class Crossover>
+struct Stored_triangle<Cost_based_solver_traits<Crossover>>
+{
+  static constexpr int value = Eigen::Lower;
+};
+
+template <class Crossover>
+struct Substitutions_need_only_the_factor<Cost_based_solver_traits<Crossover>>
+{
+  static constexpr bool value = true;
+};
+
+// the views of one backend of Automatic_solver_traits that the specializations above read (solver())
+template <class Backend>
+struct Backend_view
+{
+  Backend& backend;
+  Backend& solver() { return backend; }
+  const Backend& solver() const { return backend; }
+};
+
+using Automatic_simplicial_traits = CGAL::Eigen_solver_traits<Automatic_solver_traits::Simplicial>;
+using Automatic_simplicial_view = Backend_view<Automatic_solver_traits::Simplicial>;
+using Automatic_cholmod_view = Backend_view<Cholmod_supernodal_factorization>;
+using Automatic_backend = Factorization_backend;
+
+template <class Crossover>
+struct Trailing_schur_complement<Cost_based_solver_traits<Crossover>>
+{
+  static bool read(Cost_based_solver_traits<Crossover>& traits, Eigen::Index k, Eigen::MatrixXd& L, Eigen::VectorXd& d)
+  {
+    switch(traits.backend()) {
+    case Automatic_backend::simplicial_ldlt: {
+      Automatic_simplicial_view view{traits.simplicial()};
+      return Trailing_schur_complement<Automatic_simplicial_traits>::read(view, k, L, d);
+    }
+    case Automatic_backend::cholmod_supernodal: {
+      Automatic_cholmod_view view{traits.cholmod()};
+      return Trailing_schur_complement<Cholmod_solver_traits>::read(view, k, L, d);
+    }
+    default:
+      return false;
+    }
+  }
+};
+
+// Through every column whichever the backend (CHOLMOD's substitutions cannot stop at the trailing block).
+template <class Crossover>
+struct Factor_substitutions<Cost_based_solver_traits<Crossover>>
+{
+  using Traits = Cost_based_solver_traits<Crossover>;
+  using Simplicial = Factor_substitutions<Automatic_simplicial_traits>;
+  using Supernodal = Factor_substitutions<Cholmod_solver_traits>;
+  static constexpr bool leading_columns = false;
+  static bool available(Traits& traits)
+  {
+    switch(traits.backend()) {
+    case Automatic_backend::simplicial_ldlt: {
+      Automatic_simplicial_view view{traits.simplicial()};
+      return Simplicial::available(view);
+    }
+    case Automatic_backend::cholmod_supernodal: {
+      Automatic_cholmod_view view{traits.cholmod()};
+      return Supernodal::available(view);
+    }
+    default:
+      return false;
+    }
+  }
+  static void forward(Traits& traits, Eigen::VectorXd& v)
+  {
+    if(traits.backend() == Automatic_backend::simplicial_ldlt) {
+      Automatic_simplicial_view view{traits.simplicial()};
+      Simplicial::forward(view, v, v.size());
+    } else {
+      Automatic_cholmod_view view{traits.cholmod()};
+      Supernodal::forward(view, v);
+    }
+  }
+  static void scale(Traits& traits, Eigen::VectorXd& v)
+  {
+    if(traits.backend() == Automatic_backend::simplicial_ldlt) {
+      Automatic_simplicial_view view{traits.simplicial()};
+      Simplicial::scale(view, v);
+    } // L L^T otherwise: D = I
+  }
+  static void backward(Traits& traits, Eigen::VectorXd& v)
+  {
+    if(traits.backend() == Automatic_backend::simplicial_ldlt) {
+      Automatic_simplicial_view view{traits.simplicial()};
+      Simplicial::backward(view, v, v.size());
+    } else {
+      Automatic_cholmod_view view{traits.cholmod()};
+      Supernodal::backward(view, v);
+    }
+  }
+};
+
+// AMD for both backends: METIS's order would need a postorder to keep CHOLMOD's supernodes, and where it
+// pays for the simplicial backend the supernodal one is faster still
+template <class Crossover>
+struct Fill_reducing_ordering<Cost_based_solver_traits<Crossover>>
+{
+  static void compute(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
+                      std::vector<int>& order)
+  {
+    amd_order(n, column_start, rows, order);
   }
 };
 #endif

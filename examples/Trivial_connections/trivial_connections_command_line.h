@@ -119,7 +119,8 @@ inline void print_version(std::ostream& out)
   out << program << " " << TC_VERSION << " (CGAL " << CGAL_VERSION_STR << ", Eigen " << EIGEN_WORLD_VERSION << "."
       << EIGEN_MAJOR_VERSION << "." << EIGEN_MINOR_VERSION << ", sparse solver "
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-      << "CHOLMOD " << CHOLMOD_MAIN_VERSION << "." << CHOLMOD_SUB_VERSION << "." << CHOLMOD_SUBSUB_VERSION
+      << "Eigen SimplicialLDLT or CHOLMOD " << CHOLMOD_MAIN_VERSION << "." << CHOLMOD_SUB_VERSION << "."
+      << CHOLMOD_SUBSUB_VERSION << " by predicted cost"
 #else
       << "Eigen SimplicialLDLT"
 #endif

@@ -65,7 +65,12 @@ using Cholmod_solver_traits = CGAL::Eigen_solver_traits<Cholmod_supernodal_facto
 
 /// \ingroup PkgTrivialConnectionsRef
 /// the backend of a factorization of `Cost_based_solver_traits`
-enum class Factorization_backend { none, simplicial_ldlt, cholmod_supernodal };
+enum class Factorization_backend
+{
+  none,              ///< no factorization yet (or it failed)
+  simplicial_ldlt,   ///< Eigen's `SimplicialLDLT`
+  cholmod_supernodal ///< `Cholmod_supernodal_factorization`
+};
 
 /*!
 \ingroup PkgTrivialConnectionsRef
@@ -97,7 +102,9 @@ public:
   /// the backend of the last factorization
   using Backend = Factorization_backend;
 
-  /// factors `A` (its lower triangle) with the backend of lower predicted cost; `D` is set to 1
+  /// factors `A` with the backend of lower predicted cost
+  /// \param A the matrix (its lower triangle is read)
+  /// \param D set to 1
   /// \returns whether the factorization succeeded
   bool factor(const Matrix& A, NT& D)
   {
@@ -125,6 +132,8 @@ public:
   }
 
   /// `X = A^-1 B` with the last factorization
+  /// \param B the right-hand side
+  /// \param X the solution
   /// \returns whether the solve succeeded
   bool linear_solver(const Vector& B, Vector& X)
   {
@@ -138,15 +147,20 @@ public:
   }
 
   /// the backend of the last factorization
+  /// \returns `none` before a successful factorization
   Backend backend() const { return m_backend; }
   /// the nonzeros below the diagonal of the last factor, from the symbolic analysis
+  /// \returns the sum of the column counts
   double factor_nonzeros() const { return m_nonzeros; }
   /// the flops `sum c_j^2` of the last factor, from the symbolic analysis
+  /// \returns the sum of the squared column counts
   double factor_flops() const { return m_flops; }
 
-  /// the simplicial factorization (when `backend()` is `simplicial_ldlt`)
+  /// the simplicial factorization
+  /// \returns it, when `backend()` is `simplicial_ldlt`
   Simplicial& simplicial() { return *m_simplicial; }
-  /// the supernodal factorization (when `backend()` is `cholmod_supernodal`)
+  /// the supernodal factorization
+  /// \returns it, when `backend()` is `cholmod_supernodal`
   Cholmod_supernodal_factorization& cholmod() { return *m_cholmod; }
 
 private:

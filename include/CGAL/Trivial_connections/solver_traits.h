@@ -202,11 +202,6 @@ using Recommended_solver_traits = Default_solver_traits;
 
 namespace internal {
 
-/*
-  A fill-reducing order of the rows of a symmetric matrix (order[position] = row), computed the way the
-  backend would compute it on its own: the solver then moves the loop rows last and hands the backend
-  the reordered matrix to factor as it is. Default: Eigen's AMD.
-*/
 // Eigen's AMD of a symmetric pattern (both triangles and the diagonal, compressed columns, sorted), as
 // AMDOrdering without its copy into A + A^T; `order[position] = row`
 inline void amd_order(int n, const std::vector<int>& column_start, const std::vector<int>& rows, std::vector<int>& order)
@@ -226,6 +221,11 @@ inline void amd_order(int n, const std::vector<int>& column_start, const std::ve
     order[std::size_t(i)] = amd.size() > 0 ? amd.indices()[i] : i;
 }
 
+/*
+  A fill-reducing order of the rows of a symmetric matrix (order[position] = row), computed the way the
+  backend would compute it on its own: the solver then moves the loop rows last and hands the backend
+  the reordered matrix to factor as it is. Default: Eigen's AMD, or METIS where it pays (with METIS).
+*/
 template <class SolverTraits>
 struct Fill_reducing_ordering
 {

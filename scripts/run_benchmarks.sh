@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the Google Benchmark suite (benchmark/) with JSON output and writes benchmark/RESULTS.md.
 #
-#   bash scripts/run_benchmarks.sh [--sizes small|large|huge|all|LIST] [--backends ldlt,cholmod]
+#   bash scripts/run_benchmarks.sh [--sizes small|large|huge|all|LIST] [--backends ldlt,cholmod,auto]
 #                                  [--repetitions N] [--no-build] [--table-only] [--out FILE]
 #   bash scripts/run_benchmarks.sh --integers [--no-build] [--out FILE]
 #   bash scripts/run_benchmarks.sh --placement [--sizes ...] [--backends ...] [--repetitions N] [--no-build]
@@ -9,9 +9,12 @@
 #
 #   --sizes        small (default, a few minutes): CGAL meshes 5k-90k faces and a 300k subdivision;
 #                  large: ~1.2M faces (genus 0, 11, 133); huge: ~5M faces; all; or a comma list.
-#   --backends     ldlt (build dir build-bench) and/or cholmod (build-bench-cholmod, built with
-#                  -DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON); default: both (cholmod only if CHOLMOD is installed).
+#   --backends     ldlt (build dir build-bench), cholmod and auto (Automatic_solver_traits, the program's choice;
+#                  both in build-bench-cholmod, built with -DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON); default: all
+#                  three (the last two only if CHOLMOD is installed).
 #   --repetitions  repetitions of the small meshes (default 3; large and huge run once).
+#   --floor        the suite as above, but only the section "Against the fastest factorization of the machine"
+#                  of benchmark/RESULTS.md is rewritten, from this run's JSON files (the rest is kept).
 #   --no-build     use the existing binaries.   --table-only   only rewrite the table from the JSON files.
 #   --integers     instead of the suite: trivial_connections_integer_benchmark (the choice of the free integers
 #                  against their number, about 15 s, build-bench) into build-bench/integer-choice.json, and its
@@ -40,6 +43,7 @@ OUT="$ROOT/benchmark/RESULTS.md"
 JOBS="${JOBS:-2}"
 INTEGERS=0
 PLACEMENT=0
+FLOOR=0
 
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -51,7 +55,8 @@ while [ $# -gt 0 ]; do
     --out) OUT="$2"; shift 2 ;;
     --integers) INTEGERS=1; shift ;;
     --placement) PLACEMENT=1; shift ;;
-    -h|--help) sed -n '2,32p' "$0"; exit 0 ;;
+    --floor) FLOOR=1; shift ;;
+    -h|--help) sed -n '2,34p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -60,7 +65,7 @@ done
 if [ -z "$BACKENDS" ]; then
   BACKENDS=ldlt
   if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then
-    BACKENDS=ldlt,cholmod
+    BACKENDS=ldlt,cholmod,auto
   fi
 fi
 
@@ -111,11 +116,14 @@ if [ "$PLACEMENT" = 1 ]; then
   PREFIX=placement-
 fi
 
+# with --floor every backend runs from the CHOLMOD build (when CHOLMOD is installed), whose floor has CHOLMOD too
+HAVE_CHOLMOD=0
+if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then HAVE_CHOLMOD=1; fi
 build_dir() {
   case "$1" in
-    ldlt) echo "$ROOT/build-bench" ;;
-    cholmod) echo "$ROOT/build-bench-cholmod" ;;
-    *) echo "run_benchmarks.sh: unknown backend $1 (ldlt, cholmod)" >&2; exit 2 ;;
+    ldlt) if [ "$FLOOR" = 1 ] && [ "$HAVE_CHOLMOD" = 1 ]; then echo "$ROOT/build-bench-cholmod"; else echo "$ROOT/build-bench"; fi ;;
+    cholmod|auto) echo "$ROOT/build-bench-cholmod" ;;
+    *) echo "run_benchmarks.sh: unknown backend $1 (ldlt, cholmod, auto)" >&2; exit 2 ;;
   esac
 }
 
@@ -129,10 +137,12 @@ if [ "$TABLE_ONLY" = 0 ]; then
   COMMIT="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   if ! git -C "$ROOT" diff --quiet HEAD -- include 2>/dev/null; then COMMIT="$COMMIT+modified"; fi
   for backend in ${BACKENDS//,/ }; do
+    # the placement benchmark has no `auto` backend (its pencil is factored the same way whatever the backend)
+    if [ "$PLACEMENT" = 1 ] && [ "$backend" = auto ]; then continue; fi
     dir="$(build_dir "$backend")"
     if [ "$BUILD" = 1 ]; then
       extra=()
-      [ "$backend" = cholmod ] && extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
+      [ "$dir" = "$ROOT/build-bench-cholmod" ] && extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
       cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF \
             -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON "${extra[@]}" >/dev/null
       cmake --build "$dir" -j "$JOBS" --target "$TARGET"
@@ -161,6 +171,18 @@ if [ "$PLACEMENT" = 1 ]; then
   [ ${#files[@]} -gt 0 ] || { echo "run_benchmarks.sh: no placement results in $RESULTS_DIR" >&2; exit 1; }
   [ -f "$OUT" ] || { echo "run_benchmarks.sh: $OUT missing (run the suite first)" >&2; exit 1; }
   "$PYTHON" "$ROOT/scripts/benchmark_table.py" --section placement --out "$OUT" "${files[@]}"
+  exit 0
+fi
+if [ "$FLOOR" = 1 ]; then
+  files=()
+  for backend in ${BACKENDS//,/ }; do
+    for size in ${SIZES//,/ }; do
+      [ -f "$RESULTS_DIR/$backend-$size.json" ] && files+=("$RESULTS_DIR/$backend-$size.json")
+    done
+  done
+  [ ${#files[@]} -gt 0 ] || { echo "run_benchmarks.sh: no results of this run in $RESULTS_DIR" >&2; exit 1; }
+  [ -f "$OUT" ] || { echo "run_benchmarks.sh: $OUT missing (run the suite first)" >&2; exit 1; }
+  "$PYTHON" "$ROOT/scripts/benchmark_table.py" --section floor --out "$OUT" "${files[@]}"
   exit 0
 fi
 files=("$RESULTS_DIR"/*.json)

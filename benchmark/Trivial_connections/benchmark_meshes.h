@@ -17,6 +17,9 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
+#ifdef TC_BENCH_HAVE_METIS
+#include <Eigen/MetisSupport>
+#endif
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
 #include <Eigen/CholmodSupport>
 #endif
@@ -269,6 +272,39 @@ Reference_result reference_factorization(std::size_t nv, const std::vector<Weigh
   result.ordering = chosen_ordering(solver);
   result.peak_bytes = base >= 0 ? status_bytes("VmHWM") - base : -1;
   return result;
+}
+
+/*
+  The floor: the fastest sparse Cholesky of the same Laplacian that this build has, each backend with its best
+  ordering: SimplicialLDLT with AMD, SimplicialLDLT with METIS (with libmetis-dev), and supernodal CHOLMOD with the
+  ordering its own analysis chooses (AMD, or METIS when AMD fills too much). Each is timed as a user would call it
+  (analysis, ordering included, + numeric factorization), one after the other in the same run.
+*/
+struct Floor_result
+{
+  Reference_result best;
+  int backend = -1; // FLOOR_NAMES
+};
+static const char* const FLOOR_NAMES[] = {"SimplicialLDLT+AMD", "SimplicialLDLT+METIS", "CHOLMOD"};
+
+inline Floor_result fastest_reference(std::size_t nv, const std::vector<Weighted_edge>& edges)
+{
+  Floor_result floor;
+  auto consider = [&](const Reference_result& r, int backend) {
+    if(r.ok && (floor.backend < 0 || r.seconds < floor.best.seconds)) {
+      floor.best = r;
+      floor.backend = backend;
+    }
+  };
+  consider(reference_factorization<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(nv, edges), 0);
+#ifdef TC_BENCH_HAVE_METIS
+  consider(reference_factorization<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
+                                                         Eigen::MetisOrdering<int>>>(nv, edges), 1);
+#endif
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  consider(reference_factorization<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>(nv, edges), 2);
+#endif
+  return floor;
 }
 
 // ---------------------------------------------------------------------------------------------------------

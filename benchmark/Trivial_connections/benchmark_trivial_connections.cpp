@@ -6,7 +6,12 @@
 //   trivial_connections_benchmark [--benchmark_filter=REGEX] [--benchmark_repetitions=N] [--benchmark_format=json]
 //
 // Benchmarks are named BACKEND/MESH (backend `ldlt` = Eigen::SimplicialLDLT, `cholmod` = supernodal CHOLMOD,
-// the latter only when CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD is defined).
+// `auto` = Automatic_solver_traits, the program's choice by predicted cost; the last two only when
+// CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD is defined).
+// Every run also times the floor (fastest_reference(), benchmark_meshes.h): the fastest factorization of the
+// same Laplacian this build has (SimplicialLDLT with AMD, with METIS when TC_BENCH_HAVE_METIS, CHOLMOD),
+// t_floor, floor_backend (0 SimplicialLDLT+AMD, 1 SimplicialLDLT+METIS, 2 CHOLMOD), r_end_to_end_floor and
+// r_build_floor (and r_program_floor for the program): the ratios of issue 20.
 //
 // Environment:
 //   TC_BENCH_SIZES       which meshes to register: a comma list of small (CGAL meshes, 5k-90k faces, and the
@@ -79,6 +84,8 @@ using tc_bench::load_mesh;
 using tc_bench::mesh_cache_dir;
 using tc_bench::mesh_specs;
 using tc_bench::reference_factorization;
+using tc_bench::Floor_result;
+using tc_bench::fastest_reference;
 using tc_bench::reset_peak_memory;
 using tc_bench::selected_sizes;
 using tc_bench::status_bytes;
@@ -134,6 +141,7 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
   double t_build = 0, t_solve = 0, t_resolve = 0, t_field = 0, peak = -1;
   Phase_times build, solve1, solve2, field_phases;
   Reference_result ref;
+  Floor_result fastest;
   std::int64_t genus = 0;
   std::size_t boundary_loops = 0, components = 0, singularities = 0;
   for(auto _ : state) {
@@ -172,6 +180,7 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
     ref = reference_factorization<ReferenceSolver>(num_vertices(mesh), edges);
     if(!ref.ok)
       state.SkipWithError("the reference factorization failed");
+    fastest = fastest_reference(num_vertices(mesh), edges);
     state.SetIterationTime(t_build + t_solve + t_field);
   }
 
@@ -200,6 +209,11 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
   k["r_end_to_end"] = (t_build + t_solve + t_field) / ref.seconds;
   k["r_build"] = t_build / ref.seconds;
   k["r_resolve"] = t_resolve / ref.seconds;
+  // against the fastest factorization of the machine (issue 20's floor)
+  k["t_floor"] = fastest.best.seconds;
+  k["floor_backend"] = double(fastest.backend);
+  k["r_end_to_end_floor"] = (t_build + t_solve + t_field) / fastest.best.seconds;
+  k["r_build_floor"] = t_build / fastest.best.seconds;
   k["peak_bytes"] = peak;
   k["peak_bytes_per_face"] = peak >= 0 ? peak / nf : -1;
   k["ref_peak_bytes_per_face"] = ref.peak_bytes >= 0 ? ref.peak_bytes / nf : -1;
@@ -344,6 +358,7 @@ void program_run(benchmark::State& state, const Mesh_spec& spec)
 
   double t_program = 0, t_read = 0, peak = -1;
   Reference_result ref;
+  Floor_result fastest;
   std::size_t faces = 0;
   for(auto _ : state) {
     auto t0 = Clock::now();
@@ -373,6 +388,7 @@ void program_run(benchmark::State& state, const Mesh_spec& spec)
       edges.push_back({int(source(halfedge(e, read), read)), int(target(halfedge(e, read), read)), 1.});
     read.clear();
     ref = reference_factorization<ReferenceSolver>(nv, edges);
+    fastest = fastest_reference(nv, edges);
     if(!ref.ok) {
       state.SkipWithError("the reference factorization failed");
       break;
@@ -388,6 +404,9 @@ void program_run(benchmark::State& state, const Mesh_spec& spec)
   k["t_read"] = t_read;
   k["t_reference"] = ref.seconds;
   k["r_program"] = t_program / (t_read + ref.seconds);
+  k["t_floor"] = fastest.best.seconds;
+  k["floor_backend"] = double(fastest.backend);
+  k["r_program_floor"] = t_program / (t_read + fastest.best.seconds);
 }
 #endif
 
@@ -439,7 +458,10 @@ int main(int argc, char** argv)
     "ldlt", sizes, !program_uses_cholmod);
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
   register_backend<TC::Cholmod_solver_traits, Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>(
-    "cholmod", sizes, program_uses_cholmod);
+    "cholmod", sizes, false);
+  // the choice by predicted cost, which the program makes (against CHOLMOD's reference: the floor is the fair one)
+  register_backend<TC::Automatic_solver_traits, Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>(
+    "auto", sizes, program_uses_cholmod);
 #endif
   benchmark::AddCustomContext("mesh_cache", mesh_cache_dir());
   benchmark::Initialize(&argc, argv);

@@ -14,7 +14,7 @@
 #                  three (the last two only if CHOLMOD is installed).
 #   --repetitions  repetitions of the small meshes (default 3; large and huge run once).
 #   --floor        the suite as above, but only the section "Against the fastest factorization of the machine"
-#                  of benchmark/RESULTS.md is rewritten, from this run's JSON files (the rest is kept).
+#                  of benchmark/RESULTS.md is rewritten, from the JSON files of the backends (the rest is kept).
 #   --no-build     use the existing binaries.   --table-only   only rewrite the table from the JSON files.
 #   --integers     instead of the suite: trivial_connections_integer_benchmark (the choice of the free integers
 #                  against their number, about 15 s, build-bench) into build-bench/integer-choice.json, and its
@@ -174,13 +174,12 @@ if [ "$PLACEMENT" = 1 ]; then
   exit 0
 fi
 if [ "$FLOOR" = 1 ]; then
+  # every size measured so far (the sizes can be run separately; results without a floor are left out)
   files=()
   for backend in ${BACKENDS//,/ }; do
-    for size in ${SIZES//,/ }; do
-      [ -f "$RESULTS_DIR/$backend-$size.json" ] && files+=("$RESULTS_DIR/$backend-$size.json")
-    done
+    for json in "$RESULTS_DIR/$backend"-*.json; do files+=("$json"); done
   done
-  [ ${#files[@]} -gt 0 ] || { echo "run_benchmarks.sh: no results of this run in $RESULTS_DIR" >&2; exit 1; }
+  [ ${#files[@]} -gt 0 ] || { echo "run_benchmarks.sh: no results in $RESULTS_DIR" >&2; exit 1; }
   [ -f "$OUT" ] || { echo "run_benchmarks.sh: $OUT missing (run the suite first)" >&2; exit 1; }
   "$PYTHON" "$ROOT/scripts/benchmark_table.py" --section floor --out "$OUT" "${files[@]}"
   exit 0

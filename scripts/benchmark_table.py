@@ -552,25 +552,21 @@ def main():
     results, contexts = load([p for p in args.json if os.path.exists(p)])
     if not any(results.values()):
         sys.exit("benchmark_table: no benchmark results in " + " ".join(args.json))
-    if args.section == "floor":
+    if args.section:
+        # one section rewritten in place, the rest of the file kept
         section = []
-        floor_table(results, section, contexts, args.command + " --floor")
+        if args.section == "floor":
+            title = FLOOR_TITLE
+            floor_table(results, section, contexts, args.command + " --floor")
+        else:
+            title = PLACEMENT_TITLE
+            placement_table(results, section, args.command + " --placement")
         if not section:
-            sys.exit("benchmark_table: no floor results in " + " ".join(args.json))
+            sys.exit(f"benchmark_table: no {args.section} results in " + " ".join(args.json))
         if not os.path.exists(args.out):
             sys.exit(f"benchmark_table: {args.out} missing (run the suite first)")
-        replace_section(args.out, FLOOR_TITLE, section)
-        print(f"benchmark_table: wrote the section {FLOOR_TITLE[4:]!r} of {args.out}")
-        return
-    if args.section == "placement":
-        section = []
-        placement_table(results, section, args.command + " --placement")
-        if not section:
-            sys.exit("benchmark_table: no placement results in " + " ".join(args.json))
-        if not os.path.exists(args.out):
-            sys.exit(f"benchmark_table: {args.out} missing (run the suite first)")
-        replace_section(args.out, PLACEMENT_TITLE, section)
-        print(f"benchmark_table: wrote the section {PLACEMENT_TITLE[4:]!r} of {args.out}")
+        replace_section(args.out, title, section)
+        print(f"benchmark_table: wrote the section {title[4:]!r} of {args.out}")
         return
     m = machine()
     dates = sorted({ctx.get("date", "")[:10] for _, ctx in contexts if ctx.get("date")})

@@ -585,27 +585,37 @@ using Automatic_simplicial_view = Backend_view<Automatic_solver_traits::Simplici
 using Automatic_cholmod_view = Backend_view<Cholmod_supernodal_factorization>;
 using Automatic_backend = Factorization_backend;
 
+// `on_simplicial(view)` or `on_supernodal(view)` for the backend of the last factorization, `none` without one
+template <class Traits, class OnSimplicial, class OnSupernodal, class Result>
+Result on_backend(Traits& traits, OnSimplicial on_simplicial, OnSupernodal on_supernodal, Result none)
+{
+  switch(traits.backend()) {
+  case Automatic_backend::simplicial_ldlt: {
+    Automatic_simplicial_view view{traits.simplicial()};
+    return on_simplicial(view);
+  }
+  case Automatic_backend::cholmod_supernodal: {
+    Automatic_cholmod_view view{traits.cholmod()};
+    return on_supernodal(view);
+  }
+  default:
+    return none;
+  }
+}
+
 template <class Crossover>
 struct Trailing_schur_complement<Cost_based_solver_traits<Crossover>>
 {
   static bool read(Cost_based_solver_traits<Crossover>& traits, Eigen::Index k, Eigen::MatrixXd& L, Eigen::VectorXd& d)
   {
-    switch(traits.backend()) {
-    case Automatic_backend::simplicial_ldlt: {
-      Automatic_simplicial_view view{traits.simplicial()};
-      return Trailing_schur_complement<Automatic_simplicial_traits>::read(view, k, L, d);
-    }
-    case Automatic_backend::cholmod_supernodal: {
-      Automatic_cholmod_view view{traits.cholmod()};
-      return Trailing_schur_complement<Cholmod_solver_traits>::read(view, k, L, d);
-    }
-    default:
-      return false;
-    }
+    return on_backend(
+      traits, [&](auto& view) { return Trailing_schur_complement<Automatic_simplicial_traits>::read(view, k, L, d); },
+      [&](auto& view) { return Trailing_schur_complement<Cholmod_solver_traits>::read(view, k, L, d); }, false);
   }
 };
 
-// Through every column whichever the backend (CHOLMOD's substitutions cannot stop at the trailing block).
+// Through every column whichever the backend (CHOLMOD's substitutions cannot stop at the trailing block). The
+// substitutions run only after available(): without a factor they do nothing.
 template <class Crossover>
 struct Factor_substitutions<Cost_based_solver_traits<Crossover>>
 {
@@ -615,45 +625,27 @@ struct Factor_substitutions<Cost_based_solver_traits<Crossover>>
   static constexpr bool leading_columns = false;
   static bool available(Traits& traits)
   {
-    switch(traits.backend()) {
-    case Automatic_backend::simplicial_ldlt: {
-      Automatic_simplicial_view view{traits.simplicial()};
-      return Simplicial::available(view);
-    }
-    case Automatic_backend::cholmod_supernodal: {
-      Automatic_cholmod_view view{traits.cholmod()};
-      return Supernodal::available(view);
-    }
-    default:
-      return false;
-    }
+    return on_backend(
+      traits, [](auto& view) { return Simplicial::available(view); },
+      [](auto& view) { return Supernodal::available(view); }, false);
   }
   static void forward(Traits& traits, Eigen::VectorXd& v)
   {
-    if(traits.backend() == Automatic_backend::simplicial_ldlt) {
-      Automatic_simplicial_view view{traits.simplicial()};
-      Simplicial::forward(view, v, v.size());
-    } else {
-      Automatic_cholmod_view view{traits.cholmod()};
-      Supernodal::forward(view, v);
-    }
+    on_backend(
+      traits, [&](auto& view) { Simplicial::forward(view, v, v.size()); return true; },
+      [&](auto& view) { Supernodal::forward(view, v); return true; }, false);
   }
   static void scale(Traits& traits, Eigen::VectorXd& v)
   {
-    if(traits.backend() == Automatic_backend::simplicial_ldlt) {
-      Automatic_simplicial_view view{traits.simplicial()};
-      Simplicial::scale(view, v);
-    } // L L^T otherwise: D = I
+    // L L^T for CHOLMOD: D = I
+    on_backend(
+      traits, [&](auto& view) { Simplicial::scale(view, v); return true; }, [](auto&) { return true; }, false);
   }
   static void backward(Traits& traits, Eigen::VectorXd& v)
   {
-    if(traits.backend() == Automatic_backend::simplicial_ldlt) {
-      Automatic_simplicial_view view{traits.simplicial()};
-      Simplicial::backward(view, v, v.size());
-    } else {
-      Automatic_cholmod_view view{traits.cholmod()};
-      Supernodal::backward(view, v);
-    }
+    on_backend(
+      traits, [&](auto& view) { Simplicial::backward(view, v, v.size()); return true; },
+      [&](auto& view) { Supernodal::backward(view, v); return true; }, false);
   }
 };
 

@@ -328,6 +328,10 @@ public:
   /// the kernel instance the geometry was computed with
   /// \returns the geometric traits given as `geom_traits` to the constructor, or the default-constructed one
   const Geom_traits& geom_traits() const { return m_traits; }
+  /// the sparse solver holding the factorization of the constraint system, for example to ask
+  /// `Cost_based_solver_traits::backend()` which backend it chose
+  /// \returns the solver traits object the constructor (or the last `set_constraints()`) factored with
+  const Solver_traits& solver_traits() const { return m_system.solver_traits(); }
   /// @}
 
   /*!

@@ -101,6 +101,7 @@ public:
   }
 
   const Row_permutation& permutation() const { return m_factor.permutation(); }
+  const SolverTraits& solver_traits() const { return m_factor.solver_traits(); }
   const std::vector<Loop_metric>& metrics() const { return m_metrics; }
   // the metric was read from the factor, whose substitutions are exposed (set_constraints() keeps the factor)
   bool loop_rows_in_factor() const { return m_loop_rows_in_factor; }

@@ -65,6 +65,7 @@ public:
   }
 
   const Row_permutation& permutation() const { return m_permutation; }
+  const SolverTraits& solver_traits() const { return m_solver; }
   bool substitutions_available() const { return m_substitutions_available; }
 
   // The trailing k x k block of the factor, L_FF (unit lower triangular) and D_F, when the backend exposes it.

@@ -815,64 +815,23 @@ TEST(Field, rotations_onto_targets_and_guides)
   }
 }
 
-} // namespace
-
-/*
-  The postorder of an elimination tree (what CHOLMOD needs to find supernodes in an order it keeps, e.g. METIS's)
-  renumbers the same factor: a permutation with the same nonzeros and flops, in which every subtree of its own
-  elimination tree is a range of consecutive positions ending at its root.
-*/
-TEST(Factor_cost, postorder_of_the_elimination_tree)
+// The pattern of the node rows of a mesh's system (both triangles and the diagonal, compressed columns)
+struct Node_pattern
 {
-  const Surface_mesh sm = icosphere(4);
+  std::vector<int> start, rows;
+  int n = 0;
+};
+
+Node_pattern node_pattern(const Surface_mesh& sm)
+{
   const Layers l(sm);
-  std::vector<int> node_start, node_rows;
-  l.topology.node_adjacency(l.arrays, node_start, node_rows);
-  const int n = l.topology.number_of_nodes;
-  std::vector<int> natural(static_cast<std::size_t>(n)), amd;
-  for(int i = 0; i < n; ++i) natural[std::size_t(i)] = i;
-  TCI::amd_order(n, node_start, node_rows, amd);
-  std::vector<std::vector<int>> orders = {natural, amd};
-#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_METIS
-  std::vector<int> nested, split;
-  ASSERT_TRUE(TCI::metis_order(n, node_start, node_rows, nested));
-  orders.push_back(nested);
-  // the dissection of large patterns: the first separator, then both halves at once on two threads
-  ASSERT_TRUE(TCI::metis_order(n, node_start, node_rows, split, /* parallel_rows = */ 100));
-  std::vector<int> sorted_split = split;
-  std::sort(sorted_split.begin(), sorted_split.end());
-  ASSERT_EQ(sorted_split, natural) << "the split dissection is a permutation";
-  EXPECT_LT(TCI::elimination_cost(n, node_start, node_rows, split).flops,
-            TCI::elimination_cost(n, node_start, node_rows, natural).flops);
-  orders.push_back(split);
-#endif
-  for(const std::vector<int>& order : orders) {
-    std::vector<int> post = order;
-    TCI::postorder_elimination_tree(n, node_start, node_rows, post);
-    std::vector<int> sorted = post;
-    std::sort(sorted.begin(), sorted.end());
-    ASSERT_EQ(sorted, natural) << "a permutation";
-    const TCI::Factor_cost before = TCI::elimination_cost(n, node_start, node_rows, order);
-    const TCI::Factor_cost after = TCI::elimination_cost(n, node_start, node_rows, post);
-    EXPECT_EQ(after.nonzeros, before.nonzeros);
-    EXPECT_EQ(after.flops, before.flops);
-    std::vector<int> parent;
-    TCI::elimination_tree(n, node_start, node_rows, post, parent);
-    std::vector<int> subtree(static_cast<std::size_t>(n), 1);
-    for(int k = 0; k < n; ++k) {
-      ASSERT_TRUE(parent[std::size_t(k)] == -1 || parent[std::size_t(k)] > k);
-      if(parent[std::size_t(k)] != -1)
-        subtree[std::size_t(parent[std::size_t(k)])] += subtree[std::size_t(k)];
-    }
-    for(int k = 0; k < n; ++k)
-      for(int j = k - subtree[std::size_t(k)] + 1; j < k; ++j) {
-        int a = j;
-        while(a != -1 && a < k)
-          a = parent[std::size_t(a)];
-        ASSERT_EQ(a, k) << "position " << j << " lies in the range of the subtree of " << k << " but is not in it";
-      }
-  }
+  Node_pattern pattern;
+  l.topology.node_adjacency(l.arrays, pattern.start, pattern.rows);
+  pattern.n = l.topology.number_of_nodes;
+  return pattern;
 }
+
+} // namespace
 
 /*
   The cost of a factor predicted from the pattern alone (elimination tree, internal/factorization/factor_cost.h)
@@ -883,11 +842,9 @@ TEST(Factor_cost, postorder_of_the_elimination_tree)
 */
 TEST(Factor_cost, predicted_from_the_pattern_as_the_analysis_counts_it)
 {
-  const Surface_mesh sm = icosphere(4);
-  const Layers l(sm);
-  std::vector<int> node_start, node_rows;
-  l.topology.node_adjacency(l.arrays, node_start, node_rows);
-  const int n = l.topology.number_of_nodes;
+  const Node_pattern pattern = node_pattern(icosphere(4));
+  const std::vector<int>&node_start = pattern.start, &node_rows = pattern.rows;
+  const int n = pattern.n;
   // an SPD matrix of that pattern (a shifted graph Laplacian): the analysis reads the pattern only
   std::vector<Eigen::Triplet<double>> entries;
   for(int c = 0; c < n; ++c)
@@ -902,14 +859,17 @@ TEST(Factor_cost, predicted_from_the_pattern_as_the_analysis_counts_it)
   TCI::amd_order(n, node_start, node_rows, amd);
   std::vector<std::vector<int>> orders = {natural, amd};
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_METIS
-  std::vector<int> nested;
-  ASSERT_TRUE(TCI::metis_order(n, node_start, node_rows, nested));
-  std::vector<int> sorted = nested;
-  std::sort(sorted.begin(), sorted.end());
-  EXPECT_EQ(sorted, natural) << "METIS's order is a permutation";
-  EXPECT_LT(TCI::elimination_cost(n, node_start, node_rows, nested).flops,
-            TCI::elimination_cost(n, node_start, node_rows, natural).flops);
-  orders.push_back(nested);
+  // 100 rows: the dissection of large patterns, the first separator and then both halves at once on two threads
+  for(const int parallel_rows : {100000, 100}) {
+    std::vector<int> nested;
+    ASSERT_TRUE(TCI::metis_order(n, node_start, node_rows, nested, parallel_rows));
+    std::vector<int> sorted = nested;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(sorted, natural) << "METIS's order is a permutation";
+    EXPECT_LT(TCI::elimination_cost(n, node_start, node_rows, nested).flops,
+              TCI::elimination_cost(n, node_start, node_rows, natural).flops);
+    orders.push_back(nested);
+  }
 #endif
   for(const std::vector<int>& order : orders) {
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(n);

@@ -221,25 +221,6 @@ inline void amd_order(int n, const std::vector<int>& column_start, const std::ve
     order[std::size_t(i)] = amd.size() > 0 ? amd.indices()[i] : i;
 }
 
-#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_METIS
-// METIS costs about 5 us per row, ten times AMD: it is tried when half of the predicted simplicial
-// factorization with the AMD order `order` would repay it (meshes of about 300k vertices and more), and its
-// order replaces `order` when its factor has fewer flops (the return value)
-inline bool nested_dissection_pays(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
-                                   std::vector<int>& order)
-{
-  const Factor_cost with_amd = elimination_cost(n, column_start, rows, order);
-  if(!(predicted_simplicial_seconds(with_amd) / 2 > 5e-6 * n))
-    return false;
-  std::vector<int> nested;
-  if(!metis_order(n, column_start, rows, nested) ||
-     !(elimination_cost(n, column_start, rows, nested).flops < with_amd.flops))
-    return false;
-  order.swap(nested);
-  return true;
-}
-#endif
-
 /*
   A fill-reducing order of the rows of a symmetric matrix (order[position] = row), computed the way the
   backend would compute it on its own: the solver then moves the loop rows last and hands the backend
@@ -255,7 +236,16 @@ struct Fill_reducing_ordering
   {
     amd_order(n, column_start, rows, order);
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_METIS
-    nested_dissection_pays(n, column_start, rows, order);
+    // METIS costs about 5 us per row, ten times AMD: it is tried when half of the predicted simplicial
+    // factorization with AMD would repay it (meshes of about 300k vertices and more), and its order is kept
+    // when its factor has fewer flops
+    const Factor_cost with_amd = elimination_cost(n, column_start, rows, order);
+    if(predicted_simplicial_seconds(with_amd) / 2 > 5e-6 * n) {
+      std::vector<int> nested;
+      if(metis_order(n, column_start, rows, nested) &&
+         elimination_cost(n, column_start, rows, nested).flops < with_amd.flops)
+        order.swap(nested);
+    }
 #endif
   }
 };
@@ -660,26 +650,20 @@ struct Factor_substitutions<Cost_based_solver_traits<Crossover>>
 };
 
 /*
-  Eigen's AMD, or with METIS from 1M rows on METIS's nested dissection (on two threads, see metis_order()) without
-  AMD first, postordered so that CHOLMOD, which keeps the order it is given, finds its supernodes. Measured on the
-  2 cores of benchmark/RESULTS.md with CHOLMOD on OpenBLAS: at 600k rows (a 1.2M-face mesh) the dissection, 2.4 s,
-  costs more than it saves over AMD (0.8 s) in the supernodal factorization (4.0 s with AMD's 16 GFlop, 3.0 s with
-  its 4.8: its supernodes are smaller); at 2.4M rows it saves 15 s (28.8 s with AMD's 180 GFlop, 13.4 s with its 40)
-  for about 9 s of dissection against 4 s of AMD.
+  AMD for both backends. METIS's nested dissection (postordered along its elimination tree, so that CHOLMOD finds its
+  supernodes in the order it keeps) was measured and lost: CHOLMOD's supernodes are smaller on it, so fewer flops
+  do not pay. On the 2 cores of benchmark/RESULTS.md, a 1.2M-face mesh (600k rows): dissection 2.4 s (on two
+  threads) against 0.8 s for AMD, factorization 3.1 s (5 GFlop) against 3.5 s (16 GFlop); a 4.8M-face mesh, the
+  program as a whole: 35.1 s against 30.6 s with AMD (13.9 s factoring 42 GFlop against 18.3 s factoring 175, but
+  about 13 s more of ordering), for a peak memory of 2.9 GB against 3.7 GB. Where the dissection pays for the
+  simplicial backend (below), the supernodal one is faster still.
 */
 template <class Crossover>
 struct Fill_reducing_ordering<Cost_based_solver_traits<Crossover>>
 {
-  static constexpr int nested_dissection_rows = 1000000;
   static void compute(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
                       std::vector<int>& order)
   {
-#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_METIS
-    if(n >= nested_dissection_rows && metis_order(n, column_start, rows, order)) {
-      postorder_elimination_tree(n, column_start, rows, order);
-      return;
-    }
-#endif
     amd_order(n, column_start, rows, order);
   }
 };

@@ -47,23 +47,20 @@ Factor_cost factor_cost_of_counts(const Counts& counts, std::size_t n)
 }
 
 /*
-  The elimination tree of a symmetric pattern (compressed columns, both triangles, sorted or not; the diagonal
-  is ignored) in the order `order` (order[position] = row): parent[k] of position k, -1 at a root; with
-  `count`, also the column counts of the factor below the diagonal. Liu's algorithm, as in Eigen's
-  SimplicialCholesky analysis: O(nonzeros of L) time, O(n) memory.
+  Factor_cost of a symmetric pattern (compressed columns, both triangles, sorted or not; the diagonal is
+  ignored) in the order `order` (order[position] = row), by the elimination tree (Liu's algorithm, as in
+  Eigen's SimplicialCholesky analysis): O(nonzeros of L) time, O(n) memory.
 */
-inline void elimination_tree(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
-                             const std::vector<int>& order, std::vector<int>& parent,
-                             std::vector<std::int64_t>* count = nullptr)
+inline Factor_cost elimination_cost(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
+                                    const std::vector<int>& order)
 {
   const std::size_t size = std::size_t(n);
-  std::vector<int> position(size), tag(size);
-  parent.assign(size, -1);
-  if(count != nullptr)
-    count->assign(size, 0);
+  std::vector<int> position(size), parent(size), tag(size);
+  std::vector<std::int64_t> count(size, 0);
   for(int k = 0; k < n; ++k)
     position[std::size_t(order[std::size_t(k)])] = k;
   for(int k = 0; k < n; ++k) {
+    parent[std::size_t(k)] = -1;
     tag[std::size_t(k)] = k;
     const int column = order[std::size_t(k)];
     for(int p = column_start[std::size_t(column)]; p < column_start[std::size_t(column) + 1]; ++p) {
@@ -74,64 +71,12 @@ inline void elimination_tree(int n, const std::vector<int>& column_start, const 
       for(; tag[std::size_t(i)] != k; i = parent[std::size_t(i)]) {
         if(parent[std::size_t(i)] == -1)
           parent[std::size_t(i)] = k;
-        if(count != nullptr)
-          ++(*count)[std::size_t(i)];
+        ++count[std::size_t(i)];
         tag[std::size_t(i)] = k;
       }
     }
   }
-}
-
-// Factor_cost of a symmetric pattern (as for elimination_tree()) in the order `order`
-inline Factor_cost elimination_cost(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
-                                    const std::vector<int>& order)
-{
-  std::vector<int> parent;
-  std::vector<std::int64_t> count;
-  elimination_tree(n, column_start, rows, order, parent, &count);
   return factor_cost_of_counts(count, std::size_t(n));
-}
-
-/*
-  `order` renumbered along a postorder of its elimination tree: the same factor up to the numbering (same fill,
-  same flops), with the columns of every subtree consecutive. A supernodal backend that keeps the order it is
-  given finds its supernodes (chains of columns with nested patterns) only then; nested dissection does not
-  give such an order by itself.
-*/
-inline void postorder_elimination_tree(int n, const std::vector<int>& column_start, const std::vector<int>& rows,
-                                       std::vector<int>& order)
-{
-  const std::size_t size = std::size_t(n);
-  std::vector<int> parent;
-  elimination_tree(n, column_start, rows, order, parent);
-  // children lists, each in increasing order (pushed from the last child on)
-  std::vector<int> first_child(size, -1), next_sibling(size, -1);
-  for(int k = n - 1; k >= 0; --k) {
-    const int p = parent[std::size_t(k)];
-    if(p >= 0) {
-      next_sibling[std::size_t(k)] = first_child[std::size_t(p)];
-      first_child[std::size_t(p)] = k;
-    }
-  }
-  std::vector<int> postordered, stack;
-  postordered.reserve(size);
-  for(int root = 0; root < n; ++root) {
-    if(parent[std::size_t(root)] != -1)
-      continue;
-    stack.push_back(root);
-    while(!stack.empty()) {
-      const int k = stack.back();
-      const int child = first_child[std::size_t(k)];
-      if(child == -1) {
-        stack.pop_back();
-        postordered.push_back(order[std::size_t(k)]);
-      } else {
-        first_child[std::size_t(k)] = next_sibling[std::size_t(child)]; // visit the next child on return
-        stack.push_back(child);
-      }
-    }
-  }
-  order.swap(postordered);
 }
 
 /*

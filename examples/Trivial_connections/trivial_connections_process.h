@@ -26,7 +26,7 @@
 namespace trivial_connections_program {
 
 // Mesh files from this size on run with huge pages: below it, starting the program a second time costs more
-// than the page faults it saves (about 15 ms against 30 ms per MB of OFF measured on the machine of
+// than the page faults it saves (about 15 ms against some 20 ms per MB of OFF, measured on the machine of
 // benchmark/RESULTS.md).
 inline constexpr std::uintmax_t huge_page_file_size = std::uintmax_t(1) << 20;
 
@@ -35,8 +35,8 @@ inline constexpr std::uintmax_t huge_page_file_size = std::uintmax_t(1) << 20;
   huge pages (the tunable glibc.malloc.hugetlb=1) when the mesh file has at least huge_page_file_size bytes, the
   kernel grants huge pages on request (transparent_hugepage/enabled is `always` or `madvise`) and the user has
   not set that tunable. Why: on a virtual machine every page fault is a trap to the hypervisor, and the program
-  touches its memory once, so 4 KiB faults cost it a third of its time on a 75k-face mesh; with 2 MiB pages
-  they nearly vanish (measured in benchmark/RESULTS.md). The tunables are read by the dynamic loader only, hence
+  touches its memory once, so 4 KiB faults cost it about a quarter of its time on a 75k-face mesh (0.31 s
+  against 0.24 s, see the manual's Performance section). The tunables are read by the dynamic loader only, hence
   the second start. GLIBC_TUNABLES=glibc.malloc.hugetlb=0 keeps the program from doing it. Returns only when
   the program goes on in this process.
 */

@@ -91,7 +91,8 @@ inline double predicted_simplicial_seconds(const Factor_cost& c) { return c.flop
 inline bool metis_order_of(const std::vector<int>& column_start, const std::vector<int>& rows,
                            const std::vector<int>* vertices, std::vector<int>& order)
 {
-  const std::size_t n = column_start.size() - 1, size = vertices != nullptr ? vertices->size() : n;
+  const std::size_t n = column_start.empty() ? 0 : column_start.size() - 1;
+  const std::size_t size = vertices != nullptr ? vertices->size() : n;
   std::vector<idx_t> local;
   if(vertices != nullptr) {
     local.assign(n, -1);

@@ -312,8 +312,8 @@ void controls(benchmark::State& state, const Mesh_spec& spec)
 // ---------------------------------------------------------------------------------------------------------
 // The main program as a whole process (read, solve, field, both files written), on a closed genus-0 mesh
 // written as OFF (a usual input): its wall time against reading the same file with CGAL
-// (read_polygon_mesh into a Surface_mesh) plus one analysis + factorization of the mesh's Laplacian with
-// the program's backend (the factorization's cost depends on the pattern only, so the weights are 1).
+// (read_polygon_mesh into a Surface_mesh) plus one analysis + factorization of the mesh's cotan Laplacian with
+// the program's backend.
 // Counters: t_program, program_peak_bytes (the largest child's maximum resident size), t_read,
 // t_reference, r_program = t_program / (t_read + t_reference); t_laplacian, the Laplacian a user builds before
 // factoring it (cotan weights of the mesh read, then the sparse matrix), r_program_floor = t_program / (t_read +

@@ -656,7 +656,7 @@ struct Factor_substitutions<Cost_based_solver_traits<Crossover>>
   threads) against 0.8 s for AMD, factorization 3.1 s (5 GFlop) against 3.5 s (16 GFlop); a 4.8M-face mesh, the
   program as a whole: 35.1 s against 30.6 s with AMD (13.9 s factoring 42 GFlop against 18.3 s factoring 175, but
   about 13 s more of ordering), for a peak memory of 2.9 GB against 3.7 GB. Where the dissection pays for the
-  simplicial backend (below), the supernodal one is faster still.
+  simplicial backend (above), the supernodal one is faster still.
 */
 template <class Crossover>
 struct Fill_reducing_ordering<Cost_based_solver_traits<Crossover>>

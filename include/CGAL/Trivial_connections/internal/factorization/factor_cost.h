@@ -86,10 +86,10 @@ inline Factor_cost elimination_cost(int n, const std::vector<int>& column_start,
 inline double predicted_simplicial_seconds(const Factor_cost& c) { return c.flops / 2.2e9; }
 
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_METIS
-// METIS_NodeND (default options) of the subgraph of a symmetric pattern (both triangles; the diagonal is skipped)
-// induced by `vertices`, or of the whole graph when `vertices` is null; `order` gets its rows in elimination order
-inline bool metis_order_of(const std::vector<int>& column_start, const std::vector<int>& rows,
-                           const std::vector<int>* vertices, std::vector<int>& order)
+// The graph METIS reads (xadj, adjncy) of a symmetric pattern (both triangles; the diagonal is skipped), or of its
+// subgraph induced by `vertices` (numbered by their positions there) when `vertices` is not null
+inline void metis_graph(const std::vector<int>& column_start, const std::vector<int>& rows,
+                        const std::vector<int>* vertices, std::vector<idx_t>& xadj, std::vector<idx_t>& adjncy)
 {
   const std::size_t n = column_start.empty() ? 0 : column_start.size() - 1;
   const std::size_t size = vertices != nullptr ? vertices->size() : n;
@@ -99,7 +99,8 @@ inline bool metis_order_of(const std::vector<int>& column_start, const std::vect
     for(std::size_t i = 0; i < size; ++i)
       local[std::size_t((*vertices)[i])] = idx_t(i);
   }
-  std::vector<idx_t> xadj(size + 1, 0), adjncy;
+  xadj.assign(size + 1, 0);
+  adjncy.clear();
   adjncy.reserve(vertices != nullptr ? 7 * size : rows.size());
   for(std::size_t i = 0; i < size; ++i) {
     const int c = vertices != nullptr ? (*vertices)[i] : int(i);
@@ -111,6 +112,15 @@ inline bool metis_order_of(const std::vector<int>& column_start, const std::vect
     }
     xadj[i + 1] = idx_t(adjncy.size());
   }
+}
+
+// METIS_NodeND (default options) of the graph of metis_graph(); `order` gets its rows in elimination order
+inline bool metis_order_of(const std::vector<int>& column_start, const std::vector<int>& rows,
+                           const std::vector<int>* vertices, std::vector<int>& order)
+{
+  std::vector<idx_t> xadj, adjncy;
+  metis_graph(column_start, rows, vertices, xadj, adjncy);
+  const std::size_t size = xadj.size() - 1;
   order.resize(size);
   if(size == 0)
     return true;
@@ -142,14 +152,8 @@ inline bool metis_order(int n, const std::vector<int>& column_start, const std::
   if(n < parallel_rows)
     return metis_order_of(column_start, rows, nullptr, order);
   const std::size_t size = std::size_t(n);
-  std::vector<idx_t> xadj(size + 1, 0), adjncy;
-  adjncy.reserve(rows.size());
-  for(int c = 0; c < n; ++c) {
-    for(int p = column_start[std::size_t(c)]; p < column_start[std::size_t(c) + 1]; ++p)
-      if(rows[std::size_t(p)] != c)
-        adjncy.push_back(idx_t(rows[std::size_t(p)]));
-    xadj[std::size_t(c) + 1] = idx_t(adjncy.size());
-  }
+  std::vector<idx_t> xadj, adjncy;
+  metis_graph(column_start, rows, nullptr, xadj, adjncy);
   idx_t nodes = idx_t(n), separator_size = 0;
   std::vector<idx_t> part(size);
   idx_t options[METIS_NOPTIONS];

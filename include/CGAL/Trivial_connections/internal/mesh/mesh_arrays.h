@@ -164,26 +164,51 @@ struct Mesh_arrays
   }
 
 private:
-  // Every face at v must be reached by turning around v from one of its halfedges: otherwise v joins
-  // several umbrellas (pinched or non-manifold vertex). Linear in the mesh size.
+  // Every face at v must be reached by turning around v from one of its corners: otherwise v joins several
+  // umbrellas (pinched or non-manifold vertex). Walked on the corner arrays (compact ints, where the mesh's
+  // circulators chase descriptors through its halfedges); the first vertex that fails is circulated again
+  // through the mesh, to say which way it fails. Linear in the mesh size.
   void check_manifold_vertices(const TriangleMesh& tm) const
   {
-    for(int v = 0; v < nv; ++v) {
-      if(faces_at_vertex[v] == 0)
-        continue;
-      int reached = 0, borders = 0;
-      for(halfedge_descriptor h : halfedges_around_target(halfedge(vertex_descriptors[v], tm), tm)) {
-        if(is_border(h, tm))
-          ++borders;
-        else
-          ++reached;
-      }
-      if(reached != faces_at_vertex[v] || borders > 1)
-        throw Invalid_input(Error_code::non_manifold,
-                            "vertex " + std::to_string(v) + " is non-manifold (its faces form " +
-                              (borders > 1 ? "a pinched fan" : "more than one fan") + ")",
-                            std::size_t(v));
+    std::vector<int> first_corner(nv, -1);
+    for(int i = 3 * nf - 1; i >= 0; --i)
+      first_corner[corner_vertex[i]] = i;
+    for(int v = 0; v < nv; ++v)
+      if(faces_at_vertex[v] > 0 && fan_size(first_corner[v], faces_at_vertex[v]) != faces_at_vertex[v])
+        throw_non_manifold_vertex(tm, v);
+  }
+
+  // the corners of the fan of corner c0 (the corners leaving its source), counted up to limit + 1
+  int fan_size(int c0, int limit) const
+  {
+    int seen = 1;
+    // counter-clockwise: the corner across the edge that ends at the source (the previous corner's opposite)
+    int c = opposite_corner[prev_corner(c0)];
+    while(c >= 0 && c != c0 && seen <= limit) {
+      ++seen;
+      c = opposite_corner[prev_corner(c)];
     }
+    if(c < 0) { // an open fan: clockwise from c0 too
+      c = opposite_corner[c0];
+      while(c >= 0 && seen <= limit) {
+        c = next_corner(c);
+        ++seen;
+        c = opposite_corner[c];
+      }
+    }
+    return seen;
+  }
+
+  [[noreturn]] void throw_non_manifold_vertex(const TriangleMesh& tm, int v) const
+  {
+    int borders = 0;
+    for(halfedge_descriptor h : halfedges_around_target(halfedge(vertex_descriptors[v], tm), tm))
+      if(is_border(h, tm))
+        ++borders;
+    throw Invalid_input(Error_code::non_manifold,
+                        "vertex " + std::to_string(v) + " is non-manifold (its faces form " +
+                          (borders > 1 ? "a pinched fan" : "more than one fan") + ")",
+                        std::size_t(v));
   }
 
   static constexpr double kMinimumSine = 1e-12;

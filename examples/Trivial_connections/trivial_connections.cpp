@@ -649,7 +649,7 @@ int main(int argc, char** argv)
     print_version(std::cout);
     return 0;
   }
-  restart_with_huge_pages(argv, options.mesh);
+  use_huge_pages(argv, options.mesh);
   stop_idle_blas_threads();
   Progress_printer progress(options.progress || stderr_is_terminal());
   try {

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <system_error>
 
@@ -31,42 +32,42 @@ namespace trivial_connections_program {
 // Mesh files from this size on run with huge pages; below it the heap the program needs fills less than a
 // couple of them.
 inline constexpr std::uintmax_t huge_page_file_size = std::uintmax_t(256) << 10;
-// Mesh files from this size on get them by a second start of the program instead (see use_huge_pages()).
-inline constexpr std::uintmax_t restart_file_size = std::uintmax_t(128) << 20;
-// The program's heap against the size of its mesh file (OFF): about 12 to 14 times on 75k to 1.2M faces.
+// The program's heap against the size of its mesh file (OFF): about 12 to 14 times on 75k to 4.8M faces.
 inline constexpr std::uintmax_t heap_per_file_byte = 16;
 
 /*
   This process's heap made ready for huge pages before the work: every allocation from the main heap (one arena
-  for all threads, no mmap), which is grown once by `reserve` bytes, marked for transparent huge pages and kept
-  (no trimming). Returns false, with malloc as it was, when glibc refuses a setting or the heap could not grow.
+  for all threads, no mmap), which is grown once by `reserve` bytes (at most half the machine's memory), marked
+  for transparent huge pages and never trimmed. The reserve is address space until it is touched. Returns false,
+  with malloc's settings as they were, when glibc refuses a setting or the heap cannot grow that much.
 */
 inline bool huge_page_heap(std::uintmax_t reserve)
 {
 #if defined(__linux__) && defined(__GLIBC__)
   constexpr std::uintptr_t huge_page = std::uintptr_t(2) << 20;
-  reserve = (std::min)(reserve, std::uintmax_t(0x7fffffff) - huge_page); // M_TOP_PAD is an int
-  if(reserve < 2 * huge_page)
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
+  if(pages > 0 && page_size > 0)
+    reserve = (std::min)(reserve, std::uintmax_t(pages) * std::uintmax_t(page_size) / 2);
+  if(reserve < 2 * huge_page || reserve > std::uintmax_t((std::numeric_limits<std::size_t>::max)() / 2))
     return false;
-  char* const before = static_cast<char*>(::sbrk(0));
   auto as_it_was = [] { // glibc's defaults
-    ::mallopt(M_TOP_PAD, 128 << 10);
     ::mallopt(M_MMAP_MAX, 65536);
+    ::mallopt(M_TRIM_THRESHOLD, 128 << 10);
     return false;
   };
-  if(::mallopt(M_MMAP_MAX, 0) == 0 || ::mallopt(M_TOP_PAD, int(reserve + huge_page)) == 0)
+  // -1: never trim (the threshold is read as a size_t)
+  if(::mallopt(M_MMAP_MAX, 0) == 0 || ::mallopt(M_TRIM_THRESHOLD, -1) == 0)
     return as_it_was();
-  // a request above what the heap holds now grows it by the request and the pad, all at once
-  void* volatile grown = std::malloc(std::size_t(1) << 20); // volatile: the compiler may drop a malloc-free pair
+  char* const before = static_cast<char*>(::sbrk(0));
+  // grows the heap by about `reserve`, without touching it; volatile: the compiler may drop a malloc-free pair
+  void* volatile grown = std::malloc(std::size_t(reserve));
   std::free(grown);
   char* const after = static_cast<char*>(::sbrk(0));
   const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(before) + huge_page - 1) & ~(huge_page - 1);
   const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(after) & ~(huge_page - 1);
-  if(before == reinterpret_cast<char*>(-1) || end < begin + 2 * huge_page ||
-     ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE) != 0 || ::mallopt(M_ARENA_MAX, 1) == 0 ||
-     ::mallopt(M_TRIM_THRESHOLD, 0x7fffffff) == 0)
+  if(grown == nullptr || before == reinterpret_cast<char*>(-1) || end < begin + 2 * huge_page ||
+     ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE) != 0 || ::mallopt(M_ARENA_MAX, 1) == 0)
     return as_it_was();
-  ::mallopt(M_TOP_PAD, 128 << 10); // the reserve is in place; later growth goes as usual
   return true;
 #else
   (void)reserve;
@@ -79,19 +80,18 @@ inline bool huge_page_heap(std::uintmax_t reserve)
   huge_page_file_size bytes, the kernel grants huge pages on request (transparent_hugepage/enabled is `always`
   or `madvise`) and the user has not set glibc's tunable glibc.malloc.hugetlb (GLIBC_TUNABLES=glibc.malloc.hugetlb=0
   keeps the program from all this). Why: on a virtual machine every page fault is a trap to the hypervisor, and
-  the program touches its memory once, so 4 KiB faults cost it about a quarter of its time on a 75k-face mesh.
-  - Below restart_file_size, in this process (huge_page_heap()): the heap is grown once, heap_per_file_byte times
-    the file, and marked for huge pages; everything is allocated there. Measured on bunny00 (75k faces, perf stat,
-    15 runs each): 0.153 to 0.158 s, against 0.21 to 0.23 s with the restart below and 0.28 s without huge pages;
-    page faults 0.9k against 4.5k and 11.7k.
-  - From restart_file_size on (or when that fails), glibc's own malloc asks for huge pages: the program starts
-    itself again with glibc.malloc.hugetlb=1 (the tunables are read by the dynamic loader only, hence the second
-    start, some 10 to 20 ms; glibc 2.35 or later). A reserve in the heap would have to guess a peak of gigabytes.
-  Returns only when the program goes on in this process.
+  the program touches its memory once, so 4 KiB faults cost it about a third of its time on a 75k-face mesh.
+  In this process (huge_page_heap()): the heap is grown once, heap_per_file_byte times the file, marked for huge
+  pages, and everything is allocated there. Measured on bunny00 (75k faces, perf stat, 15 runs each): 0.144 to
+  0.160 s, against 0.19 to 0.23 s with glibc's own huge pages for malloc (below) and 0.28 s without; page faults
+  0.9k against 4.5k and 11.7k. When that fails (a sanitizer's allocator, say), glibc's malloc asks for huge pages
+  itself: the program starts itself again with glibc.malloc.hugetlb=1 (the tunables are read by the dynamic
+  loader only, hence the second start, some 10 to 20 ms; glibc 2.35 or later). Nothing in AddressSanitizer
+  builds, whose allocator is not glibc's. Returns only when the program goes on in this process.
 */
 inline void use_huge_pages(char** argv, const std::string& mesh)
 {
-#if defined(__linux__) && defined(__GLIBC__)
+#if defined(__linux__) && defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   const std::string current = tunables != nullptr ? tunables : "";
   if(current.find("glibc.malloc.hugetlb") != std::string::npos)
@@ -105,7 +105,8 @@ inline void use_huge_pages(char** argv, const std::string& mesh)
   std::getline(thp, setting);
   if(setting.find("[always]") == std::string::npos && setting.find("[madvise]") == std::string::npos)
     return;
-  if(size < restart_file_size && huge_page_heap(size * heap_per_file_byte))
+  if(size <= (std::numeric_limits<std::uintmax_t>::max)() / heap_per_file_byte &&
+     huge_page_heap(size * heap_per_file_byte))
     return;
 #if __GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 35)
   const std::string with_huge_pages = (current.empty() ? "" : current + ":") + "glibc.malloc.hugetlb=1";

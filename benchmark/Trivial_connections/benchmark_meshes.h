@@ -25,6 +25,7 @@
 #endif
 
 #if defined(__GLIBC__)
+#include <dlfcn.h>
 #include <malloc.h>
 #endif
 
@@ -48,6 +49,20 @@
 namespace tc_bench {
 // ---------------------------------------------------------------------------------------------------------
 // Memory: VmHWM is reset to the current resident size by writing 5 to /proc/self/clear_refs (Linux >= 4.0).
+
+/*
+  Stops OpenBLAS's worker threads (Debian's libopenblas0-pthread, behind CHOLMOD) before a timed section: after each
+  parallel BLAS call they spin for about 0.1 s, and on two cores the one that spins takes the core of whatever is
+  timed next (the solver's second thread, or the next reference). The program stops them at its start the same
+  way (trivial_connections_process.h); OpenBLAS starts them again at its next parallel call. Nothing happens with
+  another BLAS.
+*/
+inline void stop_idle_blas_threads()
+{
+  using Shutdown = int (*)();
+  if(void* f = ::dlsym(RTLD_DEFAULT, "blas_thread_shutdown_"))
+    reinterpret_cast<Shutdown>(f)();
+}
 
 inline bool reset_peak_memory()
 {
@@ -232,6 +247,7 @@ template <class ReferenceSolver>
 Reference_result reference_factorization(std::size_t nv, const std::vector<Weighted_edge>& edges)
 {
   Reference_result result;
+  stop_idle_blas_threads();
   const double base = reset_peak_memory() ? status_bytes("VmRSS") : -1;
   const auto t_assembly = Clock::now();
   // union-find: pin the first vertex of each component (isolated vertices included)

@@ -173,6 +173,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
   for(auto _ : state) {
     std::vector<tc_bench::Weighted_edge> edges;
     try {
+      tc_bench::stop_idle_blas_threads();
       const double base = tc_bench::reset_peak_memory() ? tc_bench::status_bytes("VmRSS") : -1;
       auto t0 = Clock::now();
       Solver solver(mesh);

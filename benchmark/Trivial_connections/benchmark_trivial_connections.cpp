@@ -83,6 +83,7 @@ using tc_bench::laplacian_edges;
 using tc_bench::load_mesh;
 using tc_bench::mesh_cache_dir;
 using tc_bench::mesh_specs;
+using tc_bench::stop_idle_blas_threads;
 using tc_bench::reference_factorization;
 using tc_bench::Floor_result;
 using tc_bench::fastest_reference;
@@ -148,6 +149,7 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
     std::vector<Weighted_edge> edges;
     {
       build = solve1 = solve2 = field_phases = Phase_times();
+      stop_idle_blas_threads();
       const double base = reset_peak_memory() ? status_bytes("VmRSS") : -1;
       auto t0 = Clock::now();
       Solver solver(mesh, TC::parameters::progress(build.callback()));
@@ -263,6 +265,7 @@ void controls(benchmark::State& state, const Mesh_spec& spec)
   for(auto _ : state) {
     std::vector<Weighted_edge> edges;
     {
+      stop_idle_blas_threads();
       auto t0 = Clock::now();
       Solver solver(mesh, TC::parameters::constrained_faces(constrained, TC::parameters::guided_faces(guided)));
       t_build = seconds_since(t0);

@@ -61,11 +61,12 @@ inline bool huge_page_heap(std::uintmax_t reserve)
   char* const before = static_cast<char*>(::sbrk(0));
   // grows the heap by about `reserve`, without touching it; volatile: the compiler may drop a malloc-free pair
   void* volatile grown = std::malloc(std::size_t(reserve));
+  const bool got = grown != nullptr;
   std::free(grown);
   char* const after = static_cast<char*>(::sbrk(0));
   const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(before) + huge_page - 1) & ~(huge_page - 1);
   const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(after) & ~(huge_page - 1);
-  if(grown == nullptr || before == reinterpret_cast<char*>(-1) || end < begin + 2 * huge_page ||
+  if(!got || before == reinterpret_cast<char*>(-1) || end < begin + 2 * huge_page ||
      ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE) != 0 || ::mallopt(M_ARENA_MAX, 1) == 0)
     return as_it_was();
   return true;

@@ -86,9 +86,9 @@ inline bool huge_page_heap(std::uintmax_t reserve)
   pages, and everything is allocated there. Measured on bunny00 (75k faces, perf stat, 15 runs each): 0.144 to
   0.160 s, against 0.19 to 0.23 s with glibc's own huge pages for malloc (below) and 0.28 s without; page faults
   0.9k against 4.5k and 11.7k. When that fails (the heap cannot grow, or glibc refuses a setting), glibc's
-  malloc asks for huge pages itself: the program starts itself again with glibc.malloc.hugetlb=1 (the tunables are read by the dynamic
-  loader only, hence the second start, some 10 to 20 ms; glibc 2.35 or later). Nothing in AddressSanitizer
-  builds, whose allocator is not glibc's. Returns only when the program goes on in this process.
+  malloc asks for huge pages itself: the program starts itself again with glibc.malloc.hugetlb=1 (the tunables
+  are read by the dynamic loader only, hence the second start, some 10 to 20 ms; glibc 2.35 or later). Nothing
+  in AddressSanitizer builds, whose allocator is not glibc's. Returns only when the program goes on in this process.
 */
 inline void use_huge_pages(char** argv, const std::string& mesh)
 {

@@ -244,6 +244,7 @@ public:
     notify(Phase::factorization, 1);
     angles.get();
     m_loop_holonomy = internal::levi_civita_holonomies(m_mesh, m_geometry, m_topology);
+    m_gauss_bonnet_shares = internal::gauss_bonnet_rounding_shares(m_rows, m_loop_holonomy);
     notify(Phase::loop_metric, 0);
     m_system.compute_metrics(m_rows, m_links, m_components.size());
     m_lattices = internal::reduced_loop_lattices(m_system.metrics());
@@ -435,7 +436,7 @@ public:
     const Progress_callback progress = progress_of(np);
     const double unit = 2 * CGAL_PI / n;
     notify(progress, Phase::solve, 0);
-    Eigen::VectorXd b = internal::right_hand_side(m_rows, k, periods, holonomy, n);
+    Eigen::VectorXd b = internal::right_hand_side(m_rows, k, periods, holonomy, n, m_gauss_bonnet_shares);
     bool choose_periods = false; // a slot with a row whose integer is not prescribed
     for(const std::vector<int>& free : m_rows.free_slots)
       for(int l : free)
@@ -618,6 +619,7 @@ private:
   std::vector<Loop> m_loops;                 // the loops and components as loops() and components() give them
   std::vector<Component_report> m_components;
   std::vector<double> m_loop_holonomy;       // topology/: per loop, H_L
+  std::vector<double> m_gauss_bonnet_shares; // system/: per component, the rounding each node row takes
   bool m_align = false;                      // align_with_boundary
   internal::Constraint_links m_links;        // system/: constrained and guided faces, links, mu
   internal::Constraint_rows m_rows;          // system/: the rows of A x = b

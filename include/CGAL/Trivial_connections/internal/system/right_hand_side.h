@@ -124,16 +124,17 @@ inline std::vector<double> slot_holonomies(const Constraint_rows& rows, const st
 }
 
 /*
-  Spreads each component's rounding of Gauss-Bonnet over its node rows. The rows of all the nodes of a component,
-  the pinned one included, sum to 2 pi chi - sum_v K_v - sum_L H_L, which is 0 in exact arithmetic (the integers
-  add up to n chi). In double the angle defects' rounding adds up, about 1e-16 per vertex and linearly (6e-10
-  on a 4.8M-face sphere, 1e-9 near 8M faces), and as the pinned node's row is implied by the others all of it
-  would land on the pinned node's residual. Subtracting the component's sum divided by its number of nodes
-  from each of its node rows leaves that share on every node instead. A sum that is not rounding (beyond 1e-13
-  per node) is left alone, to show in the pinned node's residual.
+  Per component, the share of its Gauss-Bonnet rounding that each of its node rows takes. The rows of all the
+  nodes of a component, the pinned one included, sum to 2 pi chi - sum_v K_v - sum_L H_L, which is 0 in exact
+  arithmetic (the integers add up to n chi). In double the angle defects' rounding adds up, about 1e-16 per vertex
+  and linearly (6e-10 on a 4.8M-face sphere, 1e-9 near 8M faces), and as the pinned node's row is implied by the
+  others all of it would land on the pinned node's residual. Subtracting the component's sum divided by its number
+  of nodes from each of its node rows leaves that share on every node instead. A sum that is not rounding (beyond
+  1e-13 per node) is left alone (share 0), to show in the pinned node's residual. Depends on the mesh only:
+  computed once per solver. `loop_holonomy`: per loop, H_L.
 */
-inline void spread_gauss_bonnet_rounding(const Constraint_rows& rows, const std::vector<double>& holonomy,
-                                         Eigen::VectorXd& b)
+inline std::vector<double> gauss_bonnet_rounding_shares(const Constraint_rows& rows,
+                                                        const std::vector<double>& loop_holonomy)
 {
   const Mesh_topology& t = rows.topology();
   const std::size_t nc = t.components.size();
@@ -155,7 +156,7 @@ inline void spread_gauss_bonnet_rounding(const Constraint_rows& rows, const std:
   for(std::size_t l = 0; l < t.loops.size(); ++l)
     if(t.loops[l].kind == Loop_kind::boundary) {
       const std::size_t c = std::size_t(t.loops[l].component);
-      add(c, -holonomy[l]);
+      add(c, -loop_holonomy[l]);
       nodes[c] += 1;
     }
   std::vector<double> share(nc, 0.);
@@ -164,16 +165,14 @@ inline void spread_gauss_bonnet_rounding(const Constraint_rows& rows, const std:
     if(nodes[c] > 0 && std::abs(rounding) <= 1e-13 * nodes[c])
       share[c] = rounding / nodes[c];
   }
-  for(int node = 0; node < t.number_of_nodes; ++node)
-    if(rows.row_of_node[node] >= 0)
-      b[rows.row_of_node[node]] -= share[std::size_t(t.component_of_node[node])];
+  return share;
 }
 
-// b of A x = b: per node row 2 pi k_v / n - K_v, per slot row 2 pi period / n - H (then the rounding of
-// Gauss-Bonnet spread over each component's node rows).
+// b of A x = b: per node row 2 pi k_v / n - K_v, per slot row 2 pi period / n - H; then each node row less its
+// component's share of the Gauss-Bonnet rounding (`shares`, from gauss_bonnet_rounding_shares()).
 inline Eigen::VectorXd right_hand_side(const Constraint_rows& rows, const std::vector<std::int64_t>& k,
                                        const std::vector<std::int64_t>& periods, const std::vector<double>& holonomy,
-                                       int n)
+                                       int n, const std::vector<double>& shares)
 {
   const double unit = 2 * CGAL_PI / n;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(rows.size());
@@ -187,7 +186,10 @@ inline Eigen::VectorXd right_hand_side(const Constraint_rows& rows, const std::v
   for(std::size_t l = 0; l < holonomy.size(); ++l)
     if(rows.row_of_slot[l] >= 0)
       b[rows.row_of_slot[l]] = unit * double(periods[l]) - holonomy[l];
-  spread_gauss_bonnet_rounding(rows, holonomy, b);
+  const Mesh_topology& t = rows.topology();
+  for(int node = 0; node < t.number_of_nodes; ++node)
+    if(rows.row_of_node[node] >= 0)
+      b[rows.row_of_node[node]] -= shares[std::size_t(t.component_of_node[node])];
   return b;
 }
 

@@ -10,6 +10,7 @@
 #define CGAL_TRIVIAL_CONNECTIONS_BENCHMARK_MESHES_H
 
 #include "benchmark_support.h"
+#include "../../examples/Trivial_connections/trivial_connections_process.h"
 
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/Surface_mesh/IO/PLY.h>
@@ -25,7 +26,6 @@
 #endif
 
 #if defined(__GLIBC__)
-#include <dlfcn.h>
 #include <malloc.h>
 #endif
 
@@ -50,19 +50,10 @@ namespace tc_bench {
 // ---------------------------------------------------------------------------------------------------------
 // Memory: VmHWM is reset to the current resident size by writing 5 to /proc/self/clear_refs (Linux >= 4.0).
 
-/*
-  Stops OpenBLAS's worker threads (Debian's libopenblas0-pthread, behind CHOLMOD) before a timed section: after each
-  parallel BLAS call they spin for about 0.1 s, and on two cores the one that spins takes the core of whatever is
-  timed next (the solver's second thread, or the next reference). The program stops them at its start the same
-  way (trivial_connections_process.h); OpenBLAS starts them again at its next parallel call. Nothing happens with
-  another BLAS.
-*/
-inline void stop_idle_blas_threads()
-{
-  using Shutdown = int (*)();
-  if(void* f = ::dlsym(RTLD_DEFAULT, "blas_thread_shutdown_"))
-    reinterpret_cast<Shutdown>(f)();
-}
+// Before a timed section, OpenBLAS's idle worker threads (behind CHOLMOD) are stopped as the program stops them
+// at its start: after each parallel BLAS call they spin for about 0.1 s, and on two cores the one that spins
+// takes the core of whatever is timed next (the solver's second thread, or the next reference).
+using trivial_connections_program::stop_idle_blas_threads;
 
 inline bool reset_peak_memory()
 {

@@ -5,7 +5,8 @@
 //
 // How the program trivial_connections sets up its own process before the work (trivial_connections.cpp):
 // transparent huge pages for the heap, and OpenBLAS's idle threads stopped. Both change
-// only the speed, never a result. Included by that file only: the program is one translation unit.
+// only the speed, never a result. Included by that file (the program is one translation unit) and by the
+// benchmark, which stops OpenBLAS's idle threads the same way.
 
 #ifndef CGAL_TRIVIAL_CONNECTIONS_PROGRAM_PROCESS_H
 #define CGAL_TRIVIAL_CONNECTIONS_PROGRAM_PROCESS_H
@@ -88,7 +89,8 @@ inline bool huge_page_heap(std::uintmax_t reserve)
   0.9k against 4.5k and 11.7k. When that fails (the heap cannot grow, or glibc refuses a setting), glibc's
   malloc asks for huge pages itself: the program starts itself again with glibc.malloc.hugetlb=1 (the tunables
   are read by the dynamic loader only, hence the second start, some 10 to 20 ms; glibc 2.35 or later). Nothing
-  in AddressSanitizer builds, whose allocator is not glibc's. Returns only when the program goes on in this process.
+  in AddressSanitizer builds, whose allocator is not glibc's. Returns only when the program goes on in this
+  process.
 */
 inline void use_huge_pages(char** argv, const std::string& mesh)
 {

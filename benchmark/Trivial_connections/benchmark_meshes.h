@@ -37,6 +37,7 @@
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <type_traits>
 #include <unistd.h>
@@ -55,11 +56,30 @@ namespace tc_bench {
 // takes the core of whatever is timed next (the solver's second thread, or the next reference).
 using trivial_connections_program::stop_idle_blas_threads;
 
-inline bool reset_peak_memory()
+/*
+  The freed heap back to the system before every timed section, the solver's and each reference's alike: what a
+  timed section touches is then new memory for both, whatever ran before it. On a virtual machine the first
+  touch of a page can cost more than the work done on it (about 11 us per 4 KiB page on the machine of
+  RESULTS.md, see minor_page_faults()); without this the reference reused, warm, the memory that its untimed
+  assembly had just freed, and the solver did not.
+*/
+inline void release_free_heap()
 {
 #if defined(__GLIBC__)
-  malloc_trim(0); // give freed heap back, so that the baseline is what is really in use
+  malloc_trim(0);
 #endif
+}
+
+// minor page faults of the process so far (all threads), -1 if unavailable
+inline double minor_page_faults()
+{
+  rusage usage;
+  return ::getrusage(RUSAGE_SELF, &usage) == 0 ? double(usage.ru_minflt) : -1;
+}
+
+inline bool reset_peak_memory()
+{
+  release_free_heap(); // also so that the baseline is what is really in use
   std::ofstream out("/proc/self/clear_refs");
   out << "5";
   out.flush();
@@ -186,6 +206,7 @@ struct Reference_result
   double factor_flops = 0; // sum over the columns of L of nnz(column)^2 (diagonal included), as CHOLMOD counts
   int ordering = -1; // CHOLMOD: the ordering its analysis chose (CHOLMOD_AMD, CHOLMOD_METIS, ...)
   double peak_bytes = 0;
+  double page_faults = 0; // minor page faults of the timed section
   bool ok = true;
 };
 
@@ -272,10 +293,13 @@ Reference_result reference_factorization(std::size_t nv, const std::vector<Weigh
   result.assembly_seconds = seconds_since(t_assembly);
 
   ReferenceSolver solver;
+  release_free_heap();
+  const double faults = minor_page_faults();
   const auto t0 = Clock::now();
   solver.analyzePattern(L);
   solver.factorize(L);
   result.seconds = seconds_since(t0);
+  result.page_faults = minor_page_faults() - faults;
   result.ok = solver.info() == Eigen::Success;
   result.factor_nnz = factor_nonzeros(solver, n);
   result.factor_flops = factor_flops(solver);

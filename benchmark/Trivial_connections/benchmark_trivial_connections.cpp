@@ -139,7 +139,7 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
   auto x = mesh.add_property_map<Mesh::Halfedge_index, double>("h:x", 0.).first;
   auto field = mesh.add_property_map<Mesh::Face_index, K::Vector_3>("f:field").first;
 
-  double t_build = 0, t_solve = 0, t_resolve = 0, t_field = 0, peak = -1;
+  double t_build = 0, t_solve = 0, t_resolve = 0, t_field = 0, peak = -1, page_faults = 0;
   Phase_times build, solve1, solve2, field_phases;
   Reference_result ref;
   Floor_result fastest;
@@ -151,6 +151,7 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
       build = solve1 = solve2 = field_phases = Phase_times();
       stop_idle_blas_threads();
       const double base = reset_peak_memory() ? status_bytes("VmRSS") : -1;
+      const double faults = tc_bench::minor_page_faults();
       auto t0 = Clock::now();
       Solver solver(mesh, TC::parameters::progress(build.callback()));
       t_build = seconds_since(t0);
@@ -175,6 +176,7 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
       t0 = Clock::now();
       solver.compute_field(x, field, TC::parameters::progress(field_phases.callback()));
       t_field = seconds_since(t0);
+      page_faults = tc_bench::minor_page_faults() - faults; // with singularities_for(), which allocates little
       peak = base >= 0 ? status_bytes("VmHWM") - base : -1;
 
       edges = laplacian_edges(mesh, solver);
@@ -218,6 +220,9 @@ void pipeline(benchmark::State& state, const Mesh_spec& spec)
   k["r_build_floor"] = t_build / fastest.best.seconds;
   k["peak_bytes"] = peak;
   k["peak_bytes_per_face"] = peak >= 0 ? peak / nf : -1;
+  // new memory touched (4 KiB pages): build, solves and field, and the floor's analysis + factorization
+  k["page_faults_per_face"] = page_faults / nf;
+  k["floor_page_faults_per_face"] = fastest.best.page_faults / nf;
   k["ref_peak_bytes_per_face"] = ref.peak_bytes >= 0 ? ref.peak_bytes / nf : -1;
   k["ref_factor_nnz"] = ref.factor_nnz;
   k["ref_factor_gflops"] = ref.factor_flops * 1e-9;

@@ -7,6 +7,7 @@
 #define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_SPARSE_FACTOR_H
 
 #include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
 #include <CGAL/Trivial_connections/internal/system/system_assembly.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 
@@ -15,11 +16,35 @@
 
 #include <memory>
 #include <mutex>
+#include <type_traits>
 #include <utility>
 
 namespace CGAL {
 namespace Trivial_connections {
 namespace internal {
+
+/*
+  Eigen's simplicial factorizations in the order given (the package's own, see solver_traits.h): Sparse_factor
+  calls their analysis and numeric factorization apart, to write the factor's new memory between the two on two
+  threads (touch_simplicial_factor_storage()). Their solves go through Factor_substitutions, never through
+  Eigen_solver_traits::linear_solver(), which needs its factor() called.
+*/
+template <class SolverTraits>
+struct Simplicial_in_given_order : std::false_type
+{
+};
+
+template <class Matrix, int UpLo, class Index>
+struct Simplicial_in_given_order<
+  CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Matrix, UpLo, Eigen::NaturalOrdering<Index>>>> : std::true_type
+{
+};
+
+template <class Matrix, int UpLo, class Index>
+struct Simplicial_in_given_order<
+  CGAL::Eigen_solver_traits<Eigen::SimplicialLLT<Matrix, UpLo, Eigen::NaturalOrdering<Index>>>> : std::true_type
+{
+};
 
 /*
   The backend's factorization M = L D L^T of the constraint system, in the order the system was assembled in
@@ -56,8 +81,20 @@ public:
     m_substitutions_available = false;
     if(rows == 0)
       return;
-    double d = 1;
-    if(!m_solver.factor(*m_system, d))
+    bool factored = false;
+    if constexpr(Simplicial_in_given_order<SolverTraits>::value) {
+      auto& simplicial = m_solver.solver();
+      simplicial.analyzePattern(m_system->eigen_object());
+      if(simplicial.info() == Eigen::Success) {
+        touch_simplicial_factor_storage(simplicial);
+        simplicial.factorize(m_system->eigen_object());
+      }
+      factored = simplicial.info() == Eigen::Success;
+    } else {
+      double d = 1;
+      factored = m_solver.factor(*m_system, d);
+    }
+    if(!factored)
       throw Invalid_input(Error_code::solver_failure, "the sparse factorization of the constraint system failed");
     m_substitutions_available = Substitutions::available(m_solver);
     if(Substitutions_need_only_the_factor<SolverTraits>::value)

@@ -1,0 +1,72 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_FACTOR_STORAGE_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_FACTOR_STORAGE_H
+
+#include <CGAL/Trivial_connections/internal/concurrency.h>
+
+#include <Eigen/SparseCholesky>
+
+#include <cstddef>
+#include <future>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  The first write to a page of new memory costs a page fault; on a virtual machine it can cost more than the
+  arithmetic done there afterwards (about 11 us per 4 KiB page on the machine of benchmark/RESULTS.md, where the
+  factor of a 75k-face mesh is 3,000 pages and its numeric factorization 35 ms). The simplicial factorizations
+  allocate the factor in their symbolic analysis and first write it in the numeric one, on one thread. Between
+  the two, these functions write every page of it once, half on a second thread (concurrently()): page faults of
+  two threads are served at the same time. The factor is not yet written, so nothing is overwritten.
+*/
+template <class T>
+void write_every_page(T* first, std::ptrdiff_t count)
+{
+  constexpr std::ptrdiff_t per_page = std::ptrdiff_t(4096 / sizeof(T));
+  for(std::ptrdiff_t i = 0; i < count; i += per_page)
+    first[i] = T();
+}
+
+template <class T>
+void write_every_page_on_two_threads(T* first, std::ptrdiff_t count)
+{
+  const std::ptrdiff_t half = count / 2;
+  std::future<int> second = concurrently([first, half, count] {
+    write_every_page(first + half, count - half);
+    return 0;
+  });
+  write_every_page(first, half);
+  second.get();
+}
+
+// the factor of an Eigen simplicial factorization, a protected member (matrixL() asserts a factorization)
+template <class Simplicial>
+struct Simplicial_factor_member : Simplicial
+{
+  static auto pointer() { return &Simplicial_factor_member::m_matrix; } // a pointer to the base's member
+};
+
+// After analyzePattern() of an Eigen simplicial factorization (SimplicialLDLT, SimplicialLLT), before factorize():
+// the analysis reserved the factor's storage without writing it.
+template <class Simplicial>
+void touch_simplicial_factor_storage(Simplicial& factorization)
+{
+  auto& L = factorization.*(Simplicial_factor_member<Simplicial>::pointer());
+  const std::ptrdiff_t capacity = std::ptrdiff_t(L.data().allocatedSize());
+  if(capacity * std::ptrdiff_t(sizeof(double)) < (std::ptrdiff_t(1) << 20))
+    return; // below a megabyte the second thread costs more than it saves
+  write_every_page_on_two_threads(L.valuePtr(), capacity);
+  write_every_page_on_two_threads(L.innerIndexPtr(), capacity);
+}
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_FACTOR_STORAGE_H

@@ -504,7 +504,8 @@ def backend_table(backend, meshes, lines):
     lines.append("")
     head = ["mesh", "faces", "genus", "bnd loops", "sing.", "floor", "reference"] + [t for _, t in BUILD_PHASES] + \
         ["build", "solve", "re-solve", "field", "end-to-end / floor", "re-solve / floor", "end-to-end / ref",
-         "peak B/face", "ref peak B/face", "ref factor B/face", "ref GFlop", "reps"]
+         "peak B/face", "ref peak B/face", "ref factor B/face", "ref GFlop", "faults/face", "floor faults/face",
+         "reps"]
     lines.append("| " + " | ".join(head) + " |")
     lines.append("|" + "|".join(["---"] + ["---:"] * (len(head) - 1)) + "|")
     for mesh, e in sorted(pipelines(meshes).items(), key=mesh_order):
@@ -522,6 +523,7 @@ def backend_table(backend, meshes, lines):
                 fmt_num(c.get("r_end_to_end")),
                 fmt_num(c.get("peak_bytes_per_face"), 4), fmt_num(c.get("ref_peak_bytes_per_face"), 4),
                 fmt_num(c.get("ref_factor_bytes_per_face"), 4), fmt_num(c.get("ref_factor_gflops"), 3),
+                fmt_num(c.get("page_faults_per_face"), 3), fmt_num(c.get("floor_page_faults_per_face"), 3),
                 str(e["repetitions"])]
         lines.append("| " + " | ".join(row) + " |")
     lines.append("")
@@ -603,6 +605,10 @@ def main():
                  "called as a user would (`SimplicialLDLT` with its AMD ordering; CHOLMOD with its default "
                  "ordering choice, shown in parentheses when reported). Solve and re-solve show in parentheses the part spent choosing the loop "
                  "integers (when ≥ 0.1 ms). "
+                 "Every timed section, the solver's and each reference's, starts with the freed heap given back to "
+                 "the system (`malloc_trim`), so that each pays for the new memory it touches (on a virtual machine "
+                 "a first touch costs about 11 µs per 4 KiB page; runs before 2026-12-03 left the reference the "
+                 "warm memory of its untimed assembly). "
                  "Timings are medians over the repetitions (`reps`).")
     lines.append("- **The floor** (issue 20): per mesh, the fastest factorization of the same Laplacian that the build "
                  "has, each backend with its best ordering (SimplicialLDLT with AMD or METIS, supernodal CHOLMOD with its "
@@ -614,7 +620,9 @@ def main():
                  "B/face = the same for the reference (matrix + factorization); ref factor B/face = nnz(L) × 12 / faces "
                  "(8-byte value + 4-byte index per nonzero of the reference factor; for CHOLMOD its `lnz`); ref GFlop = "
                  "the work of the reference factorization, the sum over the columns of L of nnz(column)² (diagonal "
-                 "included, as CHOLMOD counts), in 10⁹.")
+                 "included, as CHOLMOD counts), in 10⁹. Faults/face: minor page faults (first touches of 4 KiB pages, "
+                 "or 2 MiB ones) over build, solves and field, and over the floor's analysis + factorization, per "
+                 "face (runs from 2026-12-03 on).")
     lines.append("- A phase shown as – was not reported (phase times come from the solver's progress callback). "
                  "Build type Release (-O3); Google Benchmark's \"Library was built as DEBUG\" warning is about "
                  "Debian's libbenchmark itself, not the code measured.")

@@ -24,27 +24,40 @@ namespace Trivial_connections {
 namespace internal {
 
 /*
-  Eigen's simplicial factorizations in the order given (the package's own, see solver_traits.h): Sparse_factor
-  calls their analysis and numeric factorization apart, to write the factor's new memory between the two on two
-  threads (touch_simplicial_factor_storage()). Their solves go through Factor_substitutions, never through
-  Eigen_solver_traits::linear_solver(), which needs its factor() called.
+  Backends whose analysis allocates the factor and whose numeric factorization first writes it (on one thread):
+  Sparse_factor calls the two apart and has every page of the new factor written in between, half on a second
+  thread (factor_storage.h). Eigen's simplicial factorizations in the order given and the package's CHOLMOD one;
+  their solves go through Factor_substitutions, never through Eigen_solver_traits::linear_solver(), which needs
+  its factor() called.
 */
 template <class SolverTraits>
-struct Simplicial_in_given_order : std::false_type
+struct Factorization_in_two_steps : std::false_type
 {
 };
 
 template <class Matrix, int UpLo, class Index>
-struct Simplicial_in_given_order<
+struct Factorization_in_two_steps<
   CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Matrix, UpLo, Eigen::NaturalOrdering<Index>>>> : std::true_type
 {
+  template <class Simplicial>
+  static void prepare(Simplicial& s) { touch_simplicial_factor_storage(s); }
 };
 
 template <class Matrix, int UpLo, class Index>
-struct Simplicial_in_given_order<
+struct Factorization_in_two_steps<
   CGAL::Eigen_solver_traits<Eigen::SimplicialLLT<Matrix, UpLo, Eigen::NaturalOrdering<Index>>>> : std::true_type
 {
+  template <class Simplicial>
+  static void prepare(Simplicial& s) { touch_simplicial_factor_storage(s); }
 };
+
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+template <>
+struct Factorization_in_two_steps<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>> : std::true_type
+{
+  static void prepare(Cholmod_supernodal_factorization& s) { s.prepare_factor_storage(); }
+};
+#endif
 
 /*
   The backend's factorization M = L D L^T of the constraint system, in the order the system was assembled in
@@ -82,14 +95,14 @@ public:
     if(rows == 0)
       return;
     bool factored = false;
-    if constexpr(Simplicial_in_given_order<SolverTraits>::value) {
-      auto& simplicial = m_solver.solver();
-      simplicial.analyzePattern(m_system->eigen_object());
-      if(simplicial.info() == Eigen::Success) {
-        touch_simplicial_factor_storage(simplicial);
-        simplicial.factorize(m_system->eigen_object());
+    if constexpr(Factorization_in_two_steps<SolverTraits>::value) {
+      auto& backend = m_solver.solver();
+      backend.analyzePattern(m_system->eigen_object());
+      if(backend.info() == Eigen::Success) {
+        Factorization_in_two_steps<SolverTraits>::prepare(backend);
+        backend.factorize(m_system->eigen_object());
       }
-      factored = simplicial.info() == Eigen::Success;
+      factored = backend.info() == Eigen::Success;
     } else {
       double d = 1;
       factored = m_solver.factor(*m_system, d);

@@ -57,16 +57,44 @@ namespace tc_bench {
 using trivial_connections_program::stop_idle_blas_threads;
 
 /*
-  The freed heap back to the system before every timed section, the solver's and each reference's alike: what a
-  timed section touches is then new memory for both, whatever ran before it. On a virtual machine the first
-  touch of a page can cost more than the work done on it (about 11 us per 4 KiB page on the machine of
-  RESULTS.md, see minor_page_faults()); without this the reference reused, warm, the memory that its untimed
-  assembly had just freed, and the solver did not.
+  The state of the heap at the start of every timed section, the solver's and each reference's alike, from
+  TC_BENCH_HEAP:
+  - cold (the default): the freed heap is given back to the system first (malloc_trim), so what a timed section
+    touches is new memory for both, whatever ran before it. On a virtual machine the first touch of a page can
+    cost more than the work done on it (about 11 us per 4 KiB page on the machine of RESULTS.md, see
+    minor_page_faults()).
+  - warm: malloc keeps all freed memory (no mmap, no trimming, set once), and each timed section runs once
+    untimed just before, so that both reuse memory already touched: the work alone. Peak memory is not
+    measured then (the resident size does not grow).
+  - warm-floor: the way of the runs before 2026-12-03: the solver cold, the floor reusing the memory its untimed
+    assembly had just freed.
 */
+enum class Heap_state { cold, warm, warm_floor };
+
+inline Heap_state heap_state()
+{
+  static const Heap_state state = [] {
+    const char* env = std::getenv("TC_BENCH_HEAP");
+    const std::string s = env ? env : "cold";
+    const Heap_state h = s == "warm" ? Heap_state::warm : s == "warm-floor" ? Heap_state::warm_floor : Heap_state::cold;
+    if(s != "cold" && s != "warm" && s != "warm-floor")
+      std::cerr << "[benchmark] TC_BENCH_HEAP: unknown state '" << s << "' (cold, warm, warm-floor): cold\n";
+#if defined(__GLIBC__)
+    if(h == Heap_state::warm) {
+      mallopt(M_MMAP_MAX, 0);
+      mallopt(M_TRIM_THRESHOLD, -1);
+    }
+#endif
+    return h;
+  }();
+  return state;
+}
+
 inline void release_free_heap()
 {
 #if defined(__GLIBC__)
-  malloc_trim(0);
+  if(heap_state() != Heap_state::warm)
+    malloc_trim(0);
 #endif
 }
 
@@ -292,11 +320,13 @@ Reference_result reference_factorization(std::size_t nv, const std::vector<Weigh
   std::vector<Eigen::Triplet<double>>().swap(t);
   result.assembly_seconds = seconds_since(t_assembly);
 
+  if(heap_state() == Heap_state::warm) { // the same factorization once, untimed, on memory it then leaves free
+    ReferenceSolver untimed;
+    untimed.analyzePattern(L);
+    untimed.factorize(L);
+  }
   ReferenceSolver solver;
-  // TC_BENCH_WARM_FLOOR=1: the way of the runs before 2026-12-03 (the factorization reuses the memory its untimed
-  // assembly freed), to compare
-  static const bool warm = std::getenv("TC_BENCH_WARM_FLOOR") && std::string(std::getenv("TC_BENCH_WARM_FLOOR")) == "1";
-  if(!warm)
+  if(heap_state() == Heap_state::cold)
     release_free_heap();
   const double faults = minor_page_faults();
   const auto t0 = Clock::now();

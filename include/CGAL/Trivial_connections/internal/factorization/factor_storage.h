@@ -59,9 +59,12 @@ inline void advise_huge_pages(void* first, std::size_t bytes)
 #endif
 }
 
+// Below a megabyte, nothing: the second thread would cost more than it saves.
 template <class T>
 void write_every_page_on_two_threads(T* first, std::ptrdiff_t count)
 {
+  if(count * std::ptrdiff_t(sizeof(T)) < (std::ptrdiff_t(1) << 20))
+    return;
   advise_huge_pages(first, std::size_t(count) * sizeof(T));
   const std::ptrdiff_t half = count / 2;
   std::future<int> second = concurrently([first, half, count] {
@@ -86,8 +89,6 @@ void touch_simplicial_factor_storage(Simplicial& factorization)
 {
   auto& L = factorization.*(Simplicial_factor_member<Simplicial>::pointer());
   const std::ptrdiff_t capacity = std::ptrdiff_t(L.data().allocatedSize());
-  if(capacity * std::ptrdiff_t(sizeof(double)) < (std::ptrdiff_t(1) << 20))
-    return; // below a megabyte the second thread costs more than it saves
   write_every_page_on_two_threads(L.valuePtr(), capacity);
   write_every_page_on_two_threads(L.innerIndexPtr(), capacity);
 }

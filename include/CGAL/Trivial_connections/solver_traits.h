@@ -59,16 +59,35 @@ public:
   /// \returns CHOLMOD's factor of the last factorization (owned by this object), or `nullptr`
   const cholmod_factor* factor() const { return m_cholmodFactor; }
 
-  /// Between `analyzePattern()` and `factorize()`: allocates the numeric factor, which the numeric factorization
-  /// would otherwise allocate, and writes each page of it once, half on a second thread (the first write of new
-  /// memory costs a page fault; see the user manual's section on performance). Does nothing without an analysis
-  /// or once the factor is numeric.
+  /// the numeric factorization, after `analyzePattern()`. The first one allocates the numeric factor itself
+  /// first and writes each page of it once, half on a second thread, before CHOLMOD fills it (the first write
+  /// of new memory costs a page fault; see the user manual's section on performance).
+  /// \param matrix the matrix analysed (its lower triangle is read)
+  void factorize(const Eigen::SparseMatrix<double>& matrix)
+  {
+    prepare_factor_storage();
+    Base::factorize(matrix);
+  }
+  /// `analyzePattern()` then `factorize()`
+  /// \param matrix the matrix to factor (its lower triangle is read)
+  /// \returns this factorization
+  Cholmod_supernodal_factorization& compute(const Eigen::SparseMatrix<double>& matrix)
+  {
+    Base::analyzePattern(matrix);
+    factorize(matrix);
+    return *this;
+  }
+
+private:
+  using Base = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
+
+  // the conversion cholmod_super_numeric() would make (symbolic supernodal -> real supernodal L L^T), with the
+  // new storage written; nothing without an analysis or once the factor is numeric (a refactorization)
   void prepare_factor_storage()
   {
     cholmod_factor* L = m_cholmodFactor;
     if(L == nullptr || !L->is_super || L->xtype != CHOLMOD_PATTERN)
       return;
-    // the conversion cholmod_super_numeric() would make: symbolic supernodal -> real supernodal L L^T
     if(!cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, L, &cholmod()) || L->x == nullptr)
       return; // out of memory: the numeric factorization reports it
     internal::write_every_page_on_two_threads(static_cast<double*>(L->x), std::ptrdiff_t(L->xsize));
@@ -143,11 +162,7 @@ public:
     }
     m_simplicial.reset();
     m_cholmod = std::make_shared<Cholmod_supernodal_factorization>();
-    m_cholmod->analyzePattern(M);
-    if(m_cholmod->info() == Eigen::Success) {
-      m_cholmod->prepare_factor_storage();
-      m_cholmod->factorize(M);
-    }
+    m_cholmod->compute(M);
     m_backend = Backend::cholmod_supernodal;
     return m_cholmod->info() == Eigen::Success;
   }

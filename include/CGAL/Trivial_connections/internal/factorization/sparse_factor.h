@@ -26,9 +26,9 @@ namespace internal {
 /*
   Backends whose analysis allocates the factor and whose numeric factorization first writes it (on one thread):
   Sparse_factor calls the two apart and has every page of the new factor written in between, half on a second
-  thread (factor_storage.h). Eigen's simplicial factorizations in the order given and the package's CHOLMOD one;
-  their solves go through Factor_substitutions, never through Eigen_solver_traits::linear_solver(), which needs
-  its factor() called.
+  thread (factor_storage.h). Eigen's simplicial factorizations in the order given (the package's CHOLMOD one does
+  it in its own factorize()); their solves go through Factor_substitutions, never through
+  Eigen_solver_traits::linear_solver(), which needs its factor() called.
 */
 template <class SolverTraits>
 struct Factorization_in_two_steps : std::false_type
@@ -50,14 +50,6 @@ struct Factorization_in_two_steps<
   template <class Simplicial>
   static void prepare(Simplicial& s) { touch_simplicial_factor_storage(s); }
 };
-
-#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-template <>
-struct Factorization_in_two_steps<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>> : std::true_type
-{
-  static void prepare(Cholmod_supernodal_factorization& s) { s.prepare_factor_storage(); }
-};
-#endif
 
 /*
   The backend's factorization M = L D L^T of the constraint system, in the order the system was assembled in

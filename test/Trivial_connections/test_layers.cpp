@@ -10,6 +10,7 @@
 #include "test_support.h"
 
 #include <CGAL/Trivial_connections/internal/factorization/checked_solve.h>
+#include <CGAL/Trivial_connections/internal/factorization/ldlt_on_two_threads.h>
 #include <CGAL/Trivial_connections/internal/factorization/prefactored_system.h>
 #include <CGAL/Trivial_connections/internal/field/field_propagation.h>
 #include <CGAL/Trivial_connections/internal/integers/closest_vector.h>
@@ -21,6 +22,7 @@
 #include <CGAL/Trivial_connections/internal/topology/loop_holonomy.h>
 
 #include <optional>
+#include <thread>
 
 namespace {
 
@@ -908,4 +910,105 @@ TEST(Factor_cost, predicted_from_the_pattern_as_the_analysis_counts_it)
   TC::Cost_based_solver_traits<Always_supernodal> supernodal;
   check(supernodal, TC::Factorization_backend::cholmod_supernodal);
 #endif
+}
+
+namespace {
+
+// An SPD matrix of a node pattern (a shifted graph Laplacian with uneven weights) in Eigen's AMD order.
+Eigen::SparseMatrix<double> amd_ordered_laplacian(const Node_pattern& pattern)
+{
+  const int n = pattern.n;
+  std::vector<Eigen::Triplet<double>> entries;
+  for(int c = 0; c < n; ++c) {
+    double diagonal = 1e-3;
+    for(int p = pattern.start[std::size_t(c)]; p < pattern.start[std::size_t(c) + 1]; ++p) {
+      const int r = pattern.rows[std::size_t(p)];
+      if(r == c)
+        continue;
+      const double w = 1. + 0.25 * double((std::min(r, c) * 7 + std::max(r, c) * 3) % 5);
+      entries.emplace_back(r, c, -w);
+      diagonal += w;
+    }
+    entries.emplace_back(c, c, diagonal);
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  std::vector<int> amd;
+  TCI::amd_order(n, pattern.start, pattern.rows, amd);
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(n);
+  for(int k = 0; k < n; ++k) P.indices()[amd[std::size_t(k)]] = k; // row -> position
+  Eigen::SparseMatrix<double> ordered(n, n);
+  ordered = A.twistedBy(P);
+  return ordered;
+}
+
+// Factors `full` (its triangle UpLo) with Eigen and with Ldlt_on_two_threads; returns whether the latter ran.
+template <int UpLo>
+bool expect_two_threads_equal_eigen(const Eigen::SparseMatrix<double>& full, Eigen::ComputationInfo expected)
+{
+  using Ldlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, UpLo, Eigen::NaturalOrdering<int>>;
+  const Eigen::SparseMatrix<double> stored = full.triangularView<UpLo>();
+  Ldlt eigen, ours;
+  eigen.compute(stored);
+  ours.analyzePattern(stored);
+  const bool on_two_threads = TCI::Ldlt_on_two_threads<Ldlt>::factorize(ours, stored);
+  if(!on_two_threads)
+    ours.factorize(stored);
+  EXPECT_EQ(eigen.info(), expected);
+  EXPECT_EQ(ours.info(), expected);
+  if(expected != Eigen::Success)
+    return on_two_threads;
+  const auto& L0 = eigen.matrixL().nestedExpression();
+  const auto& L1 = ours.matrixL().nestedExpression();
+  EXPECT_EQ(L0.nonZeros(), L1.nonZeros());
+  if(L0.nonZeros() != L1.nonZeros())
+    return on_two_threads;
+  int different_rows = 0;
+  double worst = 0;
+  for(Eigen::Index p = 0; p < L0.nonZeros(); ++p) {
+    different_rows += L0.innerIndexPtr()[p] != L1.innerIndexPtr()[p];
+    worst = (std::max)(worst, std::abs(L0.valuePtr()[p] - L1.valuePtr()[p]) / (1 + std::abs(L0.valuePtr()[p])));
+  }
+  for(Eigen::Index j = 0; j < full.rows(); ++j)
+    worst = (std::max)(worst, std::abs(eigen.vectorD()[j] - ours.vectorD()[j]) / std::abs(eigen.vectorD()[j]));
+  EXPECT_EQ(different_rows, 0) << "the same entries of L, in the same places";
+  EXPECT_LT(worst, 1e-12) << "the same values up to rounding";
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(full.rows(), -1., 2.);
+  const Eigen::VectorXd x = ours.solve(b);
+  EXPECT_LT((full * x - b).norm(), 1e-9 * b.norm());
+  return on_two_threads;
+}
+
+} // namespace
+
+/*
+  The numeric factorization on two threads (internal/factorization/ldlt_on_two_threads.h) is Eigen's own up to
+  rounding: the same entries of L in the same places, values and pivots within 1e-12, on patterns whose
+  elimination trees split differently (one closed surface; two components, a forest; a disk, whose boundary is
+  one node joined to every boundary vertex), from either triangle. A zero pivot is reported as Eigen reports it,
+  and a small matrix is left to Eigen.
+*/
+TEST(Ldlt_on_two_threads, equals_eigens_factorization_up_to_rounding)
+{
+#ifdef CGAL_TRIVIAL_CONNECTIONS_NO_THREADS
+  const bool expected_threads = false;
+#else
+  const bool expected_threads = std::thread::hardware_concurrency() > 1;
+#endif
+  const std::vector<std::pair<std::string, Surface_mesh>> meshes = {
+    {"icosphere", icosphere(6)}, {"two spheres", two_spheres(5)}, {"disk", disk(90, 360)}};
+  for(const auto& [name, mesh] : meshes) {
+    SCOPED_TRACE(name);
+    const Eigen::SparseMatrix<double> full = amd_ordered_laplacian(node_pattern(mesh));
+    EXPECT_EQ(expect_two_threads_equal_eigen<Eigen::Upper>(full, Eigen::Success), expected_threads);
+    EXPECT_EQ(expect_two_threads_equal_eigen<Eigen::Lower>(full, Eigen::Success), expected_threads);
+  }
+  // a row and column of zeros: a zero pivot
+  Eigen::SparseMatrix<double> singular = amd_ordered_laplacian(node_pattern(icosphere(6)));
+  const Eigen::Index zero = singular.rows() / 3;
+  singular.prune([zero](Eigen::Index r, Eigen::Index c, double) { return r != zero && c != zero; });
+  EXPECT_EQ(expect_two_threads_equal_eigen<Eigen::Upper>(singular, Eigen::NumericalIssue), expected_threads);
+  // below the threshold (about 3 ms of work): Eigen's
+  EXPECT_FALSE(expect_two_threads_equal_eigen<Eigen::Upper>(amd_ordered_laplacian(node_pattern(icosphere(3))),
+                                                            Eigen::Success));
 }

@@ -10,6 +10,7 @@
 #include <CGAL/Eigen_solver_traits.h>
 #include <CGAL/Trivial_connections/internal/factorization/factor_cost.h>
 #include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
+#include <CGAL/Trivial_connections/internal/factorization/ldlt_on_two_threads.h>
 
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
@@ -155,8 +156,10 @@ public:
     m_nonzeros = cost.nonzeros;
     m_flops = cost.flops;
     if(m_flops <= Crossover::flops_per_nonzero * m_nonzeros + Crossover::fixed_flops) {
-      internal::touch_simplicial_factor_storage(static_cast<Simplicial&>(*m_simplicial));
-      m_simplicial->factorize(M);
+      Simplicial& simplicial = *m_simplicial;
+      internal::touch_simplicial_factor_storage(simplicial);
+      if(!internal::Ldlt_on_two_threads<Simplicial>::factorize(simplicial, M))
+        simplicial.factorize(M);
       m_backend = Backend::simplicial_ldlt;
       return m_simplicial->info() == Eigen::Success;
     }

@@ -8,6 +8,7 @@
 
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
+#include <CGAL/Trivial_connections/internal/factorization/ldlt_on_two_threads.h>
 #include <CGAL/Trivial_connections/internal/system/system_assembly.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 
@@ -41,6 +42,13 @@ struct Factorization_in_two_steps<
 {
   template <class Simplicial>
   static void prepare(Simplicial& s) { touch_simplicial_factor_storage(s); }
+  // on two threads where it pays (ldlt_on_two_threads.h)
+  template <class Simplicial>
+  static void factorize(Simplicial& s, const Eigen::SparseMatrix<double>& M)
+  {
+    if(!Ldlt_on_two_threads<Simplicial>::factorize(s, M))
+      s.factorize(M);
+  }
 };
 
 template <class Matrix, int UpLo, class Index>
@@ -49,6 +57,8 @@ struct Factorization_in_two_steps<
 {
   template <class Simplicial>
   static void prepare(Simplicial& s) { touch_simplicial_factor_storage(s); }
+  template <class Simplicial>
+  static void factorize(Simplicial& s, const Eigen::SparseMatrix<double>& M) { s.factorize(M); }
 };
 
 /*
@@ -92,7 +102,7 @@ public:
       backend.analyzePattern(m_system->eigen_object());
       if(backend.info() == Eigen::Success) {
         Factorization_in_two_steps<SolverTraits>::prepare(backend);
-        backend.factorize(m_system->eigen_object());
+        Factorization_in_two_steps<SolverTraits>::factorize(backend, m_system->eigen_object());
       }
       factored = backend.info() == Eigen::Success;
     } else {

@@ -267,6 +267,25 @@ INSTANTIATE_TEST_SUITE_P(Generated, All_checks,
 // Values known from CONVENTIONS.md alone
 // ---------------------------------------------------------------------------------------------------
 
+// Meshes large enough for the numeric factorization to run on two threads (ldlt_on_two_threads.h, above about
+// 1e7 flops): a torus (its generator rows come last, with the separators at the root) and a disk (its boundary
+// one node), every check.
+TEST(Large_meshes, every_check_with_the_factorization_on_two_threads)
+{
+  const std::vector<std::pair<std::string, Surface_mesh>> meshes = {{"torus", torus(1, 0.4, 240, 96)},
+                                                                    {"disk", disk(100, 300)}};
+  for(const auto& [name, tm] : meshes) {
+    SCOPED_TRACE(name);
+    const Mesh_view<Surface_mesh> view(tm);
+    Solver<Surface_mesh> solver(tm);
+    check_loops(view, solver);
+    const Singularities sing = plan_singularities(view, 4);
+    const Solution<Surface_mesh> s = solve_and_check(view, solver, sing, 4);
+    EXPECT_LT(s.report.max_vertex_residual, 1e-9);
+    EXPECT_LT(s.report.max_loop_residual, 1e-9);
+  }
+}
+
 TEST(Known_values, flat_disk_without_singularities_is_a_constant_field_with_boundary_index_1)
 {
   // a constant field is parallel for x = 0 (flat), has energy 0 (optimal) and k_B = 1 (CONVENTIONS.md)

@@ -156,10 +156,7 @@ public:
     m_nonzeros = cost.nonzeros;
     m_flops = cost.flops;
     if(m_flops <= Crossover::flops_per_nonzero * m_nonzeros + Crossover::fixed_flops) {
-      Simplicial& simplicial = *m_simplicial;
-      internal::touch_simplicial_factor_storage(simplicial);
-      if(!internal::Ldlt_on_two_threads<Simplicial>::factorize(simplicial, M))
-        simplicial.factorize(M);
+      internal::factorize_analysed_ldlt(static_cast<Simplicial&>(*m_simplicial), M);
       m_backend = Backend::simplicial_ldlt;
       return m_simplicial->info() == Eigen::Success;
     }

@@ -7,6 +7,7 @@
 #define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_LDLT_ON_TWO_THREADS_H
 
 #include <CGAL/Trivial_connections/internal/concurrency.h>
+#include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
 
 #include <Eigen/SparseCholesky>
 
@@ -449,6 +450,18 @@ private:
   std::vector<int> m_first_top_entry;              // per column: its first entry in a top row
   std::atomic<bool> m_pivot_zero{false};
 };
+
+// After analyzePattern() of an Eigen SimplicialLDLT with the natural ordering: its numeric factorization of M, on
+// two threads where that pays; otherwise Eigen's, after the factor's pages are written on two threads
+// (factor_storage.h). On two threads the pages of the factor are first written by both threads anyway.
+template <class Simplicial>
+void factorize_analysed_ldlt(Simplicial& s, const Eigen::SparseMatrix<double>& M)
+{
+  if(!Ldlt_on_two_threads<Simplicial>::factorize(s, M)) {
+    touch_simplicial_factor_storage(s);
+    s.factorize(M);
+  }
+}
 
 } // namespace internal
 } // namespace Trivial_connections

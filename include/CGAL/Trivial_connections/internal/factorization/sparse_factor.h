@@ -26,10 +26,11 @@ namespace internal {
 
 /*
   Backends whose analysis allocates the factor and whose numeric factorization first writes it (on one thread):
-  Sparse_factor calls the two apart and has every page of the new factor written in between, half on a second
-  thread (factor_storage.h). Eigen's simplicial factorizations in the order given (the package's CHOLMOD one does
-  it in its own factorize()); their solves go through Factor_substitutions, never through
-  Eigen_solver_traits::linear_solver(), which needs its factor() called.
+  Sparse_factor calls the two apart, and factorize() here does the numeric step so that the factor's new pages
+  are written on two threads: LDL^T on two threads where it pays (ldlt_on_two_threads.h), otherwise every page
+  written once beforehand, half on a second thread (factor_storage.h). Eigen's simplicial factorizations in the
+  order given (the package's CHOLMOD one does it in its own factorize()); their solves go through
+  Factor_substitutions, never through Eigen_solver_traits::linear_solver(), which needs its factor() called.
 */
 template <class SolverTraits>
 struct Factorization_in_two_steps : std::false_type
@@ -41,14 +42,7 @@ struct Factorization_in_two_steps<
   CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Matrix, UpLo, Eigen::NaturalOrdering<Index>>>> : std::true_type
 {
   template <class Simplicial>
-  static void prepare(Simplicial& s) { touch_simplicial_factor_storage(s); }
-  // on two threads where it pays (ldlt_on_two_threads.h)
-  template <class Simplicial>
-  static void factorize(Simplicial& s, const Eigen::SparseMatrix<double>& M)
-  {
-    if(!Ldlt_on_two_threads<Simplicial>::factorize(s, M))
-      s.factorize(M);
-  }
+  static void factorize(Simplicial& s, const Eigen::SparseMatrix<double>& M) { factorize_analysed_ldlt(s, M); }
 };
 
 template <class Matrix, int UpLo, class Index>
@@ -56,9 +50,11 @@ struct Factorization_in_two_steps<
   CGAL::Eigen_solver_traits<Eigen::SimplicialLLT<Matrix, UpLo, Eigen::NaturalOrdering<Index>>>> : std::true_type
 {
   template <class Simplicial>
-  static void prepare(Simplicial& s) { touch_simplicial_factor_storage(s); }
-  template <class Simplicial>
-  static void factorize(Simplicial& s, const Eigen::SparseMatrix<double>& M) { s.factorize(M); }
+  static void factorize(Simplicial& s, const Eigen::SparseMatrix<double>& M)
+  {
+    touch_simplicial_factor_storage(s);
+    s.factorize(M);
+  }
 };
 
 /*
@@ -100,10 +96,8 @@ public:
     if constexpr(Factorization_in_two_steps<SolverTraits>::value) {
       auto& backend = m_solver.solver();
       backend.analyzePattern(m_system->eigen_object());
-      if(backend.info() == Eigen::Success) {
-        Factorization_in_two_steps<SolverTraits>::prepare(backend);
+      if(backend.info() == Eigen::Success)
         Factorization_in_two_steps<SolverTraits>::factorize(backend, m_system->eigen_object());
-      }
       factored = backend.info() == Eigen::Success;
     } else {
       double d = 1;

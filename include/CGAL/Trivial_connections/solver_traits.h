@@ -113,11 +113,11 @@ enum class Factorization_backend
 Chooses its backend per factorization by predicted cost: Eigen's `SimplicialLDLT` or
 `Cholmod_supernodal_factorization`. The symbolic analysis of the simplicial factorization (which it reuses
 when it keeps that backend) gives the nonzeros `nnz` and the flops `sum c_j^2` of the factor, c_j its column
-counts; a simplicial factorization costs about `flops / 2.2e9` seconds on the machine of benchmark/RESULTS.md
-and a supernodal one (CHOLMOD with OpenBLAS) about `5e-8 nnz + 0.03` seconds, nearly independent of the flops
-per column. The factorization is supernodal when `flops > flops_per_nonzero * nnz + fixed_flops`, by default
-110 flops per nonzero and 6.6e7 flops (the crossover measured there: meshes with long columns, or of about
-150k vertices and more). Available with CHOLMOD (`CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD`); the command-line
+counts; a supernodal factorization (CHOLMOD with OpenBLAS) costs nearly the same per nonzero whatever the flops
+per column, a simplicial one grows with the flops. The factorization is supernodal when
+`flops > flops_per_nonzero * nnz + fixed_flops`, by default 110 flops per nonzero and 9e8 flops (the crossover
+measured on the machine of benchmark/RESULTS.md with the simplicial factorization on two threads, see
+`Measured_crossover`: meshes with long columns, or of about 500k faces and more). Available with CHOLMOD (`CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD`); the command-line
 program uses it, with `Measured_crossover`.
 \tparam Crossover a class with `static constexpr double` members `flops_per_nonzero` and `fixed_flops`
 */
@@ -217,12 +217,16 @@ private:
 
 /*!
 \ingroup PkgTrivialConnectionsRef
-The crossover of `Cost_based_solver_traits` measured on the machine of benchmark/RESULTS.md (2 cores, OpenBLAS)
+The crossover of `Cost_based_solver_traits` measured on the machine of benchmark/RESULTS.md (2 cores, OpenBLAS),
+factorization phase of the solver, simplicial on two threads against supernodal (2026-12-03): 302k faces
+(1.43 GFlop, 6.3M nonzeros) 0.43-0.54 s against 0.52-0.62 s; 1.2M faces, genus 0 (4.8 GFlop, 23.6M nonzeros)
+5.9-6.0 s against 2.7 s; 1.1M faces, genus 133 (6.9 GFlop, 25M nonzeros) 2.9 s against 2.5 s. On one thread the
+simplicial factorization is about a quarter slower (the crossover measured before was 110 per nonzero + 6.6e7).
 */
 struct Measured_crossover
 {
   static constexpr double flops_per_nonzero = 110; ///< flops per nonzero of the factor
-  static constexpr double fixed_flops = 6.6e7;     ///< flops of the supernodal factorization's fixed cost
+  static constexpr double fixed_flops = 9e8;       ///< flops of the supernodal factorization's fixed cost
 };
 
 /// \ingroup PkgTrivialConnectionsRef

@@ -82,6 +82,17 @@ struct Simplicial_factor_member : Simplicial
   static auto pointer() { return &Simplicial_factor_member::m_matrix; } // a pointer to the base's member
 };
 
+// After analyzePattern() of an Eigen simplicial factorization: transparent huge pages offered for the factor's
+// arrays (see advise_huge_pages()), for a numeric factorization that writes them on two threads itself.
+template <class Simplicial>
+void advise_huge_pages_for_simplicial_factor(Simplicial& factorization)
+{
+  auto& L = factorization.*(Simplicial_factor_member<Simplicial>::pointer());
+  const std::size_t capacity = std::size_t(L.data().allocatedSize());
+  advise_huge_pages(L.valuePtr(), capacity * sizeof(*L.valuePtr()));
+  advise_huge_pages(L.innerIndexPtr(), capacity * sizeof(*L.innerIndexPtr()));
+}
+
 // After analyzePattern() of an Eigen simplicial factorization (SimplicialLDLT, SimplicialLLT), before factorize():
 // the analysis reserved the factor's storage without writing it.
 template <class Simplicial>

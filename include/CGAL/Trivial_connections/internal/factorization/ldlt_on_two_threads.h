@@ -453,10 +453,12 @@ private:
 
 // After analyzePattern() of an Eigen SimplicialLDLT with the natural ordering: its numeric factorization of M, on
 // two threads where that pays; otherwise Eigen's, after the factor's pages are written on two threads
-// (factor_storage.h). On two threads the pages of the factor are first written by both threads anyway.
+// (factor_storage.h). On two threads the pages of the factor are first written by both threads anyway; a large
+// factor is offered huge pages either way.
 template <class Simplicial>
 void factorize_analysed_ldlt(Simplicial& s, const Eigen::SparseMatrix<double>& M)
 {
+  advise_huge_pages_for_simplicial_factor(s);
   if(!Ldlt_on_two_threads<Simplicial>::factorize(s, M)) {
     touch_simplicial_factor_storage(s);
     s.factorize(M);

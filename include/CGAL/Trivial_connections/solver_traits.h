@@ -117,7 +117,7 @@ counts; a supernodal factorization (CHOLMOD with OpenBLAS) costs nearly the same
 per column, a simplicial one grows with the flops. The factorization is supernodal when
 `flops > flops_per_nonzero * nnz + fixed_flops`, by default 110 flops per nonzero and 9e8 flops (the crossover
 measured on the machine of benchmark/RESULTS.md with the simplicial factorization on two threads, see
-`Measured_crossover`: meshes with long columns, or of about 500k faces and more). Available with CHOLMOD (`CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD`); the command-line
+`Measured_crossover`: meshes with long columns, or of about 350k faces and more). Available with CHOLMOD (`CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD`); the command-line
 program uses it, with `Measured_crossover`.
 \tparam Crossover a class with `static constexpr double` members `flops_per_nonzero` and `fixed_flops`
 */

@@ -75,11 +75,24 @@ void write_every_page_on_two_threads(T* first, std::ptrdiff_t count)
   second.get();
 }
 
-// the factor of an Eigen simplicial factorization, a protected member (matrixL() asserts a factorization)
+// the protected members of an Eigen simplicial factorization (matrixL() asserts a finished factorization), reached
+// through pointers to members
 template <class Simplicial>
-struct Simplicial_factor_member : Simplicial
+struct Simplicial_members : Simplicial
 {
-  static auto pointer() { return &Simplicial_factor_member::m_matrix; } // a pointer to the base's member
+  static auto& factor(Simplicial& s) { return s.*(&Simplicial_members::m_matrix); }
+  static auto& diagonal(Simplicial& s) { return s.*(&Simplicial_members::m_diag); }
+  static auto& parent(Simplicial& s) { return s.*(&Simplicial_members::m_parent); }
+  static auto& column_counts(Simplicial& s) { return s.*(&Simplicial_members::m_nonZerosPerCol); }
+  static auto& permutation(Simplicial& s) { return s.*(&Simplicial_members::m_P); }
+  static bool analysed(Simplicial& s) { return s.*(&Simplicial_members::m_analysisIsOk); }
+  static double shift_offset(Simplicial& s) { return s.*(&Simplicial_members::m_shiftOffset); }
+  static double shift_scale(Simplicial& s) { return s.*(&Simplicial_members::m_shiftScale); }
+  static void set_factorized(Simplicial& s, Eigen::ComputationInfo info)
+  {
+    s.*(&Simplicial_members::m_info) = info;
+    s.*(&Simplicial_members::m_factorizationIsOk) = true;
+  }
 };
 
 // After analyzePattern() of an Eigen simplicial factorization: transparent huge pages offered for the factor's
@@ -87,7 +100,7 @@ struct Simplicial_factor_member : Simplicial
 template <class Simplicial>
 void advise_huge_pages_for_simplicial_factor(Simplicial& factorization)
 {
-  auto& L = factorization.*(Simplicial_factor_member<Simplicial>::pointer());
+  auto& L = Simplicial_members<Simplicial>::factor(factorization);
   const std::size_t capacity = std::size_t(L.data().allocatedSize());
   advise_huge_pages(L.valuePtr(), capacity * sizeof(*L.valuePtr()));
   advise_huge_pages(L.innerIndexPtr(), capacity * sizeof(*L.innerIndexPtr()));
@@ -98,7 +111,7 @@ void advise_huge_pages_for_simplicial_factor(Simplicial& factorization)
 template <class Simplicial>
 void touch_simplicial_factor_storage(Simplicial& factorization)
 {
-  auto& L = factorization.*(Simplicial_factor_member<Simplicial>::pointer());
+  auto& L = Simplicial_members<Simplicial>::factor(factorization);
   const std::ptrdiff_t capacity = std::ptrdiff_t(L.data().allocatedSize());
   write_every_page_on_two_threads(L.valuePtr(), capacity);
   write_every_page_on_two_threads(L.innerIndexPtr(), capacity);

@@ -46,25 +46,6 @@ namespace internal {
   relative differences about 1e-15). Measured on the 2-core VM of benchmark/RESULTS.md, warm heap, factor pages
   written beforehand: 75k faces 33-38 -> 26-27 ms, 302k faces 386-423 -> 283-298 ms.
 */
-// the protected members of an Eigen simplicial factorization, reached through pointers to members
-template <class Simplicial>
-struct Simplicial_members : Simplicial
-{
-  static auto& factor(Simplicial& s) { return s.*(&Simplicial_members::m_matrix); }
-  static auto& diagonal(Simplicial& s) { return s.*(&Simplicial_members::m_diag); }
-  static auto& parent(Simplicial& s) { return s.*(&Simplicial_members::m_parent); }
-  static auto& column_counts(Simplicial& s) { return s.*(&Simplicial_members::m_nonZerosPerCol); }
-  static auto& permutation(Simplicial& s) { return s.*(&Simplicial_members::m_P); }
-  static bool analysed(Simplicial& s) { return s.*(&Simplicial_members::m_analysisIsOk); }
-  static double shift_offset(Simplicial& s) { return s.*(&Simplicial_members::m_shiftOffset); }
-  static double shift_scale(Simplicial& s) { return s.*(&Simplicial_members::m_shiftScale); }
-  static void set_factorized(Simplicial& s, Eigen::ComputationInfo info)
-  {
-    s.*(&Simplicial_members::m_info) = info;
-    s.*(&Simplicial_members::m_factorizationIsOk) = true;
-  }
-};
-
 template <class Simplicial>
 class Ldlt_on_two_threads
 {

@@ -942,16 +942,18 @@ Eigen::SparseMatrix<double> amd_ordered_laplacian(const Node_pattern& pattern)
   return ordered;
 }
 
-// Factors `full` (its triangle UpLo) with Eigen and with Ldlt_on_two_threads; returns whether the latter ran.
+// Factors `full` (its triangle UpLo) with Eigen and with Ldlt_on_two_threads; returns whether the latter ran, and
+// in `full_top_block` whether it factored the top rows as a dense block.
 template <int UpLo>
-bool expect_two_threads_equal_eigen(const Eigen::SparseMatrix<double>& full, Eigen::ComputationInfo expected)
+bool expect_two_threads_equal_eigen(const Eigen::SparseMatrix<double>& full, Eigen::ComputationInfo expected,
+                                    bool* full_top_block = nullptr)
 {
   using Ldlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, UpLo, Eigen::NaturalOrdering<int>>;
   const Eigen::SparseMatrix<double> stored = full.triangularView<UpLo>();
   Ldlt eigen, ours;
   eigen.compute(stored);
   ours.analyzePattern(stored);
-  const bool on_two_threads = TCI::Ldlt_on_two_threads<Ldlt>::factorize(ours, stored);
+  const bool on_two_threads = TCI::Ldlt_on_two_threads<Ldlt>::factorize(ours, stored, full_top_block);
   if(!on_two_threads)
     ours.factorize(stored);
   EXPECT_EQ(eigen.info(), expected);
@@ -985,7 +987,8 @@ bool expect_two_threads_equal_eigen(const Eigen::SparseMatrix<double>& full, Eig
   The numeric factorization on two threads (internal/factorization/ldlt_on_two_threads.h) is Eigen's own up to
   rounding: the same entries of L in the same places, values and pivots within 1e-12, on patterns whose
   elimination trees split differently (one closed surface; two components, a forest; a disk, whose boundary is
-  one node joined to every boundary vertex), from either triangle. A zero pivot is reported as Eigen reports it,
+  one node joined to every boundary vertex), from either triangle, with the top rows factored as a dense block
+  (the sphere) and row by row (the others). A zero pivot is reported as Eigen reports it,
   and a small matrix is left to Eigen.
 */
 TEST(Ldlt_on_two_threads, equals_eigens_factorization_up_to_rounding)
@@ -999,14 +1002,24 @@ TEST(Ldlt_on_two_threads, equals_eigens_factorization_up_to_rounding)
   const std::vector<std::pair<std::string, Surface_mesh>> meshes = {
     {"icosphere", icosphere(5)}, {"two spheres", two_spheres(5)}, {"disk", disk(60, 240)}};
   Eigen::SparseMatrix<double> sphere;
+  int full_top_blocks = 0, sparse_top_blocks = 0;
   for(const auto& [name, mesh] : meshes) {
     SCOPED_TRACE(name);
     const Eigen::SparseMatrix<double> full = amd_ordered_laplacian(node_pattern(mesh));
-    EXPECT_EQ(expect_two_threads_equal_eigen<Eigen::Upper>(full, Eigen::Success), expected_threads);
-    EXPECT_EQ(expect_two_threads_equal_eigen<Eigen::Lower>(full, Eigen::Success), expected_threads);
+    for(bool upper : {true, false}) {
+      bool full_top_block = false;
+      EXPECT_EQ(upper ? expect_two_threads_equal_eigen<Eigen::Upper>(full, Eigen::Success, &full_top_block)
+                      : expect_two_threads_equal_eigen<Eigen::Lower>(full, Eigen::Success, &full_top_block),
+                expected_threads);
+      if(name == "icosphere")
+        EXPECT_EQ(full_top_block, expected_threads) << "a sphere's root separator is a dense block";
+      ++(full_top_block ? full_top_blocks : sparse_top_blocks);
+    }
     if(name == "icosphere")
       sphere = full;
   }
+  if(expected_threads)
+    EXPECT_GT(sparse_top_blocks, 0) << "the top rows' sparse path is tried too";
   // a row and column of zeros: a zero pivot
   Eigen::SparseMatrix<double> singular = sphere;
   const Eigen::Index zero = singular.rows() / 3;

@@ -9,6 +9,7 @@
 #include <CGAL/Trivial_connections/internal/concurrency.h>
 #include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
 
+#include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
@@ -34,8 +35,9 @@ namespace internal {
   root, which holds about 40 % of the work, as much in its rows' entries in subtree columns as in the chain.
   So the top rows go in three steps: (1) each top row's entries in subtree columns, which read only subtree
   rows: the rows are independent; (2) each top row's right-hand side in the top columns, A(t,k) minus the sum
-  over subtree columns j of L(t,j) D(j) L(k,j), kept in the entries of row k; (3) the up-looking step in the top
-  columns only, one row after the other. The first thread finds where the entries of top rows go in each column
+  over subtree columns j of L(t,j) D(j) L(k,j), kept in the entries of row k; (3) the top columns: when the top
+  rows are the last ones and their block is full (a mesh's root separator), a blocked dense LDL^T there; else
+  the up-looking step in the top columns only, one row after the other. The first thread finds where the entries of top rows go in each column
   (after the subtree rows, in row order: two passes over their patterns, writing straight into the factor's
   index array, already written once) while the second starts the subtrees. In steps (1) and (2) one thread goes
   up from the first top row and the other down from the last, so that neighbouring entries of a column are
@@ -57,11 +59,15 @@ class Ldlt_on_two_threads
 public:
   // After s.analyzePattern(a) succeeded: the numeric factorization of `a` (the matrix given to the analysis,
   // with the triangle `Simplicial` reads). Returns false when it did not run on two threads (too small, or no
-  // second thread): the caller then calls s.factorize(a).
-  static bool factorize(Simplicial& s, const Sparse& a)
+  // second thread): the caller then calls s.factorize(a). `full_top_block`, when given, tells which way step (3)
+  // went (for the tests).
+  static bool factorize(Simplicial& s, const Sparse& a, bool* full_top_block = nullptr)
   {
     Ldlt_on_two_threads worker(s);
-    return worker.run(a);
+    const bool ran = worker.run(a);
+    if(full_top_block != nullptr)
+      *full_top_block = ran && worker.m_full_top_block;
+    return ran;
   }
 
 private:
@@ -154,9 +160,14 @@ private:
     };
     on_two_threads([this, upper](int q, Workspace& w) { top_row_in_subtree_columns(*upper, q, w); });
     on_two_threads([this, upper](int q, Workspace& w) { top_row_updates_of_top_columns(*upper, q, w); });
-    start_top_rows(first_workspace, +1);
-    for(int q = 0; q < int(m_top_rows.size()); ++q)
-      top_row_in_top_columns(*upper, q, first_workspace);
+    m_full_top_block = top_block_is_full(n);
+    if(m_full_top_block)
+      factorize_full_top_block(n);
+    else {
+      start_top_rows(first_workspace, +1);
+      for(int q = 0; q < int(m_top_rows.size()); ++q)
+        top_row_in_top_columns(*upper, q, first_workspace);
+    }
 
     std::copy(m_counts.begin(), m_counts.end(), m_nz);
     Members::set_factorized(m_s, m_pivot_zero.load() ? Eigen::NumericalIssue : Eigen::Success);
@@ -415,6 +426,72 @@ private:
       m_pivot_zero.store(true);
   }
 
+  // True when the top rows are the last rows and their block of L is full, as for the separator at the root of a
+  // mesh: its columns are then the columns of a packed lower triangle, without gaps.
+  bool top_block_is_full(int n) const
+  {
+    const int m = int(m_top_rows.size());
+    if(m == 0 || m_top_rows.front() != n - m)
+      return false;
+    for(int i = n - m; i < n; ++i)
+      if(m_counts[i] != n - 1 - i || m_first_top_entry[i] != m_Lp[i])
+        return false;
+    return true;
+  }
+
+  // Step (3) on a full top block: a blocked right-looking LDL^T of what steps (1) and (2) left there (the Schur
+  // complement, its diagonal in D), in place. The updates of the columns right of a panel are matrix products:
+  // about four times the speed of the up-looking rows (75k faces: 4.2 -> 1.1 ms; 302k faces: 52 -> 13 ms).
+  void factorize_full_top_block(int n)
+  {
+    constexpr int width = 32;
+    // column j of the block: column(j)[r] is L(r, j), r > j
+    auto column = [this](int j) { return m_Lx + m_Lp[j] - (j + 1); };
+    Eigen::MatrixXd panel, scaled_panel, product;
+    for(int j0 = n - int(m_top_rows.size()); j0 < n; j0 += width) {
+      const int j1 = std::min(j0 + width, n);
+      for(int j = j0; j < j1; ++j) { // the panel's columns, right-looking inside it
+        const double d = m_D[j];
+        if(d == 0) {
+          m_pivot_zero.store(true);
+          return;
+        }
+        double* l = column(j);
+        for(int r = j + 1; r < n; ++r)
+          l[r] /= d;
+        for(int c = j + 1; c < j1; ++c) {
+          const double f = l[c] * d;
+          m_D[c] -= l[c] * f;
+          double* lc = column(c);
+          for(int r = c + 1; r < n; ++r)
+            lc[r] -= l[r] * f;
+        }
+      }
+      if(j1 == n)
+        break;
+      // the columns right of the panel, `width` at a time: minus P diag(D) P^T, P the panel below it
+      panel.resize(n - j1, j1 - j0);
+      scaled_panel.resize(n - j1, j1 - j0);
+      for(int j = j0; j < j1; ++j) {
+        const double* l = column(j);
+        for(int r = j1; r < n; ++r) {
+          panel(r - j1, j - j0) = l[r];
+          scaled_panel(r - j1, j - j0) = l[r] * m_D[j];
+        }
+      }
+      for(int c0 = j1; c0 < n; c0 += width) {
+        const int c1 = std::min(c0 + width, n);
+        product.noalias() = panel.bottomRows(n - c0) * scaled_panel.middleRows(c0 - j1, c1 - c0).transpose();
+        for(int c = c0; c < c1; ++c) {
+          m_D[c] -= product(c - c0, c - c0);
+          double* lc = column(c);
+          for(int r = c + 1; r < n; ++r)
+            lc[r] -= product(r - c0, c - c0);
+        }
+      }
+    }
+  }
+
   Simplicial& m_s;
   const int* m_parent; // the elimination tree
   int* m_nz;           // the column counts: of the analysis, then Eigen's running counts in subtree columns
@@ -430,6 +507,7 @@ private:
   std::vector<char> m_is_top;                      // per row
   std::vector<int> m_first_top_entry;              // per column: its first entry in a top row
   std::atomic<bool> m_pivot_zero{false};
+  bool m_full_top_block = false;
 };
 
 // After analyzePattern() of an Eigen SimplicialLDLT with the natural ordering: its numeric factorization of M, on

@@ -62,7 +62,8 @@ void check_rows_of_three(const py::array& a, const char* name, const char* kinds
 
 py::array as_array(const py::handle& h, const char* name)
 {
-  if(!py::isinstance<py::array>(h) && !py::isinstance<py::sequence>(h))
+  if(py::isinstance<py::str>(h) || py::isinstance<py::bytes>(h) ||
+     (!py::isinstance<py::array>(h) && !py::isinstance<py::sequence>(h)))
     throw py::type_error(std::string(name) + " must be a numpy array (or a nested sequence), got " +
                          std::string(py::str(py::type::of(h))));
   return py::array::ensure(h);
@@ -187,6 +188,7 @@ public:
                              int n, const std::vector<Kernel::Vector_3>* directions,
                              const Loop_periods* loop_periods) = 0;
   virtual std::size_t number_of_loops() const = 0;
+  virtual std::vector<double> weights() const = 0; // w_e per interior edge, in edges() order
   virtual TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
                                             const std::vector<face_descriptor>& guided) = 0;
   virtual const char* backend() const = 0;
@@ -290,6 +292,15 @@ public:
   }
 
   std::size_t number_of_loops() const override { return m_solver.loops().size(); }
+
+  std::vector<double> weights() const override
+  {
+    std::vector<double> w;
+    for(auto e : m_mesh.edges())
+      if(!m_mesh.is_border(e))
+        w.push_back(m_solver.weight(e));
+    return w;
+  }
 
   TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
                                     const std::vector<face_descriptor>& guided) override
@@ -430,6 +441,30 @@ public:
   std::size_t number_of_faces() const { return m_mesh->number_of_faces(); }
   std::size_t number_of_loops() const { return m_solver->number_of_loops(); }
   std::string backend() const { return m_solver->backend(); }
+  py::array_t<double> vertices() const
+  {
+    std::vector<double> p;
+    p.reserve(3 * m_mesh->number_of_vertices());
+    for(auto v : m_mesh->vertices())
+      for(int i = 0; i < 3; ++i)
+        p.push_back(CGAL::to_double(m_mesh->point(v)[i]));
+    return owning_array(std::move(p), {py::ssize_t(m_mesh->number_of_vertices()), 3});
+  }
+  py::array_t<std::int64_t> faces() const
+  {
+    std::vector<std::int64_t> t;
+    t.reserve(3 * m_mesh->number_of_faces());
+    for(auto f : m_mesh->faces())
+      for(auto v : CGAL::vertices_around_face(m_mesh->halfedge(f), *m_mesh))
+        t.push_back(std::int64_t(v));
+    return owning_array(std::move(t), {py::ssize_t(m_mesh->number_of_faces()), 3});
+  }
+  py::array_t<double> weights() const
+  {
+    std::vector<double> w = m_solver->weights();
+    const py::ssize_t ne = py::ssize_t(w.size());
+    return owning_array(std::move(w), {ne});
+  }
   py::array_t<std::int64_t> edges() const
   {
     std::vector<std::int64_t> copy = m_edges;
@@ -643,5 +678,10 @@ Returns a Result. Releases the GIL: solves from several threads run concurrently
     .def_property_readonly("number_of_loops", &Python_solver::number_of_loops,
                            "boundary loops and homology generators: the entries of loop_periods")
     .def_property_readonly("backend", &Python_solver::backend, "\"ldlt\", \"cholmod\" or \"auto\"")
-    .def_property_readonly("edges", &Python_solver::edges, "(e, 2) int64: the interior edges, as in Result.edges");
+    .def_property_readonly("edges", &Python_solver::edges, "(e, 2) int64: the interior edges, as in Result.edges")
+    .def_property_readonly("vertices", &Python_solver::vertices, "(n, 3) float64: the mesh's points (V)")
+    .def_property_readonly("faces", &Python_solver::faces,
+                           "(m, 3) int64: the mesh's triangles (F), counter-clockwise from its first halfedge")
+    .def_property_readonly("weights", &Python_solver::weights,
+                           "(e,) float64: the weight w_e of each interior edge in the energy, as in Result.edges");
 }

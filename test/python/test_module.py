@@ -378,3 +378,26 @@ def test_real_meshes():
         assert abs(again.energy - result.energy) < 1e-12 * result.energy
         for (i, j), value in zip(again.edges, again.connection):
             assert abs(x[(int(i), int(j))] - value) < 1e-10
+
+
+def resident_bytes():
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/statm"), reason="needs /proc (Linux)")
+def test_no_leak_over_1000_solves():
+    V, F = icosphere(3)  # 512 faces: every solve returns about 40 KB of arrays
+    solver = tc.Solver(V, F)
+    for _ in range(50):
+        solver.solve({0: 1, 1: 1}, n=4 if _ % 2 else 1)
+    before = resident_bytes()
+    for i in range(1000):
+        r = solver.solve({0: 1, 1: 1}, n=4 if i % 2 else 1)
+        del r
+        try:
+            solver.solve({0: 1})
+        except tc.InvalidInput:
+            pass
+    grown = resident_bytes() - before
+    assert grown < 4 << 20, f"resident memory grew by {grown} bytes over 1000 solves"

@@ -15,8 +15,14 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <CGAL/Trivial_connections/IO/atomic_file.h>
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
+#include <CGAL/Trivial_connections/IO/singularities.h>
+#include <CGAL/Trivial_connections/IO/viewer_files.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
+#include <CGAL/Trivial_connections/singularity_placement.h>
+#include <CGAL/Trivial_connections/singularity_refinement.h>
+#include <CGAL/Trivial_connections/streamlines.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 
 #include <pybind11/numpy.h>
@@ -44,6 +50,7 @@ using vertex_descriptor = Mesh::Vertex_index;
 using halfedge_descriptor = Mesh::Halfedge_index;
 using face_descriptor = Mesh::Face_index;
 using Loop_periods = std::vector<std::optional<std::int64_t>>;
+using Singularities = std::vector<std::pair<std::size_t, TC::Singularity_index>>;
 
 // ---- numpy in -------------------------------------------------------------------------------------------
 
@@ -189,6 +196,16 @@ public:
                              const Loop_periods* loop_periods) = 0;
   virtual std::size_t number_of_loops() const = 0;
   virtual std::vector<double> weights() const = 0; // w_e per interior edge, in edges() order
+  virtual TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide,
+                                     double strength, const Singularities& fixed, const Loop_periods* periods,
+                                     Singularities& placed) const = 0;
+  virtual std::vector<Kernel::Vector_3> curvature_guide(std::vector<std::pair<double, double>>& curvatures) const = 0;
+  virtual std::vector<std::size_t> spread(const std::vector<Kernel::Vector_3>& guide, std::size_t count) const = 0;
+  virtual TC::Refinement_report<vertex_descriptor> refine(const Singularities& start, int n,
+                                                          const std::vector<Kernel::Vector_3>* directions,
+                                                          const Loop_periods* periods,
+                                                          const std::vector<std::size_t>& fixed, bool cancel_pairs,
+                                                          std::size_t trials) = 0;
   virtual TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
                                             const std::vector<face_descriptor>& guided) = 0;
   virtual const char* backend() const = 0;
@@ -293,6 +310,71 @@ public:
 
   std::size_t number_of_loops() const override { return m_solver.loops().size(); }
 
+  TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide, double strength,
+                             const Singularities& fixed, const Loop_periods* periods,
+                             Singularities& placed) const override
+  {
+    namespace P = TC::parameters;
+    const auto kept = descriptors(fixed);
+    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
+    const Loop_periods none(m_solver.loops().size()); // every integer chosen, as without the parameter
+    const auto np = P::symmetry_order(n, P::align_with_boundary(align_boundary, P::fixed_singularities(
+                                                                  kept, P::loop_periods(periods ? *periods : none))));
+    TC::Placement_report report;
+    if(guide != nullptr) {
+      auto guide_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+        [guide](face_descriptor f) { return (*guide)[std::size_t(f)]; });
+      report = TC::place_singularities(m_solver, std::back_inserter(out),
+                                       P::alignment_guide(guide_map, P::alignment_strength(strength, np)));
+    } else
+      report = TC::place_singularities(m_solver, std::back_inserter(out), np);
+    for(const auto& [v, k] : out)
+      placed.emplace_back(std::size_t(v), k);
+    return report;
+  }
+
+  std::vector<Kernel::Vector_3> curvature_guide(std::vector<std::pair<double, double>>& curvatures) const override
+  {
+    std::vector<Kernel::Vector_3> guide(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
+    auto map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3&>(
+      [&guide](face_descriptor f) -> Kernel::Vector_3& { return guide[std::size_t(f)]; });
+    TC::principal_curvature_guide(m_solver, map, &curvatures);
+    return guide;
+  }
+
+  std::vector<std::size_t> spread(const std::vector<Kernel::Vector_3>& guide, std::size_t count) const override
+  {
+    auto map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+      [&guide](face_descriptor f) { return guide[std::size_t(f)]; });
+    std::vector<std::size_t> faces;
+    for(face_descriptor f : TC::spread_guided_faces(m_solver, map, count))
+      faces.push_back(std::size_t(f));
+    return faces;
+  }
+
+  TC::Refinement_report<vertex_descriptor> refine(const Singularities& start, int n,
+                                                  const std::vector<Kernel::Vector_3>* directions,
+                                                  const Loop_periods* periods, const std::vector<std::size_t>& fixed,
+                                                  bool cancel_pairs, std::size_t trials) override
+  {
+    namespace P = TC::parameters;
+    std::vector<double> x(m_mesh.number_of_halfedges(), 0.);
+    auto halfedge_x = boost::make_function_property_map<halfedge_descriptor, double&>(
+      [&x](halfedge_descriptor h) -> double& { return x[std::size_t(h)]; });
+    std::vector<Kernel::Vector_3> targets = directions ? *directions : std::vector<Kernel::Vector_3>();
+    targets.resize(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
+    auto target_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+      [&targets](face_descriptor f) { return targets[std::size_t(f)]; });
+    std::vector<vertex_descriptor> fixed_vertices;
+    for(std::size_t v : fixed)
+      fixed_vertices.push_back(vertex(v));
+    const Loop_periods none(m_solver.loops().size()); // every integer chosen, as without the parameter
+    return TC::refine_singularities(
+      m_solver, descriptors(start), halfedge_x,
+      P::symmetry_order(n, P::face_directions(target_map, P::loop_periods(periods ? *periods : none,
+        P::fixed_vertices(fixed_vertices, P::cancel_pairs(cancel_pairs, P::maximum_trials(trials)))))));
+  }
+
   std::vector<double> weights() const override
   {
     std::vector<double> w;
@@ -312,6 +394,24 @@ public:
   const char* backend() const override { return m_name; }
 
 private:
+  vertex_descriptor vertex(std::size_t v) const
+  {
+    if(v >= m_mesh.number_of_vertices())
+      throw TC::Invalid_input(TC::Error_code::invalid_vertex,
+                              "vertex " + std::to_string(v) + " does not exist (the mesh has " +
+                                std::to_string(m_mesh.number_of_vertices()) + " vertices)",
+                              v);
+    return vertex_descriptor(Mesh::size_type(v));
+  }
+  std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> descriptors(const Singularities& s) const
+  {
+    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
+    out.reserve(s.size());
+    for(const auto& [v, k] : s)
+      out.emplace_back(vertex(v), k);
+    return out;
+  }
+
   const Mesh& m_mesh;
   Solver m_solver;
   const char* m_name;
@@ -398,18 +498,7 @@ public:
     std::optional<std::vector<Kernel::Vector_3>> targets;
     if(!directions.is_none())
       targets = directions_of(directions);
-    std::optional<Loop_periods> periods;
-    if(!loop_periods.is_none()) {
-      periods.emplace();
-      for(const py::handle p : py::iter(loop_periods)) {
-        if(p.is_none())
-          periods->emplace_back();
-        else if(py::isinstance<py::bool_>(p) || !PyIndex_Check(p.ptr()))
-          throw py::type_error("loop_periods must hold integers or None, got " + std::string(py::repr(p)));
-        else
-          periods->emplace_back(py::int_(py::reinterpret_borrow<py::object>(p)).cast<std::int64_t>());
-      }
-    }
+    const std::optional<Loop_periods> periods = periods_of(loop_periods);
     Solve_output out;
     {
       py::gil_scoped_release unlocked;
@@ -435,6 +524,178 @@ public:
     d["links_outside_the_factor"] = u.links_outside_the_factor;
     d["new_forward_substitutions"] = u.new_forward_substitutions;
     return d;
+  }
+
+  py::tuple place_singularities(int n, bool align_boundary, const py::object& alignment_guide, double strength,
+                                const py::object& fixed, const py::object& loop_periods)
+  {
+    const Singularities kept = singularities_of(fixed);
+    std::optional<std::vector<Kernel::Vector_3>> guide;
+    if(!alignment_guide.is_none())
+      guide = directions_of(alignment_guide);
+    const std::optional<Loop_periods> periods = periods_of(loop_periods);
+    Singularities placed;
+    TC::Placement_report report;
+    {
+      py::gil_scoped_release unlocked;
+      std::shared_lock<std::shared_mutex> reading(m_mutex);
+      report = m_solver->place(n, align_boundary, guide ? &*guide : nullptr, strength, kept,
+                               periods ? &*periods : nullptr, placed);
+    }
+    py::dict d;
+    d["n"] = report.symmetry_order;
+    d["aligned"] = report.aligned;
+    d["field_energy"] = report.field_energy;
+    d["rayleigh_quotients"] = report.rayleigh_quotients;
+    d["iterations"] = report.iterations;
+    d["max_rounding"] = report.max_rounding;
+    py::dict per_index;
+    for(const auto& [k, count] : report.singularities_per_index)
+      per_index[fraction(k)] = count;
+    d["singularities_per_index"] = per_index;
+    d["fixed"] = report.fixed;
+    d["units_removed"] = report.units_removed;
+    d["units_added"] = report.units_added;
+    return py::make_tuple(singularity_dict(placed), d);
+  }
+
+  py::tuple principal_curvature_guide() const
+  {
+    std::vector<std::pair<double, double>> c;
+    std::vector<Kernel::Vector_3> guide;
+    {
+      py::gil_scoped_release unlocked;
+      guide = m_solver->curvature_guide(c);
+    }
+    std::vector<double> g, k;
+    for(const auto& v : guide)
+      for(int i = 0; i < 3; ++i)
+        g.push_back(CGAL::to_double(v[i]));
+    for(const auto& [a, b] : c) {
+      k.push_back(a);
+      k.push_back(b);
+    }
+    const py::ssize_t nf = py::ssize_t(guide.size());
+    return py::make_tuple(owning_array(std::move(g), {nf, 3}), owning_array(std::move(k), {nf, 2}));
+  }
+
+  std::vector<std::size_t> spread_guided_faces(const py::object& guide, std::size_t count) const
+  {
+    const std::vector<Kernel::Vector_3> g = directions_of(guide);
+    py::gil_scoped_release unlocked;
+    return m_solver->spread(g, count);
+  }
+
+  py::tuple refine_singularities(const py::object& start, int n, const py::object& directions,
+                                 const py::object& loop_periods, const py::object& fixed_vertices, bool cancel_pairs,
+                                 std::size_t maximum_trials)
+  {
+    const Singularities s = singularities_of(start);
+    std::optional<std::vector<Kernel::Vector_3>> targets;
+    if(!directions.is_none())
+      targets = directions_of(directions);
+    const std::optional<Loop_periods> periods = periods_of(loop_periods);
+    std::vector<std::size_t> fixed;
+    if(!fixed_vertices.is_none())
+      for(const py::handle v : py::iter(fixed_vertices))
+        fixed.push_back(vertex_number(v));
+    TC::Refinement_report<vertex_descriptor> r;
+    {
+      py::gil_scoped_release unlocked;
+      // it solves again and again on the solver: as a solve, beside other solves
+      std::shared_lock<std::shared_mutex> reading(m_mutex);
+      r = m_solver->refine(s, n, targets ? &*targets : nullptr, periods ? &*periods : nullptr, fixed, cancel_pairs,
+                           maximum_trials);
+    }
+    Singularities refined;
+    for(const auto& [v, k] : r.singularities)
+      refined.emplace_back(std::size_t(v), k);
+    py::list moves;
+    for(const auto& m : r.moves) {
+      py::dict d;
+      d["from"] = std::size_t(m.from);
+      d["to"] = std::size_t(m.to);
+      d["index"] = fraction(m.index);
+      d["energy"] = m.energy;
+      moves.append(d);
+    }
+    py::dict d;
+    d["energy_before"] = r.energy_before;
+    d["energy_after"] = r.energy_after;
+    d["moves"] = moves;
+    d["trials"] = r.trials;
+    d["local_minimum"] = r.local_minimum;
+    return py::make_tuple(singularity_dict(refined), d);
+  }
+
+  // the polylines of the field of `result`, from the barycentres of `seed_faces` (default: every face)
+  py::list trace_streamlines(const Result& result, const py::object& singularities, const py::object& seed_faces,
+                             std::size_t maximum_faces_per_ray)
+  {
+    const Singularities s = singularities_of(singularities);
+    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> singular;
+    for(const auto& [v, k] : s) {
+      if(v >= m_mesh->number_of_vertices())
+        throw TC::Invalid_input(TC::Error_code::invalid_vertex, "vertex " + std::to_string(v) + " does not exist", v);
+      singular.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
+    }
+    std::vector<face_descriptor> seeds;
+    if(seed_faces.is_none())
+      for(auto f : m_mesh->faces())
+        seeds.push_back(f);
+    else
+      seeds = faces_of(seed_faces, m_mesh->number_of_faces(), "seed_faces");
+    const std::vector<double> x = halfedge_angles(result);
+    const std::vector<Kernel::Vector_3> field = field_of(result);
+    const int n = result.n.cast<int>();
+    std::vector<TC::Streamline<Mesh>> lines;
+    {
+      py::gil_scoped_release unlocked;
+      auto x_map = boost::make_function_property_map<halfedge_descriptor, double>(
+        [&x](halfedge_descriptor h) { return x[std::size_t(h)]; });
+      auto field_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+        [&field](face_descriptor f) { return field[std::size_t(f)]; });
+      const std::size_t limit = maximum_faces_per_ray > 0 ? maximum_faces_per_ray
+                                                          : std::size_t(n) * m_mesh->number_of_faces();
+      lines = TC::trace_streamlines(*m_mesh, x_map, field_map, singular, seeds,
+                                    TC::parameters::symmetry_order(n, TC::parameters::maximum_faces_per_ray(limit)));
+    }
+    py::list out;
+    for(auto& line : lines) {
+      std::vector<double> p;
+      p.reserve(3 * line.points.size());
+      for(const auto& q : line.points)
+        p.insert(p.end(), q.begin(), q.end());
+      out.append(owning_array(std::move(p), {py::ssize_t(line.points.size()), 3}));
+    }
+    return out;
+  }
+
+  // the mesh with the field of `result` and the singularities, as a VTK (.vtk) or PLY (.ply) file, written
+  // completely or not at all
+  void write_field(const std::string& path, const Result& result, const py::object& singularities) const
+  {
+    const Singularities s = singularities_of(singularities);
+    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> singular;
+    for(const auto& [v, k] : s) {
+      if(v >= m_mesh->number_of_vertices())
+        throw TC::Invalid_input(TC::Error_code::invalid_vertex, "vertex " + std::to_string(v) + " does not exist", v);
+      singular.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
+    }
+    const std::vector<Kernel::Vector_3> field = field_of(result);
+    const int n = result.n.cast<int>();
+    const std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : std::string();
+    if(extension != ".vtk" && extension != ".ply")
+      throw py::value_error("write_field: the file name must end in .vtk or .ply, got \"" + path + "\"");
+    py::gil_scoped_release unlocked;
+    auto field_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+      [&field](face_descriptor f) { return field[std::size_t(f)]; });
+    TC::write_file_atomically(path, [&](std::ostream& os) {
+      if(extension == ".vtk")
+        TC::write_field_vtk(os, *m_mesh, field_map, singular, TC::parameters::symmetry_order(n));
+      else
+        TC::write_field_ply(os, *m_mesh, field_map, singular, TC::parameters::symmetry_order(n));
+    });
   }
 
   std::size_t number_of_vertices() const { return m_mesh->number_of_vertices(); }
@@ -472,6 +733,61 @@ public:
   }
 
 private:
+  // x per halfedge from a Result of this solver (its edges are the mesh's interior edges, in order)
+  std::vector<double> halfedge_angles(const Result& result) const
+  {
+    const auto connection = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result.connection);
+    std::vector<double> x(m_mesh->number_of_halfedges(), 0.);
+    if(!connection || std::size_t(connection.size()) != m_edges.size() / 2)
+      throw py::value_error("the result is not one of this solver (its number of edges differs)");
+    std::size_t i = 0;
+    for(auto e : m_mesh->edges()) {
+      if(m_mesh->is_border(e))
+        continue;
+      halfedge_descriptor h = m_mesh->halfedge(e);
+      if(std::size_t(m_mesh->source(h)) > std::size_t(m_mesh->target(h)))
+        h = m_mesh->opposite(h);
+      x[std::size_t(h)] = connection.data()[i];
+      x[std::size_t(m_mesh->opposite(h))] = -connection.data()[i];
+      ++i;
+    }
+    return x;
+  }
+  std::vector<Kernel::Vector_3> field_of(const Result& result) const
+  {
+    const auto f = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result.field);
+    if(!f || f.ndim() != 2 || std::size_t(f.shape(0)) != m_mesh->number_of_faces() || f.shape(1) != 3)
+      throw py::value_error("the result is not one of this solver (its number of faces differs)");
+    std::vector<Kernel::Vector_3> field(m_mesh->number_of_faces());
+    for(std::size_t i = 0; i < field.size(); ++i)
+      field[i] = Kernel::Vector_3(f.data()[3 * i], f.data()[3 * i + 1], f.data()[3 * i + 2]);
+    return field;
+  }
+
+  static py::dict singularity_dict(const Singularities& s)
+  {
+    py::dict d;
+    for(const auto& [v, k] : s)
+      d[py::int_(v)] = fraction(k);
+    return d;
+  }
+
+  static std::optional<Loop_periods> periods_of(const py::object& loop_periods)
+  {
+    if(loop_periods.is_none())
+      return std::nullopt;
+    Loop_periods periods;
+    for(const py::handle p : py::iter(loop_periods)) {
+      if(p.is_none())
+        periods.emplace_back();
+      else if(py::isinstance<py::bool_>(p) || !PyIndex_Check(p.ptr()))
+        throw py::type_error("loop_periods must hold integers or None, got " + std::string(py::repr(p)));
+      else
+        periods.emplace_back(py::int_(py::reinterpret_borrow<py::object>(p)).cast<std::int64_t>());
+    }
+    return periods;
+  }
+
   // one target per face (rows of the faces that are neither constrained nor guided are not read), or a dict
   // {face: vector}
   std::vector<Kernel::Vector_3> directions_of(const py::object& directions) const
@@ -601,6 +917,35 @@ Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .c
     }
   });
 
+  m.def(
+    "read_singularities",
+    [](const std::string& path, const py::object& number_of_vertices) {
+      const std::size_t count =
+        number_of_vertices.is_none() ? TC::unchecked_vertex_count : number_of_vertices.cast<std::size_t>();
+      std::vector<std::pair<std::size_t, TC::Singularity_index>> s;
+      {
+        py::gil_scoped_release unlocked;
+        s = TC::read_singularities(path, count);
+      }
+      py::dict d;
+      for(const auto& [v, k] : s)
+        d[py::int_(v)] = fraction(k);
+      return d;
+    },
+    py::arg("path"), py::arg("number_of_vertices") = py::none(),
+    "Reads a singularity file (lines \"v k\", k an integer or p/q; # comments): {vertex: Fraction}. Raises "
+    "InvalidInput (parse_error, duplicate_singularity, invalid_vertex, io_error) with the file and line.");
+  m.def(
+    "write_singularities",
+    [](const std::string& path, const py::object& singularities) {
+      const Singularities s = singularities_of(singularities);
+      py::gil_scoped_release unlocked;
+      TC::write_file_atomically(path, [&](std::ostream& os) { TC::write_singularities(os, s); });
+    },
+    py::arg("path"), py::arg("singularities"),
+    "Writes singularities ({vertex: index} or pairs) in the format read_singularities() reads, completely or "
+    "not at all.");
+
   py::class_<Result>(m, "Result", "What Solver.solve() returns: the connection, the field and the report.")
     .def_readonly("connection", &Result::connection,
                   "(e,) float64: x of each interior edge, for the halfedge from edges[i, 0] to edges[i, 1]")
@@ -673,6 +1018,35 @@ Returns a Result. Releases the GIL: solves from several threads run concurrently
     .def("set_constraints", &Python_solver::set_constraints, py::arg("constrained_faces") = py::none(),
          py::arg("guided_faces") = py::none(),
          "Changes the constrained and guided faces (as the constructor's options); returns what it did.")
+    .def("place_singularities", &Python_solver::place_singularities, py::kw_only(), py::arg("n") = 1,
+         py::arg("align_boundary") = false, py::arg("alignment_guide") = py::none(),
+         py::arg("alignment_strength") = 100.0, py::arg("fixed_singularities") = py::none(),
+         py::arg("loop_periods") = py::none(),
+         R"(Automatic placement: the singularities of the globally smoothest n-direction field (Knoeppel et al. 2013).
+
+Returns (singularities, report): {vertex: Fraction}, which satisfies Poincare-Hopf on every closed component and
+can be given to solve() as it is, and a dict (field_energy, singularities_per_index, ...). alignment_guide: an
+(m, 3) array (or {face: vector}) of guide directions whose length weighs them (principal_curvature_guide()), for
+Knoeppel's aligned field, with alignment_strength. fixed_singularities: kept as they are, the automatic ones nearest
+give way. align_boundary, loop_periods: as for the solver and solve().)")
+    .def("principal_curvature_guide", &Python_solver::principal_curvature_guide,
+         "Per face, the direction of largest principal curvature times the anisotropy |k1 - k2| ((m, 3) array), "
+         "and the two principal curvatures ((m, 2) array, larger absolute value first): a guide for n = 2 or 4.")
+    .def("spread_guided_faces", &Python_solver::spread_guided_faces, py::arg("guide"), py::arg("count"),
+         "Up to count faces spread over the mesh, strongest guide first: guided_faces for set_constraints().")
+    .def("refine_singularities", &Python_solver::refine_singularities, py::arg("singularities"), py::kw_only(),
+         py::arg("n") = 1, py::arg("directions") = py::none(), py::arg("loop_periods") = py::none(),
+         py::arg("fixed_vertices") = py::none(), py::arg("cancel_pairs") = false, py::arg("maximum_trials") = 500,
+         "Moves singularities to neighbouring vertices while the trivial connection's energy drops (each trial a "
+         "solve on the prefactored solver). Returns (singularities, report) with energy_before, energy_after, moves.")
+    .def("trace_streamlines", &Python_solver::trace_streamlines, py::arg("result"), py::arg("singularities"),
+         py::arg("seed_faces") = py::none(), py::arg("maximum_faces_per_ray") = 0,
+         "The streamlines of result's field from the barycentres of seed_faces (default: every face): a list of "
+         "(k, 3) polylines on the surface; a ray stops at the boundary, at a face with a singular vertex, when it "
+         "closes, or after maximum_faces_per_ray faces (0: n times the number of faces).")
+    .def("write_field", &Python_solver::write_field, py::arg("path"), py::arg("result"), py::arg("singularities"),
+         "Writes the mesh, result's field (its n directions) and the singularities as a legacy VTK (.vtk) or PLY "
+         "(.ply) file for ParaView, MeshLab or Blender; completely or not at all.")
     .def_property_readonly("number_of_vertices", &Python_solver::number_of_vertices)
     .def_property_readonly("number_of_faces", &Python_solver::number_of_faces)
     .def_property_readonly("number_of_loops", &Python_solver::number_of_loops,

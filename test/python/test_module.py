@@ -46,10 +46,10 @@ def icosphere(levels):
     return V, np.array(F)
 
 
-def torus(nu, nv, R=2.0, r=0.7):
-    """A closed genus-1 mesh of revolution, slightly twisted."""
+def torus(nu, nv, R=2.0, r=0.7, twist=0.1):
+    """A closed genus-1 mesh of revolution, slightly twisted unless twist = 0."""
     u, v = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
-    a, b = 2 * np.pi * u / nu, 2 * np.pi * v / nv + 0.1 * np.sin(2 * np.pi * u / nu)
+    a, b = 2 * np.pi * u / nu, 2 * np.pi * v / nv + twist * np.sin(2 * np.pi * u / nu)
     V = np.stack([(R + r * np.cos(b)) * np.cos(a), (R + r * np.cos(b)) * np.sin(a), r * np.sin(b)], -1).reshape(-1, 3)
     idx = lambda i, j: (i % nu) * nv + (j % nv)
     F = []
@@ -401,3 +401,93 @@ def test_no_leak_over_1000_solves():
             pass
     grown = resident_bytes() - before
     assert grown < 4 << 20, f"resident memory grew by {grown} bytes over 1000 solves"
+
+
+def test_automatic_placement():
+    # the octahedral sphere: eight +1/4 for a cross field, one near each vertex of the octahedron
+    V, F = icosphere(3)
+    solver = tc.Solver(V, F)
+    placed, report = solver.place_singularities(n=4)
+    assert placed and all(k == fractions.Fraction(1, 4) for k in placed.values())
+    assert sum(placed.values()) == 2 and len(placed) == 8
+    assert report["singularities_per_index"] == {fractions.Fraction(1, 4): 8}
+    result = solver.solve(placed, n=4)
+    check_invariants(V, F, solver, placed, result, n=4, closed_components_chi=2)
+    assert result.energy <= report["field_energy"] * (1 + 1e-9)
+    # a slender torus of revolution: no singularity for n = 1, 2, 4; on a fat one the smoothest cross field has
+    # rings of +-1/4 (its 4th power turns fast), which the refinement that cancels pairs removes
+    V, F = torus(96, 16, R=6.0, r=1.0, twist=0.0)
+    solver = tc.Solver(V, F)
+    for n in (1, 2, 4):
+        assert solver.place_singularities(n=n)[0] == {}
+    V, F = torus(48, 24, R=2.0, r=0.7, twist=0.0)
+    solver = tc.Solver(V, F)
+    rings, _ = solver.place_singularities(n=4)
+    assert sum(rings.values()) == 0
+    refined, report = solver.refine_singularities(rings, n=4, cancel_pairs=True)
+    assert refined == {} and report["local_minimum"] and report["energy_after"] <= report["energy_before"]
+    # curvature alignment: a valid set, and guided faces spread over the mesh
+    V, F = icosphere(3)
+    V = V * np.array([1.0, 1.5, 2.2])
+    solver = tc.Solver(V, F)
+    guide, curvatures = solver.principal_curvature_guide()
+    assert guide.shape == (len(F), 3) and curvatures.shape == (len(F), 2)
+    assert np.all(np.abs(curvatures[:, 0]) >= np.abs(curvatures[:, 1]) - 1e-12)
+    aligned, report = solver.place_singularities(n=2, alignment_guide=guide)
+    assert report["aligned"] and sum(aligned.values()) == 2
+    faces = solver.spread_guided_faces(guide, 30)
+    assert 0 < len(faces) <= 30 and len(set(faces)) == len(faces)
+
+
+def test_refinement_moves_close_singularities_apart():
+    V, F = icosphere(3)
+    solver = tc.Solver(V, F)
+    start = {0: 1, int(F[0][1]) if F[0][0] == 0 else int(F[0][0]): 1}
+    refined, report = solver.refine_singularities(start)
+    assert report["energy_after"] < report["energy_before"]
+    assert report["moves"] and sum(refined.values()) == 2
+    result = solver.solve(refined)
+    assert abs(result.energy + result.guidance_energy - report["energy_after"]) < 1e-9 * report["energy_after"]
+    fixed, _ = solver.refine_singularities(start, fixed_vertices=[0])
+    assert fixed.get(0) == 1
+
+
+def test_streamlines():
+    V, F = icosphere(3)
+    solver = tc.Solver(V, F)
+    placed, _ = solver.place_singularities(n=4)
+    result = solver.solve(placed, n=4)
+    lines = solver.trace_streamlines(result, placed, seed_faces=range(0, len(F), 37))
+    assert lines
+    for line in lines:
+        assert line.ndim == 2 and line.shape[1] == 3 and len(line) >= 2 and np.all(np.isfinite(line))
+        # on the surface: every point within the mesh's bounding box, steps shorter than the mesh
+        assert np.all(line.min(0) >= V.min(0) - 1e-9) and np.all(line.max(0) <= V.max(0) + 1e-9)
+    with pytest.raises(ValueError):
+        other = tc.Solver(*icosphere(1)).solve({0: 1, 1: 1})
+        solver.trace_streamlines(other, {0: 1, 1: 1})
+
+
+def test_files(tmp_path):
+    V, F = icosphere(2)
+    solver = tc.Solver(V, F)
+    s = {3: fractions.Fraction(1, 2), 9: fractions.Fraction(3, 2)}
+    path = tmp_path / "s.sing"
+    tc.write_singularities(str(path), s)
+    assert tc.read_singularities(str(path), len(V)) == s
+    result = solver.solve(s, n=2)
+    for name in ["f.vtk", "f.ply"]:
+        solver.write_field(str(tmp_path / name), result, s)
+        assert (tmp_path / name).stat().st_size > 1000
+    with pytest.raises(ValueError):
+        solver.write_field(str(tmp_path / "f.txt"), result, s)
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.write_singularities(str(tmp_path / "missing" / "s.sing"), s)
+    assert error.value.code == "io_error" and not (tmp_path / "missing").exists()
+    (tmp_path / "bad.sing").write_text("3 1/2\n3 1/2\n")
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.read_singularities(str(tmp_path / "bad.sing"))
+    assert error.value.code == "duplicate_singularity" and error.value.where == 3
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.read_singularities(str(tmp_path / "none.sing"))
+    assert error.value.code == "io_error"

@@ -361,13 +361,13 @@ def test_equals_the_program():
 
 
 def test_real_meshes():
-    data = os.environ.get("TC_CGAL_DATA_DIR")
-    if not data or not os.path.isdir(os.path.join(data, "meshes")):
-        pytest.skip("CGAL's data set not found (TC_CGAL_DATA_DIR)")
+    meshes = os.environ.get("TC_CGAL_MESHES")  # data/meshes of CGAL's data set
+    if not meshes or not os.path.isdir(meshes):
+        pytest.skip("CGAL's data set not found (TC_CGAL_MESHES)")
     # closed genus 3, bordered (7 holes), closed genus 1
     for name, s, chi in [("elephant.off", {0: -1, 10: -1, 20: -1, 30: -1}, -4), ("holes.off", {}, None),
                          ("knot1.off", {}, 0)]:
-        solver = tc.Solver.from_file(os.path.join(data, "meshes", name))
+        solver = tc.Solver.from_file(os.path.join(meshes, name))
         V, F = solver.vertices, solver.faces
         assert V.shape == (solver.number_of_vertices, 3) and F.shape == (solver.number_of_faces, 3)
         result = solver.solve(s)

@@ -34,6 +34,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <tuple>
 #include <shared_mutex>
 #include <string>
 #include <utility>
@@ -196,6 +197,8 @@ public:
                              const Loop_periods* loop_periods) = 0;
   virtual std::size_t number_of_loops() const = 0;
   virtual std::vector<double> weights() const = 0; // w_e per interior edge, in edges() order
+  // per loop of the solver: a boundary loop?, its component, the halfedges it crosses
+  virtual std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> loops() const = 0;
   virtual TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide,
                                      double strength, const Singularities& fixed, const Loop_periods* periods,
                                      Singularities& placed) const = 0;
@@ -373,6 +376,14 @@ public:
       m_solver, descriptors(start), halfedge_x,
       P::symmetry_order(n, P::face_directions(target_map, P::loop_periods(periods ? *periods : none,
         P::fixed_vertices(fixed_vertices, P::cancel_pairs(cancel_pairs, P::maximum_trials(trials)))))));
+  }
+
+  std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> loops() const override
+  {
+    std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> out;
+    for(const auto& l : m_solver.loops())
+      out.emplace_back(l.kind == TC::Loop_kind::boundary, l.component, l.halfedges);
+    return out;
   }
 
   std::vector<double> weights() const override
@@ -698,6 +709,26 @@ public:
     });
   }
 
+  // the loops of loop_periods: boundary loops and homology generators, each with the halfedges it crosses as
+  // (source, target) vertex pairs, crossed from the face on their left to the other one
+  py::list loops() const
+  {
+    py::list out;
+    for(const auto& [boundary, component, halfedges] : m_solver->loops()) {
+      std::vector<std::int64_t> pairs;
+      for(halfedge_descriptor h : halfedges) {
+        pairs.push_back(std::int64_t(m_mesh->source(h)));
+        pairs.push_back(std::int64_t(m_mesh->target(h)));
+      }
+      py::dict d;
+      d["kind"] = boundary ? "boundary" : "generator";
+      d["component"] = component;
+      d["halfedges"] = owning_array(std::move(pairs), {py::ssize_t(halfedges.size()), 2});
+      out.append(d);
+    }
+    return out;
+  }
+
   std::size_t number_of_vertices() const { return m_mesh->number_of_vertices(); }
   std::size_t number_of_faces() const { return m_mesh->number_of_faces(); }
   std::size_t number_of_loops() const { return m_solver->number_of_loops(); }
@@ -946,6 +977,26 @@ Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .c
     "Writes singularities ({vertex: index} or pairs) in the format read_singularities() reads, completely or "
     "not at all.");
 
+  m.def(
+    "write_streamlines",
+    [](const std::string& path, const py::list& lines) {
+      std::vector<TC::Streamline<Mesh>> s;
+      for(const py::handle line : lines) {
+        const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(line);
+        if(!a || a.ndim() != 2 || a.shape(1) != 3)
+          throw py::value_error("each streamline must be a (k, 3) array of points");
+        TC::Streamline<Mesh> l;
+        for(py::ssize_t i = 0; i < a.shape(0); ++i)
+          l.points.push_back({a.at(i, 0), a.at(i, 1), a.at(i, 2)});
+        s.push_back(std::move(l));
+      }
+      py::gil_scoped_release unlocked;
+      TC::write_file_atomically(path, [&](std::ostream& os) { TC::write_streamlines_vtk(os, s); });
+    },
+    py::arg("path"), py::arg("lines"),
+    "Writes polylines (from Solver.trace_streamlines()) as a legacy VTK file of lines, for ParaView and the "
+    "package's renderer (--streamlines); completely or not at all.");
+
   py::class_<Result>(m, "Result", "What Solver.solve() returns: the connection, the field and the report.")
     .def_readonly("connection", &Result::connection,
                   "(e,) float64: x of each interior edge, for the halfedge from edges[i, 0] to edges[i, 1]")
@@ -1047,6 +1098,11 @@ give way. align_boundary, loop_periods: as for the solver and solve().)")
     .def("write_field", &Python_solver::write_field, py::arg("path"), py::arg("result"), py::arg("singularities"),
          "Writes the mesh, result's field (its n directions) and the singularities as a legacy VTK (.vtk) or PLY "
          "(.ply) file for ParaView, MeshLab or Blender; completely or not at all.")
+    .def_property_readonly("loops", &Python_solver::loops,
+                           "The loops whose integers loop_periods gives, in that order: dicts with kind (\"boundary\" "
+                           "or \"generator\": the 2g homology generators of each component), component and "
+                           "halfedges, a (k, 2) array of the (source, target) vertices of the halfedges crossed, each "
+                           "from the face on its left to the face on its right.")
     .def_property_readonly("number_of_vertices", &Python_solver::number_of_vertices)
     .def_property_readonly("number_of_faces", &Python_solver::number_of_faces)
     .def_property_readonly("number_of_loops", &Python_solver::number_of_loops,

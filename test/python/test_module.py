@@ -347,8 +347,11 @@ def test_equals_the_program():
             f.writelines(f"3 {a} {b} {c}\n" for a, b, c in F.tolist())
         with open(sing, "w") as f:
             f.writelines(f"{v} {k}\n" for v, k in s.items())
-        subprocess.run([program, mesh, "--singularities", sing, "--n", "4", "--connection", conn], check=True,
-                       stdout=subprocess.DEVNULL)
+        field = os.path.join(d, "f.txt")
+        subprocess.run([program, mesh, "--singularities", sing, "--n", "4", "--connection", conn, "--field", field],
+                       check=True, stdout=subprocess.DEVNULL)
+        program_field = np.array([[float(t) for t in line.split()] for line in open(field)
+                                  if line.strip() and not line.startswith("#")])
         written = {}
         for line in open(conn):
             if line.strip() and not line.startswith("#"):
@@ -358,6 +361,8 @@ def test_equals_the_program():
     assert len(written) == len(result.edges)
     for (i, j), x in zip(result.edges, result.connection):
         assert abs(written[(int(i), int(j))] - x) < 1e-12
+    assert program_field.shape == result.field.shape
+    assert np.abs(program_field - result.field).max() < 1e-12
 
 
 def test_real_meshes():
@@ -491,3 +496,49 @@ def test_files(tmp_path):
     with pytest.raises(tc.InvalidInput) as error:
         tc.read_singularities(str(tmp_path / "none.sing"))
     assert error.value.code == "io_error"
+
+
+def test_loops_are_the_generators_and_holes():
+    V, F = torus(24, 12)
+    solver = tc.Solver(V, F)
+    loops = solver.loops
+    assert [l["kind"] for l in loops] == ["generator", "generator"]
+    face_of = {(int(a), int(b)): f for f, t in enumerate(F) for a, b in zip(t, np.roll(t, -1))}
+    s = {0: 1, 100: -1}
+    result = solver.solve(s)
+    x = halfedge_x(result)
+    for loop in loops:
+        h = loop["halfedges"]
+        assert h.shape[1] == 2 and len(h) > 0
+        # a closed dual loop: each halfedge crosses into the face of the next one
+        for (a, b), (c, d) in zip(h, np.roll(h, -1, axis=0)):
+            assert face_of[(int(b), int(a))] == face_of[(int(c), int(d))]
+        # trivial holonomy: a vector carried once around the loop by the connection (unfolding about each edge
+        # crossed, then the rotation x) comes back to itself (n = 1)
+        N = face_normals(V, F)
+        f0 = face_of[(int(h[0][0]), int(h[0][1]))]
+        u0 = unit(np.cross(N[f0], V[F[f0][1]] - V[F[f0][0]]))
+        u = u0
+        for a, b in h:
+            f, g = face_of[(int(a), int(b))], face_of[(int(b), int(a))]
+            e = unit(V[b] - V[a])
+            w = (u @ e) * e + (u @ np.cross(N[f], e)) * np.cross(N[g], e)
+            angle = x[(int(a), int(b))]
+            u = np.cos(angle) * w + np.sin(angle) * np.cross(N[g], w)
+        assert np.linalg.norm(u - u0) < 1e-9
+    V, F = bumpy_disk(8)
+    assert [l["kind"] for l in tc.Solver(V, F).loops] == ["boundary"]
+
+
+def test_streamline_file(tmp_path):
+    V, F = icosphere(2)
+    solver = tc.Solver(V, F)
+    s = {0: 1, 1: 1}
+    result = solver.solve(s)
+    lines = solver.trace_streamlines(result, s, seed_faces=[5, 50, 100])
+    tc.write_streamlines(str(tmp_path / "s.vtk"), lines)
+    text = (tmp_path / "s.vtk").read_text()
+    assert f"LINES {len(lines)} {sum(len(l) for l in lines) + len(lines)}" in text
+    with pytest.raises(ValueError):
+        tc.write_streamlines(str(tmp_path / "t.vtk"), [np.zeros((3, 2))])
+    assert not (tmp_path / "t.vtk").exists()

@@ -542,3 +542,36 @@ def test_streamline_file(tmp_path):
     with pytest.raises(ValueError):
         tc.write_streamlines(str(tmp_path / "t.vtk"), [np.zeros((3, 2))])
     assert not (tmp_path / "t.vtk").exists()
+
+
+def test_constraints_and_guidance():
+    V, F = icosphere(3)
+    N = face_normals(V, F)
+    rng = np.random.default_rng(2)
+    pinned = [3, 200, 411]
+    solver = tc.Solver(V, F, constrained_faces=pinned)
+    targets = np.cross(N, rng.normal(size=(len(F), 3)))  # tangent to every face
+    s = {0: "1/4", 1: "1/4", 2: "1/4", 3: "1/4", 4: "1/4", 5: "1/4", 6: "1/4", 7: "1/4"}
+    result = solver.solve(s, n=4, directions=targets)
+    check_invariants(V, F, solver, s, result, n=4, closed_components_chi=2, optimal=False)
+    for f in pinned:  # the field points along the target there, modulo a quarter turn
+        u, t = result.field[f], unit(targets[f])
+        angle = math.atan2(np.cross(t, u) @ N[f], t @ u)
+        assert abs((angle + np.pi / 4) % (np.pi / 2) - np.pi / 4) < 1e-9
+    assert len(result.constraints) == len(pinned) - 1
+    # other faces pinned on the same factorization: the new targets hold there
+    update = solver.set_constraints(constrained_faces=[10, 20], guided_faces=[30, 40, 50])
+    assert update["links"] >= 1
+    result = solver.solve(s, n=4, directions={10: targets[10], 20: targets[20], 30: targets[30],
+                                              40: targets[40], 50: targets[50]})
+    for f in [10, 20]:
+        u, t = result.field[f], unit(targets[f])
+        angle = math.atan2(np.cross(t, u) @ N[f], t @ u)
+        assert abs((angle + np.pi / 4) % (np.pi / 2) - np.pi / 4) < 1e-9
+    assert [g["face"] for g in result.guidance] == [30, 40, 50] and result.guidance_energy > 0
+    with pytest.raises(tc.InvalidInput) as error:
+        solver.solve(s, n=4)  # the pinned faces need directions
+    assert error.value.code == "invalid_constraint"
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.Solver(V, F, constrained_faces=[len(F)])
+    assert error.value.code == "invalid_constraint"

@@ -29,6 +29,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -183,6 +184,7 @@ py::object fraction(const TC::Singularity_index& k)
 struct Solve_output
 {
   TC::Solve_report report;
+  double solve_seconds = 0, field_seconds = 0, output_seconds = 0; // the C++ calls, and the outputs' vectors
   std::vector<double> connection; // per interior edge, in the order of `edges`
   std::vector<double> field;      // 3 per face
   std::vector<double> directions; // 3 n per face (n > 1)
@@ -214,6 +216,54 @@ public:
   virtual const char* backend() const = 0;
 };
 
+// x(h) kept straight in the per-edge output array: x of the halfedge from the smaller vertex index to the larger
+// one, its opposite's the negative (nothing on the border)
+struct Edge_connection_map
+{
+  using key_type = halfedge_descriptor;
+  using value_type = double;
+  using reference = double;
+  using category = boost::read_write_property_map_tag;
+  const Mesh* mesh;
+  const std::vector<std::int64_t>* slot; // per edge: its entry, -1 on the border
+  double* x;
+  friend double get(const Edge_connection_map& m, halfedge_descriptor h)
+  {
+    const std::int64_t i = (*m.slot)[std::size_t(m.mesh->edge(h))];
+    if(i < 0)
+      return 0.;
+    return m.mesh->source(h) < m.mesh->target(h) ? m.x[i] : -m.x[i];
+  }
+  friend void put(const Edge_connection_map& m, halfedge_descriptor h, double value)
+  {
+    const std::int64_t i = (*m.slot)[std::size_t(m.mesh->edge(h))];
+    if(i >= 0)
+      m.x[i] = m.mesh->source(h) < m.mesh->target(h) ? value : -value;
+  }
+};
+
+// a face's vector kept straight in the (m, 3) output array
+struct Face_vector_map
+{
+  using key_type = face_descriptor;
+  using value_type = Kernel::Vector_3;
+  using reference = Kernel::Vector_3;
+  using category = boost::read_write_property_map_tag;
+  double* xyz;
+  friend Kernel::Vector_3 get(const Face_vector_map& m, face_descriptor f)
+  {
+    const double* p = m.xyz + 3 * std::size_t(f);
+    return Kernel::Vector_3(p[0], p[1], p[2]);
+  }
+  friend void put(const Face_vector_map& m, face_descriptor f, const Kernel::Vector_3& v)
+  {
+    double* p = m.xyz + 3 * std::size_t(f);
+    p[0] = CGAL::to_double(v.x());
+    p[1] = CGAL::to_double(v.y());
+    p[2] = CGAL::to_double(v.z());
+  }
+};
+
 struct Options
 {
   TC::Weighting weighting = TC::Weighting::hodge_star;
@@ -238,6 +288,10 @@ public:
                                                                                         o.align_boundary)))))),
       m_name(name)
   {
+    m_edge_slot.assign(mesh.number_of_edges(), -1);
+    for(auto e : mesh.edges())
+      if(!mesh.is_border(e))
+        m_edge_slot[std::size_t(e)] = m_interior_edges++;
   }
 
   Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities, int n,
@@ -254,12 +308,11 @@ public:
       s.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
     }
     // the output maps: vectors indexed like the mesh's halfedges and faces
-    std::vector<double> x(m_mesh.number_of_halfedges(), 0.);
-    std::vector<Kernel::Vector_3> field(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
-    auto halfedge_x = boost::make_function_property_map<halfedge_descriptor, double&>(
-      [&x](halfedge_descriptor h) -> double& { return x[std::size_t(h)]; });
-    auto face_field = boost::make_function_property_map<face_descriptor, Kernel::Vector_3&>(
-      [&field](face_descriptor f) -> Kernel::Vector_3& { return field[std::size_t(f)]; });
+    Solve_output out;
+    out.connection.assign(std::size_t(m_interior_edges), 0.);
+    out.field.assign(3 * m_mesh.number_of_faces(), 0.);
+    const Edge_connection_map halfedge_x{&m_mesh, &m_edge_slot, out.connection.data()};
+    const Face_vector_map face_field{out.field.data()};
     std::vector<Kernel::Vector_3> targets;
     if(directions != nullptr)
       targets = *directions;
@@ -267,29 +320,20 @@ public:
     auto target_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
       [&targets](face_descriptor f) { return targets[std::size_t(f)]; });
 
-    Solve_output out;
+    using Clock = std::chrono::steady_clock;
+    const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+    Clock::time_point start = Clock::now();
     const auto np = TC::parameters::symmetry_order(n, TC::parameters::face_directions(target_map));
     out.report = loop_periods != nullptr ? m_solver.solve(s, halfedge_x, TC::parameters::loop_periods(*loop_periods, np))
                                          : m_solver.solve(s, halfedge_x, np);
+    out.solve_seconds = seconds_since(start);
+    start = Clock::now();
     m_solver.compute_field(halfedge_x, face_field, np);
+    out.field_seconds = seconds_since(start);
+    start = Clock::now();
 
-    // per interior edge, in edges() order: x of the halfedge from the smaller vertex index to the larger
-    for(auto e : m_mesh.edges()) {
-      if(m_mesh.is_border(e))
-        continue;
-      halfedge_descriptor h = m_mesh.halfedge(e);
-      if(std::size_t(m_mesh.source(h)) > std::size_t(m_mesh.target(h)))
-        h = m_mesh.opposite(h);
-      out.connection.push_back(x[std::size_t(h)]);
-    }
-    out.field.reserve(3 * field.size());
-    for(const auto& u : field) {
-      out.field.push_back(CGAL::to_double(u.x()));
-      out.field.push_back(CGAL::to_double(u.y()));
-      out.field.push_back(CGAL::to_double(u.z()));
-    }
     if(n > 1) { // the n directions: the field turned by 2 pi j / n about the face's normal
-      out.directions.reserve(3 * std::size_t(n) * field.size());
+      out.directions.reserve(3 * std::size_t(n) * m_mesh.number_of_faces());
       for(auto f : m_mesh.faces()) {
         const auto h = m_mesh.halfedge(f);
         const auto& a = m_mesh.point(m_mesh.source(h));
@@ -297,7 +341,7 @@ public:
         const auto& c = m_mesh.point(m_mesh.target(m_mesh.next(h)));
         Kernel::Vector_3 normal = CGAL::cross_product(b - a, c - a);
         normal = normal / std::sqrt(CGAL::to_double(normal.squared_length()));
-        const Kernel::Vector_3& u = field[std::size_t(f)];
+        const Kernel::Vector_3 u = get(face_field, f);
         const Kernel::Vector_3 w = CGAL::cross_product(normal, u);
         for(int j = 0; j < n; ++j) {
           const double t = 2 * CGAL_PI * j / n;
@@ -308,6 +352,7 @@ public:
         }
       }
     }
+    out.output_seconds = seconds_since(start);
     return out;
   }
 
@@ -426,6 +471,8 @@ private:
   const Mesh& m_mesh;
   Solver m_solver;
   const char* m_name;
+  std::vector<std::int64_t> m_edge_slot; // per edge, its entry in Result.connection (-1: border)
+  std::int64_t m_interior_edges = 0;
 };
 
 }  // namespace
@@ -438,7 +485,7 @@ struct Result
 {
   py::object connection, edges, field, directions, energy, guidance_energy, max_residual, max_loop_residual,
     loop_periods, boundary_indices, integers_proven_optimal, energy_lower_bound, rounding_energy, constraints,
-    guidance, n;
+    guidance, n, timings;
 };
 
 std::vector<face_descriptor> faces_of(const py::handle& list, std::size_t number_of_faces, const char* what)
@@ -483,6 +530,7 @@ public:
       throw py::value_error("backend \"cholmod\": this build of the module has no CHOLMOD (libsuitesparse-dev)");
 #endif
     py::gil_scoped_release unlocked;
+    const auto start = std::chrono::steady_clock::now();
     if(backend == "ldlt")
       m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, o, "ldlt");
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
@@ -494,6 +542,7 @@ public:
     else
       m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, o, "auto");
 #endif
+    m_solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for(auto e : m_mesh->edges())
       if(!m_mesh->is_border(e)) {
         const auto h = m_mesh->halfedge(e);
@@ -898,9 +947,18 @@ private:
       guidance.append(d);
     }
     r.guidance = guidance;
+    py::dict timings;
+    timings["solve"] = out.solve_seconds;
+    timings["field"] = out.field_seconds;
+    timings["outputs"] = out.output_seconds;
+    r.timings = timings;
     return r;
   }
 
+public:
+  double m_mesh_seconds = 0, m_solver_seconds = 0; // reading the arrays or the file into the mesh; the C++ solver
+
+private:
   std::unique_ptr<Mesh> m_mesh; // before the solver, which refers to it
   std::unique_ptr<Solver_interface> m_solver;
   std::vector<std::int64_t> m_edges;
@@ -1017,6 +1075,9 @@ Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .c
     .def_readonly("rounding_energy", &Result::rounding_energy, "the energy with the integers rounded one by one")
     .def_readonly("constraints", &Result::constraints, "one dict per path joining two constrained faces")
     .def_readonly("guidance", &Result::guidance, "one dict per guided face: face, mismatch")
+    .def_readonly("timings", &Result::timings,
+                  "seconds in C++: solve (Trivial_connection_solver::solve), field (compute_field) and outputs "
+                  "(the arrays filled); the rest of a call's time is the binding's")
     .def("__repr__", [](const Result& r) {
       return "<trivial_connections.Result n=" + std::string(py::str(r.n)) +
              " energy=" + std::string(py::str(r.energy)) + " max_residual=" + std::string(py::str(r.max_residual)) +
@@ -1038,8 +1099,12 @@ align_boundary: the field follows the boundary.
 Raises InvalidInput for a mesh the package refuses (code and where say why).)")
     .def(py::init([](const py::object& V, const py::object& F, const std::string& weights, const std::string& backend,
                      const py::object& constrained, const py::object& guided, double mu, bool align) {
-           return std::make_unique<Python_solver>(mesh_of_arrays(V, F), weights, backend, constrained, guided, mu,
-                                                  align);
+           const auto start = std::chrono::steady_clock::now();
+           std::unique_ptr<Mesh> mesh = mesh_of_arrays(V, F);
+           const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+           auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
+           solver->m_mesh_seconds = seconds;
+           return solver;
          }),
          py::arg("V"), py::arg("F"), py::kw_only(), py::arg("weights") = "hodge", py::arg("backend") = "auto",
          py::arg("constrained_faces") = py::none(), py::arg("guided_faces") = py::none(),
@@ -1048,8 +1113,12 @@ Raises InvalidInput for a mesh the package refuses (code and where say why).)")
       "from_file",
       [](const std::string& path, bool triangulate, const std::string& weights, const std::string& backend,
          const py::object& constrained, const py::object& guided, double mu, bool align) {
-        return std::make_unique<Python_solver>(mesh_of_file(path, triangulate), weights, backend, constrained,
-                                               guided, mu, align);
+        const auto start = std::chrono::steady_clock::now();
+        std::unique_ptr<Mesh> mesh = mesh_of_file(path, triangulate);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
+        solver->m_mesh_seconds = seconds;
+        return solver;
       },
       py::arg("path"), py::arg("triangulate") = false, py::kw_only(), py::arg("weights") = "hodge",
       py::arg("backend") = "auto", py::arg("constrained_faces") = py::none(), py::arg("guided_faces") = py::none(),
@@ -1103,6 +1172,16 @@ give way. align_boundary, loop_periods: as for the solver and solve().)")
                            "or \"generator\": the 2g homology generators of each component), component and "
                            "halfedges, a (k, 2) array of the (source, target) vertices of the halfedges crossed, each "
                            "from the face on its left to the face on its right.")
+    .def_property_readonly(
+      "build_timings",
+      [](const Python_solver& s) {
+        py::dict d;
+        d["mesh"] = s.m_mesh_seconds;
+        d["solver"] = s.m_solver_seconds;
+        return d;
+      },
+      "seconds in C++ while the solver was built: mesh (the arrays or the file read into a validated Surface_mesh) "
+      "and solver (the C++ constructor, as from a Surface_mesh)")
     .def_property_readonly("number_of_vertices", &Python_solver::number_of_vertices)
     .def_property_readonly("number_of_faces", &Python_solver::number_of_faces)
     .def_property_readonly("number_of_loops", &Python_solver::number_of_loops,

@@ -93,15 +93,35 @@ std::unique_ptr<Mesh> mesh_of_arrays(const py::handle& v_in, const py::handle& f
   const double* x = points.data();
   for(std::size_t i = 0; i < p.size(); ++i)
     p[i] = Kernel::Point_3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-  // a negative index is out of range like any other: the validation names its face
   std::vector<std::array<std::size_t, 3>> t(std::size_t(faces.shape(0)));
   const std::int64_t* f = faces.data();
   for(std::size_t i = 0; i < t.size(); ++i)
-    for(int j = 0; j < 3; ++j)
-      t[i][std::size_t(j)] = f[3 * i + std::size_t(j)] < 0 ? p.size() : std::size_t(f[3 * i + std::size_t(j)]);
+    for(std::size_t j = 0; j < 3; ++j) {
+      if(f[3 * i + j] < 0)
+        throw TC::Invalid_input(TC::Error_code::invalid_vertex,
+                                "face " + std::to_string(i) + " uses vertex " + std::to_string(f[3 * i + j]) +
+                                  ": vertex indices start at 0",
+                                i);
+      t[i][j] = std::size_t(f[3 * i + j]);
+    }
   auto mesh = std::make_unique<Mesh>();
   TC::triangle_soup_to_mesh(p, t, *mesh);
   return mesh;
+}
+
+// A Python integer (int, numpy integer: anything with __index__) as an int64; `too_large` when it does not fit.
+std::int64_t int64_of(const py::handle& h, TC::Error_code too_large, const std::string& what)
+{
+  const py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(h.ptr()));
+  if(!i)
+    throw py::error_already_set();
+  int overflow = 0;
+  const long long value = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+  if(overflow != 0)
+    throw TC::Invalid_input(too_large, what + " " + std::string(py::str(i)) + " is too large");
+  if(value == -1 && PyErr_Occurred())
+    throw py::error_already_set();
+  return std::int64_t(value);
 }
 
 // An index: an int (or numpy integer), a fractions.Fraction, or a "p/q" string; exact, never a float.
@@ -113,10 +133,10 @@ TC::Singularity_index index_of(const py::handle& k)
   if(py::isinstance<py::str>(k))
     return TC::Singularity_index::parse(k.cast<std::string>());
   if(PyIndex_Check(k.ptr()))
-    return TC::Singularity_index(py::int_(py::reinterpret_borrow<py::object>(k)).cast<std::int64_t>());
+    return TC::Singularity_index(int64_of(k, TC::Error_code::invalid_index, "the index"));
   if(py::hasattr(k, "numerator") && py::hasattr(k, "denominator"))
-    return TC::Singularity_index(py::int_(k.attr("numerator")).cast<std::int64_t>(),
-                                 py::int_(k.attr("denominator")).cast<std::int64_t>());
+    return TC::Singularity_index(int64_of(k.attr("numerator"), TC::Error_code::invalid_index, "the numerator"),
+                                 int64_of(k.attr("denominator"), TC::Error_code::invalid_index, "the denominator"));
   throw py::type_error("an index must be an int, a fractions.Fraction or a string \"p/q\", got " +
                        std::string(py::repr(k)));
 }
@@ -125,11 +145,10 @@ std::size_t vertex_number(const py::handle& v)
 {
   if(py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr()))
     throw py::type_error("a singular vertex must be an integer, got " + std::string(py::repr(v)));
-  const py::int_ i(py::reinterpret_borrow<py::object>(v));
-  if(i.cast<long long>() < 0)
-    throw TC::Invalid_input(TC::Error_code::invalid_vertex,
-                            "vertex " + std::to_string(i.cast<long long>()) + " does not exist (negative)");
-  return i.cast<std::size_t>();
+  const std::int64_t i = int64_of(v, TC::Error_code::invalid_vertex, "vertex");
+  if(i < 0)
+    throw TC::Invalid_input(TC::Error_code::invalid_vertex, "vertex " + std::to_string(i) + " does not exist (negative)");
+  return std::size_t(i);
 }
 
 // {vertex: index} or pairs (vertex, index), e.g. a (k, 2) integer array
@@ -496,7 +515,7 @@ std::vector<face_descriptor> faces_of(const py::handle& list, std::size_t number
   for(const py::handle f : py::iter(list)) {
     if(py::isinstance<py::bool_>(f) || !PyIndex_Check(f.ptr()))
       throw py::type_error(std::string(what) + " must be face numbers (integers), got " + std::string(py::repr(f)));
-    const long long i = py::int_(py::reinterpret_borrow<py::object>(f)).cast<long long>();
+    const std::int64_t i = int64_of(f, TC::Error_code::invalid_constraint, std::string(what) + ": face");
     if(i < 0 || std::size_t(i) >= number_of_faces)
       throw TC::Invalid_input(TC::Error_code::invalid_constraint,
                               std::string(what) + ": face " + std::to_string(i) + " does not exist (the mesh has " +
@@ -806,10 +825,16 @@ public:
     const py::ssize_t ne = py::ssize_t(w.size());
     return owning_array(std::move(w), {ne});
   }
-  py::array_t<std::int64_t> edges() const
+  // one read-only array for the solver and all its results
+  py::object edges() const
   {
-    std::vector<std::int64_t> copy = m_edges;
-    return owning_array(std::move(copy), {py::ssize_t(m_edges.size() / 2), 2});
+    if(!m_edges_array) {
+      std::vector<std::int64_t> copy = m_edges;
+      py::array_t<std::int64_t> a = owning_array(std::move(copy), {py::ssize_t(m_edges.size() / 2), 2});
+      a.attr("setflags")(py::arg("write") = false);
+      m_edges_array = a;
+    }
+    return m_edges_array;
   }
 
 private:
@@ -863,7 +888,7 @@ private:
       else if(py::isinstance<py::bool_>(p) || !PyIndex_Check(p.ptr()))
         throw py::type_error("loop_periods must hold integers or None, got " + std::string(py::repr(p)));
       else
-        periods.emplace_back(py::int_(py::reinterpret_borrow<py::object>(p)).cast<std::int64_t>());
+        periods.emplace_back(int64_of(p, TC::Error_code::invalid_loop_periods, "the loop period"));
     }
     return periods;
   }
@@ -962,6 +987,7 @@ private:
   std::unique_ptr<Mesh> m_mesh; // before the solver, which refers to it
   std::unique_ptr<Solver_interface> m_solver;
   std::vector<std::int64_t> m_edges;
+  mutable py::object m_edges_array; // made on first use, with the GIL
   mutable std::shared_mutex m_mutex;
 };
 

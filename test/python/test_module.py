@@ -255,6 +255,8 @@ def test_singularity_forms():
     d = solver.solve({np.int64(5): np.int32(1), 9: 1})
     assert np.array_equal(a.connection, b.connection)
     assert np.array_equal(c.connection, d.connection)
+    # the edges are one read-only array, shared by the solver and its results
+    assert a.edges is b.edges and a.edges is solver.edges and not a.edges.flags.writeable
 
 
 @pytest.mark.parametrize("make, code", [
@@ -271,6 +273,7 @@ def test_bad_meshes(make, code):
         tc.Solver(*make(V, F))
     assert error.value.code == code
     assert isinstance(error.value, ValueError)
+    assert (error.value.where is None) == (code == "empty_mesh")
 
 
 def test_bad_shapes_and_types():
@@ -296,7 +299,9 @@ def test_bad_singularities():
     solver = tc.Solver(V, F)
     cases = [({0: 1}, "poincare_hopf_violated"), ({0: 1, 1000: 1}, "invalid_vertex"),
              ({-1: 1, 0: 1}, "invalid_vertex"), ({0: "1/3", 1: "5/3"}, "index_not_multiple"),
-             ({0: 2**62, 1: 2 - 2**62}, "invalid_index"), ({0: "1/0", 1: 2}, "parse_error"),
+             ({0: 2**62, 1: 2 - 2**62}, "invalid_index"), ({0: 2**70, 1: 1}, "invalid_index"),
+             ({2**70: 1, 1: 1}, "invalid_vertex"), ({0: fractions.Fraction(2**80 + 1, 2**79), 1: 1}, "invalid_index"),
+             ({0: "1/0", 1: 2}, "parse_error"),
              ({0: "one", 1: 1}, "parse_error")]
     for s, code in cases:
         with pytest.raises(tc.InvalidInput) as error:

@@ -396,6 +396,7 @@ def resident_bytes():
 
 
 @pytest.mark.skipif(not os.path.exists("/proc/self/statm"), reason="needs /proc (Linux)")
+@pytest.mark.skipif(bool(os.environ.get("TC_SANITIZED")), reason="AddressSanitizer's quarantine keeps freed memory")
 def test_no_leak_over_1000_solves():
     V, F = icosphere(3)  # 512 faces: every solve returns about 40 KB of arrays
     solver = tc.Solver(V, F)

@@ -10,7 +10,8 @@
 #   --fuzz         also clang and libFuzzer's runtime, for the fuzz harness (scripts/run_fuzzer.sh)
 set -euo pipefail
 pkgs=(build-essential cmake libcgal-dev libeigen3-dev libboost-graph-dev
-      libgtest-dev googletest libbenchmark-dev python3 python3-numpy python3-matplotlib)
+      libgtest-dev googletest libbenchmark-dev python3 python3-numpy python3-matplotlib
+      python3-dev pybind11-dev python3-pybind11 python3-pytest)
 cholmod=1
 doc=0
 fuzz=0

@@ -2,7 +2,8 @@
 # Builds the tests, the program and the examples with AddressSanitizer and UndefinedBehaviorSanitizer
 # (GCC, -O1 -g1: line tables for the stacks; the assertions of CGAL and Eigen on, so Eigen checks every
 # index) in build-sanitizers/, and runs every ctest test there: a sanitizer report or a failed assertion
-# fails the test. Used by CI.
+# fails the test. Used by CI. The Python module's tests run with the sanitizers' runtimes preloaded into the
+# interpreter (CMakeLists.txt), leaks left out there.
 # Usage: bash scripts/test_sanitizers.sh [extra ctest arguments, e.g. -R Io]
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -13,3 +13,9 @@ test -x "$work/prefix/share/CGAL_Trivial_connections/render_field.py"
 cmake -S "$consumer" -B "$work/consumer" -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log"
 cmake --build "$work/consumer" > "$work/build.log"
 "$work/consumer/consumer"
+# the Python module, when the build has it (TC_PYTHON_SITE: its folder under the prefix)
+if [ -n "${TC_PYTHON_SITE:-}" ]; then
+  ls "$work/prefix/$TC_PYTHON_SITE"/trivial_connections*.so > /dev/null
+  (cd "$work" && PYTHONPATH="$work/prefix/$TC_PYTHON_SITE" "$TC_PYTHON" -c \
+    "import trivial_connections as tc; assert tc.__file__.startswith('$work/prefix/'), tc.__file__")
+fi

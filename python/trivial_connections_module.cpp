@@ -1,0 +1,1222 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+//
+// The Python module `trivial_connections` (pybind11): the package's solver on numpy arrays. One translation
+// unit, built by the top-level CMakeLists.txt when pybind11 and Python's headers are found.
+//
+// Arrays come in as numpy arrays of any integer (faces) or real (points) type and layout; each is read once
+// into the Surface_mesh the solver needs, and the results are numpy arrays that own the solver's output
+// vectors (no copy on the way out). The GIL is released while the solver is built and while it solves, so
+// solves on one solver from several Python threads run at the same time, as the C++ solver allows;
+// set_constraints() waits for them and they for it.
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <CGAL/Trivial_connections/IO/atomic_file.h>
+#include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
+#include <CGAL/Trivial_connections/IO/singularities.h>
+#include <CGAL/Trivial_connections/IO/viewer_files.h>
+#include <CGAL/Trivial_connections/Trivial_connection_solver.h>
+#include <CGAL/Trivial_connections/singularity_placement.h>
+#include <CGAL/Trivial_connections/singularity_refinement.h>
+#include <CGAL/Trivial_connections/streamlines.h>
+#include <CGAL/Trivial_connections/solver_traits.h>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <tuple>
+#include <shared_mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace py = pybind11;
+namespace TC = CGAL::Trivial_connections;
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using vertex_descriptor = Mesh::Vertex_index;
+using halfedge_descriptor = Mesh::Halfedge_index;
+using face_descriptor = Mesh::Face_index;
+using Loop_periods = std::vector<std::optional<std::int64_t>>;
+using Singularities = std::vector<std::pair<std::size_t, TC::Singularity_index>>;
+
+// ---- numpy in -------------------------------------------------------------------------------------------
+
+// `a` as an (rows, 3) array: its shape checked, its dtype of kind `kinds` ("f", "iu", ...).
+void check_rows_of_three(const py::array& a, const char* name, const char* kinds, const char* what)
+{
+  if(a.ndim() != 2 || a.shape(1) != 3)
+    throw py::value_error(std::string(name) + " must be an (n, 3) array, got shape " +
+                          std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(
+                            a.shape(), a.shape() + a.ndim()))))));
+  const char kind = a.dtype().kind();
+  if(std::string(kinds).find(kind) == std::string::npos)
+    throw py::type_error(std::string(name) + " must hold " + what + ", got dtype " +
+                         std::string(py::str(a.dtype())));
+}
+
+py::array as_array(const py::handle& h, const char* name)
+{
+  if(py::isinstance<py::str>(h) || py::isinstance<py::bytes>(h) ||
+     (!py::isinstance<py::array>(h) && !py::isinstance<py::sequence>(h)))
+    throw py::type_error(std::string(name) + " must be a numpy array (or a nested sequence), got " +
+                         std::string(py::str(py::type::of(h))));
+  return py::array::ensure(h);
+}
+
+// The mesh of V, F, validated by the package (triangle_soup_to_mesh): vertex i and face f of the arrays are
+// vertex i and face f of the mesh.
+std::unique_ptr<Mesh> mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
+{
+  const py::array V = as_array(v_in, "V"), F = as_array(f_in, "F");
+  check_rows_of_three(V, "V", "fiu", "real numbers");
+  check_rows_of_three(F, "F", "iu", "integers (vertex indices)");
+  const auto points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(V);
+  const auto faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(F);
+  if(!points || !faces)
+    throw py::type_error("V and F must be convertible to float64 and int64 arrays");
+  std::vector<Kernel::Point_3> p(std::size_t(points.shape(0)));
+  const double* x = points.data();
+  for(std::size_t i = 0; i < p.size(); ++i)
+    p[i] = Kernel::Point_3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+  std::vector<std::array<std::size_t, 3>> t(std::size_t(faces.shape(0)));
+  const std::int64_t* f = faces.data();
+  for(std::size_t i = 0; i < t.size(); ++i)
+    for(std::size_t j = 0; j < 3; ++j) {
+      if(f[3 * i + j] < 0)
+        throw TC::Invalid_input(TC::Error_code::invalid_vertex,
+                                "face " + std::to_string(i) + " uses vertex " + std::to_string(f[3 * i + j]) +
+                                  ": vertex indices start at 0",
+                                i);
+      t[i][j] = std::size_t(f[3 * i + j]);
+    }
+  auto mesh = std::make_unique<Mesh>();
+  TC::triangle_soup_to_mesh(p, t, *mesh);
+  return mesh;
+}
+
+// A Python integer (int, numpy integer: anything with __index__) as an int64; `too_large` when it does not fit.
+std::int64_t int64_of(const py::handle& h, TC::Error_code too_large, const std::string& what)
+{
+  const py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(h.ptr()));
+  if(!i)
+    throw py::error_already_set();
+  int overflow = 0;
+  const long long value = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+  if(overflow != 0)
+    throw TC::Invalid_input(too_large, what + " " + std::string(py::str(i)) + " is too large");
+  if(value == -1 && PyErr_Occurred())
+    throw py::error_already_set();
+  return std::int64_t(value);
+}
+
+// An index: an int (or numpy integer), a fractions.Fraction, or a "p/q" string; exact, never a float.
+TC::Singularity_index index_of(const py::handle& k)
+{
+  if(py::isinstance<py::bool_>(k) || PyFloat_Check(k.ptr()))
+    throw py::type_error("an index must be an int, a fractions.Fraction or a string \"p/q\" (exact), got " +
+                         std::string(py::repr(k)));
+  if(py::isinstance<py::str>(k))
+    return TC::Singularity_index::parse(k.cast<std::string>());
+  if(PyIndex_Check(k.ptr()))
+    return TC::Singularity_index(int64_of(k, TC::Error_code::invalid_index, "the index"));
+  if(py::hasattr(k, "numerator") && py::hasattr(k, "denominator"))
+    return TC::Singularity_index(int64_of(k.attr("numerator"), TC::Error_code::invalid_index, "the numerator"),
+                                 int64_of(k.attr("denominator"), TC::Error_code::invalid_index, "the denominator"));
+  throw py::type_error("an index must be an int, a fractions.Fraction or a string \"p/q\", got " +
+                       std::string(py::repr(k)));
+}
+
+std::size_t vertex_number(const py::handle& v)
+{
+  if(py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr()))
+    throw py::type_error("a singular vertex must be an integer, got " + std::string(py::repr(v)));
+  const std::int64_t i = int64_of(v, TC::Error_code::invalid_vertex, "vertex");
+  if(i < 0)
+    throw TC::Invalid_input(TC::Error_code::invalid_vertex, "vertex " + std::to_string(i) + " does not exist (negative)");
+  return std::size_t(i);
+}
+
+// {vertex: index} or pairs (vertex, index), e.g. a (k, 2) integer array
+std::vector<std::pair<std::size_t, TC::Singularity_index>> singularities_of(const py::handle& s)
+{
+  std::vector<std::pair<std::size_t, TC::Singularity_index>> out;
+  if(s.is_none())
+    return out;
+  if(py::isinstance<py::dict>(s)) {
+    for(const auto& item : py::reinterpret_borrow<py::dict>(s))
+      out.emplace_back(vertex_number(item.first), index_of(item.second));
+    return out;
+  }
+  if(py::isinstance<py::array>(s)) {
+    const py::array a = py::reinterpret_borrow<py::array>(s);
+    if(a.ndim() != 2 || a.shape(1) != 2)
+      throw py::value_error("singularities as an array must have shape (k, 2): rows (vertex, index)");
+    if(a.dtype().kind() != 'i' && a.dtype().kind() != 'u' && a.dtype().kind() != 'O')
+      throw py::type_error("singularities as an array must hold integers (or objects: Fraction, \"p/q\"), got "
+                           "dtype " + std::string(py::str(a.dtype())));
+  }
+  if(!py::isinstance<py::sequence>(s) && !py::isinstance<py::array>(s))
+    throw py::type_error("singularities must be a dict {vertex: index} or a sequence of (vertex, index)");
+  for(const py::handle row : py::iter(s)) {
+    const py::sequence pair = py::reinterpret_borrow<py::sequence>(row);
+    if(!py::isinstance<py::sequence>(row) && !py::isinstance<py::array>(row))
+      throw py::type_error("each singularity must be a pair (vertex, index)");
+    if(py::len(pair) != 2)
+      throw py::value_error("each singularity must be a pair (vertex, index)");
+    out.emplace_back(vertex_number(pair[0]), index_of(pair[1]));
+  }
+  return out;
+}
+
+// ---- numpy out: arrays that own the vectors they show ---------------------------------------------------
+
+template <class T>
+py::array_t<T> owning_array(std::vector<T>&& values, std::vector<py::ssize_t> shape)
+{
+  auto* owned = new std::vector<T>(std::move(values));
+  py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(shape, owned->data(), free_when_done);
+}
+
+py::object fraction(const TC::Singularity_index& k)
+{
+  return py::module_::import("fractions").attr("Fraction")(k.numerator(), k.denominator());
+}
+
+// ---- the solver, whatever its backend ------------------------------------------------------------------
+
+struct Solve_output
+{
+  TC::Solve_report report;
+  double solve_seconds = 0, field_seconds = 0, output_seconds = 0; // the C++ calls, and the outputs' vectors
+  std::vector<double> connection; // per interior edge, in the order of `edges`
+  std::vector<double> field;      // 3 per face
+  std::vector<double> directions; // 3 n per face (n > 1)
+};
+
+class Solver_interface
+{
+public:
+  virtual ~Solver_interface() = default;
+  virtual Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities,
+                             int n, const std::vector<Kernel::Vector_3>* directions,
+                             const Loop_periods* loop_periods) = 0;
+  virtual std::size_t number_of_loops() const = 0;
+  virtual std::vector<double> weights() const = 0; // w_e per interior edge, in edges() order
+  // per loop of the solver: a boundary loop?, its component, the halfedges it crosses
+  virtual std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> loops() const = 0;
+  virtual TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide,
+                                     double strength, const Singularities& fixed, const Loop_periods* periods,
+                                     Singularities& placed) const = 0;
+  virtual std::vector<Kernel::Vector_3> curvature_guide(std::vector<std::pair<double, double>>& curvatures) const = 0;
+  virtual std::vector<std::size_t> spread(const std::vector<Kernel::Vector_3>& guide, std::size_t count) const = 0;
+  virtual TC::Refinement_report<vertex_descriptor> refine(const Singularities& start, int n,
+                                                          const std::vector<Kernel::Vector_3>* directions,
+                                                          const Loop_periods* periods,
+                                                          const std::vector<std::size_t>& fixed, bool cancel_pairs,
+                                                          std::size_t trials) = 0;
+  virtual TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
+                                            const std::vector<face_descriptor>& guided) = 0;
+  virtual const char* backend() const = 0;
+};
+
+// x(h) kept straight in the per-edge output array: x of the halfedge from the smaller vertex index to the larger
+// one, its opposite's the negative (nothing on the border)
+struct Edge_connection_map
+{
+  using key_type = halfedge_descriptor;
+  using value_type = double;
+  using reference = double;
+  using category = boost::read_write_property_map_tag;
+  const Mesh* mesh;
+  const std::vector<std::int64_t>* slot; // per edge: its entry, -1 on the border
+  double* x;
+  friend double get(const Edge_connection_map& m, halfedge_descriptor h)
+  {
+    const std::int64_t i = (*m.slot)[std::size_t(m.mesh->edge(h))];
+    if(i < 0)
+      return 0.;
+    return m.mesh->source(h) < m.mesh->target(h) ? m.x[i] : -m.x[i];
+  }
+  friend void put(const Edge_connection_map& m, halfedge_descriptor h, double value)
+  {
+    const std::int64_t i = (*m.slot)[std::size_t(m.mesh->edge(h))];
+    if(i >= 0)
+      m.x[i] = m.mesh->source(h) < m.mesh->target(h) ? value : -value;
+  }
+};
+
+// a face's vector kept straight in the (m, 3) output array
+struct Face_vector_map
+{
+  using key_type = face_descriptor;
+  using value_type = Kernel::Vector_3;
+  using reference = Kernel::Vector_3;
+  using category = boost::read_write_property_map_tag;
+  double* xyz;
+  friend Kernel::Vector_3 get(const Face_vector_map& m, face_descriptor f)
+  {
+    const double* p = m.xyz + 3 * std::size_t(f);
+    return Kernel::Vector_3(p[0], p[1], p[2]);
+  }
+  friend void put(const Face_vector_map& m, face_descriptor f, const Kernel::Vector_3& v)
+  {
+    double* p = m.xyz + 3 * std::size_t(f);
+    p[0] = CGAL::to_double(v.x());
+    p[1] = CGAL::to_double(v.y());
+    p[2] = CGAL::to_double(v.z());
+  }
+};
+
+struct Options
+{
+  TC::Weighting weighting = TC::Weighting::hodge_star;
+  std::vector<face_descriptor> constrained, guided;
+  double guidance_weight = 1;
+  bool align_boundary = false;
+};
+
+template <class SolverTraits>
+class Solver_of : public Solver_interface
+{
+  using Solver = TC::Trivial_connection_solver<Mesh, Kernel, SolverTraits>;
+
+public:
+  Solver_of(const Mesh& mesh, const Options& o, const char* name)
+    : m_mesh(mesh),
+      m_solver(mesh, TC::parameters::weighting(
+                       o.weighting, TC::parameters::constrained_faces(
+                                      o.constrained, TC::parameters::guided_faces(
+                                                       o.guided, TC::parameters::guidance_weight(
+                                                                   o.guidance_weight, TC::parameters::align_with_boundary(
+                                                                                        o.align_boundary)))))),
+      m_name(name)
+  {
+    m_edge_slot.assign(mesh.number_of_edges(), -1);
+    for(auto e : mesh.edges())
+      if(!mesh.is_border(e))
+        m_edge_slot[std::size_t(e)] = m_interior_edges++;
+  }
+
+  Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities, int n,
+                     const std::vector<Kernel::Vector_3>* directions, const Loop_periods* loop_periods) override
+  {
+    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> s;
+    s.reserve(singularities.size());
+    for(const auto& [v, k] : singularities) {
+      if(v >= m_mesh.number_of_vertices())
+        throw TC::Invalid_input(TC::Error_code::invalid_vertex,
+                                "vertex " + std::to_string(v) + " does not exist (the mesh has " +
+                                  std::to_string(m_mesh.number_of_vertices()) + " vertices)",
+                                v);
+      s.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
+    }
+    // the output maps: vectors indexed like the mesh's halfedges and faces
+    Solve_output out;
+    out.connection.assign(std::size_t(m_interior_edges), 0.);
+    out.field.assign(3 * m_mesh.number_of_faces(), 0.);
+    const Edge_connection_map halfedge_x{&m_mesh, &m_edge_slot, out.connection.data()};
+    const Face_vector_map face_field{out.field.data()};
+    std::vector<Kernel::Vector_3> targets;
+    if(directions != nullptr)
+      targets = *directions;
+    targets.resize(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
+    auto target_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+      [&targets](face_descriptor f) { return targets[std::size_t(f)]; });
+
+    using Clock = std::chrono::steady_clock;
+    const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+    Clock::time_point start = Clock::now();
+    const auto np = TC::parameters::symmetry_order(n, TC::parameters::face_directions(target_map));
+    out.report = loop_periods != nullptr ? m_solver.solve(s, halfedge_x, TC::parameters::loop_periods(*loop_periods, np))
+                                         : m_solver.solve(s, halfedge_x, np);
+    out.solve_seconds = seconds_since(start);
+    start = Clock::now();
+    m_solver.compute_field(halfedge_x, face_field, np);
+    out.field_seconds = seconds_since(start);
+    start = Clock::now();
+
+    if(n > 1) { // the n directions: the field turned by 2 pi j / n about the face's normal
+      out.directions.reserve(3 * std::size_t(n) * m_mesh.number_of_faces());
+      for(auto f : m_mesh.faces()) {
+        const auto h = m_mesh.halfedge(f);
+        const auto& a = m_mesh.point(m_mesh.source(h));
+        const auto& b = m_mesh.point(m_mesh.target(h));
+        const auto& c = m_mesh.point(m_mesh.target(m_mesh.next(h)));
+        Kernel::Vector_3 normal = CGAL::cross_product(b - a, c - a);
+        normal = normal / std::sqrt(CGAL::to_double(normal.squared_length()));
+        const Kernel::Vector_3 u = get(face_field, f);
+        const Kernel::Vector_3 w = CGAL::cross_product(normal, u);
+        for(int j = 0; j < n; ++j) {
+          const double t = 2 * CGAL_PI * j / n;
+          const Kernel::Vector_3 d = std::cos(t) * u + std::sin(t) * w;
+          out.directions.push_back(CGAL::to_double(d.x()));
+          out.directions.push_back(CGAL::to_double(d.y()));
+          out.directions.push_back(CGAL::to_double(d.z()));
+        }
+      }
+    }
+    out.output_seconds = seconds_since(start);
+    return out;
+  }
+
+  std::size_t number_of_loops() const override { return m_solver.loops().size(); }
+
+  TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide, double strength,
+                             const Singularities& fixed, const Loop_periods* periods,
+                             Singularities& placed) const override
+  {
+    namespace P = TC::parameters;
+    const auto kept = descriptors(fixed);
+    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
+    const Loop_periods none(m_solver.loops().size()); // every integer chosen, as without the parameter
+    const auto np = P::symmetry_order(n, P::align_with_boundary(align_boundary, P::fixed_singularities(
+                                                                  kept, P::loop_periods(periods ? *periods : none))));
+    TC::Placement_report report;
+    if(guide != nullptr) {
+      auto guide_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+        [guide](face_descriptor f) { return (*guide)[std::size_t(f)]; });
+      report = TC::place_singularities(m_solver, std::back_inserter(out),
+                                       P::alignment_guide(guide_map, P::alignment_strength(strength, np)));
+    } else
+      report = TC::place_singularities(m_solver, std::back_inserter(out), np);
+    for(const auto& [v, k] : out)
+      placed.emplace_back(std::size_t(v), k);
+    return report;
+  }
+
+  std::vector<Kernel::Vector_3> curvature_guide(std::vector<std::pair<double, double>>& curvatures) const override
+  {
+    std::vector<Kernel::Vector_3> guide(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
+    auto map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3&>(
+      [&guide](face_descriptor f) -> Kernel::Vector_3& { return guide[std::size_t(f)]; });
+    TC::principal_curvature_guide(m_solver, map, &curvatures);
+    return guide;
+  }
+
+  std::vector<std::size_t> spread(const std::vector<Kernel::Vector_3>& guide, std::size_t count) const override
+  {
+    auto map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+      [&guide](face_descriptor f) { return guide[std::size_t(f)]; });
+    std::vector<std::size_t> faces;
+    for(face_descriptor f : TC::spread_guided_faces(m_solver, map, count))
+      faces.push_back(std::size_t(f));
+    return faces;
+  }
+
+  TC::Refinement_report<vertex_descriptor> refine(const Singularities& start, int n,
+                                                  const std::vector<Kernel::Vector_3>* directions,
+                                                  const Loop_periods* periods, const std::vector<std::size_t>& fixed,
+                                                  bool cancel_pairs, std::size_t trials) override
+  {
+    namespace P = TC::parameters;
+    std::vector<double> x(m_mesh.number_of_halfedges(), 0.);
+    auto halfedge_x = boost::make_function_property_map<halfedge_descriptor, double&>(
+      [&x](halfedge_descriptor h) -> double& { return x[std::size_t(h)]; });
+    std::vector<Kernel::Vector_3> targets = directions ? *directions : std::vector<Kernel::Vector_3>();
+    targets.resize(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
+    auto target_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+      [&targets](face_descriptor f) { return targets[std::size_t(f)]; });
+    std::vector<vertex_descriptor> fixed_vertices;
+    for(std::size_t v : fixed)
+      fixed_vertices.push_back(vertex(v));
+    const Loop_periods none(m_solver.loops().size()); // every integer chosen, as without the parameter
+    return TC::refine_singularities(
+      m_solver, descriptors(start), halfedge_x,
+      P::symmetry_order(n, P::face_directions(target_map, P::loop_periods(periods ? *periods : none,
+        P::fixed_vertices(fixed_vertices, P::cancel_pairs(cancel_pairs, P::maximum_trials(trials)))))));
+  }
+
+  std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> loops() const override
+  {
+    std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> out;
+    for(const auto& l : m_solver.loops())
+      out.emplace_back(l.kind == TC::Loop_kind::boundary, l.component, l.halfedges);
+    return out;
+  }
+
+  std::vector<double> weights() const override
+  {
+    std::vector<double> w;
+    for(auto e : m_mesh.edges())
+      if(!m_mesh.is_border(e))
+        w.push_back(m_solver.weight(e));
+    return w;
+  }
+
+  TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
+                                    const std::vector<face_descriptor>& guided) override
+  {
+    return m_solver.set_constraints(
+      TC::parameters::constrained_faces(constrained, TC::parameters::guided_faces(guided)));
+  }
+
+  const char* backend() const override { return m_name; }
+
+private:
+  vertex_descriptor vertex(std::size_t v) const
+  {
+    if(v >= m_mesh.number_of_vertices())
+      throw TC::Invalid_input(TC::Error_code::invalid_vertex,
+                              "vertex " + std::to_string(v) + " does not exist (the mesh has " +
+                                std::to_string(m_mesh.number_of_vertices()) + " vertices)",
+                              v);
+    return vertex_descriptor(Mesh::size_type(v));
+  }
+  std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> descriptors(const Singularities& s) const
+  {
+    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
+    out.reserve(s.size());
+    for(const auto& [v, k] : s)
+      out.emplace_back(vertex(v), k);
+    return out;
+  }
+
+  const Mesh& m_mesh;
+  Solver m_solver;
+  const char* m_name;
+  std::vector<std::int64_t> m_edge_slot; // per edge, its entry in Result.connection (-1: border)
+  std::int64_t m_interior_edges = 0;
+};
+
+}  // namespace
+
+namespace {
+
+// ---- the Python classes ---------------------------------------------------------------------------------
+
+struct Result
+{
+  py::object connection, edges, field, directions, energy, guidance_energy, max_residual, max_loop_residual,
+    loop_periods, boundary_indices, integers_proven_optimal, energy_lower_bound, rounding_energy, constraints,
+    guidance, n, timings;
+};
+
+std::vector<face_descriptor> faces_of(const py::handle& list, std::size_t number_of_faces, const char* what)
+{
+  std::vector<face_descriptor> faces;
+  if(list.is_none())
+    return faces;
+  for(const py::handle f : py::iter(list)) {
+    if(py::isinstance<py::bool_>(f) || !PyIndex_Check(f.ptr()))
+      throw py::type_error(std::string(what) + " must be face numbers (integers), got " + std::string(py::repr(f)));
+    const std::int64_t i = int64_of(f, TC::Error_code::invalid_constraint, std::string(what) + ": face");
+    if(i < 0 || std::size_t(i) >= number_of_faces)
+      throw TC::Invalid_input(TC::Error_code::invalid_constraint,
+                              std::string(what) + ": face " + std::to_string(i) + " does not exist (the mesh has " +
+                                std::to_string(number_of_faces) + " faces)",
+                              i < 0 ? TC::Invalid_input::no_location : std::size_t(i));
+    faces.push_back(face_descriptor(Mesh::size_type(i)));
+  }
+  return faces;
+}
+
+class Python_solver
+{
+public:
+  Python_solver(std::unique_ptr<Mesh> mesh, const std::string& weights, const std::string& backend,
+                const py::object& constrained, const py::object& guided, double guidance_weight, bool align_boundary)
+    : m_mesh(std::move(mesh))
+  {
+    Options o;
+    if(weights == "unit")
+      o.weighting = TC::Weighting::unit;
+    else if(weights != "hodge")
+      throw py::value_error("weights must be \"hodge\" or \"unit\", got \"" + weights + "\"");
+    o.constrained = faces_of(constrained, m_mesh->number_of_faces(), "constrained_faces");
+    o.guided = faces_of(guided, m_mesh->number_of_faces(), "guided_faces");
+    o.guidance_weight = guidance_weight;
+    o.align_boundary = align_boundary;
+    if(backend != "auto" && backend != "ldlt" && backend != "cholmod")
+      throw py::value_error("backend must be \"auto\", \"ldlt\" or \"cholmod\", got \"" + backend + "\"");
+#ifndef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+    if(backend == "cholmod")
+      throw py::value_error("backend \"cholmod\": this build of the module has no CHOLMOD (libsuitesparse-dev)");
+#endif
+    py::gil_scoped_release unlocked;
+    const auto start = std::chrono::steady_clock::now();
+    if(backend == "ldlt")
+      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, o, "ldlt");
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+    else if(backend == "cholmod")
+      m_solver = std::make_unique<Solver_of<TC::Cholmod_solver_traits>>(*m_mesh, o, "cholmod");
+    else
+      m_solver = std::make_unique<Solver_of<TC::Automatic_solver_traits>>(*m_mesh, o, "auto");
+#else
+    else
+      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, o, "auto");
+#endif
+    m_solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for(auto e : m_mesh->edges())
+      if(!m_mesh->is_border(e)) {
+        const auto h = m_mesh->halfedge(e);
+        const std::int64_t a = std::int64_t(m_mesh->source(h)), b = std::int64_t(m_mesh->target(h));
+        m_edges.push_back((std::min)(a, b));
+        m_edges.push_back((std::max)(a, b));
+      }
+  }
+
+  Result solve(const py::object& singularities, int n, const py::object& directions, const py::object& loop_periods)
+  {
+    const auto s = singularities_of(singularities);
+    std::optional<std::vector<Kernel::Vector_3>> targets;
+    if(!directions.is_none())
+      targets = directions_of(directions);
+    const std::optional<Loop_periods> periods = periods_of(loop_periods);
+    Solve_output out;
+    {
+      py::gil_scoped_release unlocked;
+      std::shared_lock<std::shared_mutex> reading(m_mutex);
+      out = m_solver->solve(s, n, targets ? &*targets : nullptr, periods ? &*periods : nullptr);
+    }
+    return result_of(std::move(out), n);
+  }
+
+  py::dict set_constraints(const py::object& constrained, const py::object& guided)
+  {
+    const auto c = faces_of(constrained, m_mesh->number_of_faces(), "constrained_faces");
+    const auto g = faces_of(guided, m_mesh->number_of_faces(), "guided_faces");
+    TC::Constraint_update u;
+    {
+      py::gil_scoped_release unlocked;
+      std::unique_lock<std::shared_mutex> writing(m_mutex);
+      u = m_solver->set_constraints(c, g);
+    }
+    py::dict d;
+    d["refactored"] = u.refactored;
+    d["links"] = u.links;
+    d["links_outside_the_factor"] = u.links_outside_the_factor;
+    d["new_forward_substitutions"] = u.new_forward_substitutions;
+    return d;
+  }
+
+  py::tuple place_singularities(int n, bool align_boundary, const py::object& alignment_guide, double strength,
+                                const py::object& fixed, const py::object& loop_periods)
+  {
+    const Singularities kept = singularities_of(fixed);
+    std::optional<std::vector<Kernel::Vector_3>> guide;
+    if(!alignment_guide.is_none())
+      guide = directions_of(alignment_guide);
+    const std::optional<Loop_periods> periods = periods_of(loop_periods);
+    Singularities placed;
+    TC::Placement_report report;
+    {
+      py::gil_scoped_release unlocked;
+      std::shared_lock<std::shared_mutex> reading(m_mutex);
+      report = m_solver->place(n, align_boundary, guide ? &*guide : nullptr, strength, kept,
+                               periods ? &*periods : nullptr, placed);
+    }
+    py::dict d;
+    d["n"] = report.symmetry_order;
+    d["aligned"] = report.aligned;
+    d["field_energy"] = report.field_energy;
+    d["rayleigh_quotients"] = report.rayleigh_quotients;
+    d["iterations"] = report.iterations;
+    d["max_rounding"] = report.max_rounding;
+    py::dict per_index;
+    for(const auto& [k, count] : report.singularities_per_index)
+      per_index[fraction(k)] = count;
+    d["singularities_per_index"] = per_index;
+    d["fixed"] = report.fixed;
+    d["units_removed"] = report.units_removed;
+    d["units_added"] = report.units_added;
+    return py::make_tuple(singularity_dict(placed), d);
+  }
+
+  py::tuple principal_curvature_guide() const
+  {
+    std::vector<std::pair<double, double>> c;
+    std::vector<Kernel::Vector_3> guide;
+    {
+      py::gil_scoped_release unlocked;
+      guide = m_solver->curvature_guide(c);
+    }
+    std::vector<double> g, k;
+    for(const auto& v : guide)
+      for(int i = 0; i < 3; ++i)
+        g.push_back(CGAL::to_double(v[i]));
+    for(const auto& [a, b] : c) {
+      k.push_back(a);
+      k.push_back(b);
+    }
+    const py::ssize_t nf = py::ssize_t(guide.size());
+    return py::make_tuple(owning_array(std::move(g), {nf, 3}), owning_array(std::move(k), {nf, 2}));
+  }
+
+  std::vector<std::size_t> spread_guided_faces(const py::object& guide, std::size_t count) const
+  {
+    const std::vector<Kernel::Vector_3> g = directions_of(guide);
+    py::gil_scoped_release unlocked;
+    return m_solver->spread(g, count);
+  }
+
+  py::tuple refine_singularities(const py::object& start, int n, const py::object& directions,
+                                 const py::object& loop_periods, const py::object& fixed_vertices, bool cancel_pairs,
+                                 std::size_t maximum_trials)
+  {
+    const Singularities s = singularities_of(start);
+    std::optional<std::vector<Kernel::Vector_3>> targets;
+    if(!directions.is_none())
+      targets = directions_of(directions);
+    const std::optional<Loop_periods> periods = periods_of(loop_periods);
+    std::vector<std::size_t> fixed;
+    if(!fixed_vertices.is_none())
+      for(const py::handle v : py::iter(fixed_vertices))
+        fixed.push_back(vertex_number(v));
+    TC::Refinement_report<vertex_descriptor> r;
+    {
+      py::gil_scoped_release unlocked;
+      // it solves again and again on the solver: as a solve, beside other solves
+      std::shared_lock<std::shared_mutex> reading(m_mutex);
+      r = m_solver->refine(s, n, targets ? &*targets : nullptr, periods ? &*periods : nullptr, fixed, cancel_pairs,
+                           maximum_trials);
+    }
+    Singularities refined;
+    for(const auto& [v, k] : r.singularities)
+      refined.emplace_back(std::size_t(v), k);
+    py::list moves;
+    for(const auto& m : r.moves) {
+      py::dict d;
+      d["from"] = std::size_t(m.from);
+      d["to"] = std::size_t(m.to);
+      d["index"] = fraction(m.index);
+      d["energy"] = m.energy;
+      moves.append(d);
+    }
+    py::dict d;
+    d["energy_before"] = r.energy_before;
+    d["energy_after"] = r.energy_after;
+    d["moves"] = moves;
+    d["trials"] = r.trials;
+    d["local_minimum"] = r.local_minimum;
+    return py::make_tuple(singularity_dict(refined), d);
+  }
+
+  // the polylines of the field of `result`, from the barycentres of `seed_faces` (default: every face)
+  py::list trace_streamlines(const Result& result, const py::object& singularities, const py::object& seed_faces,
+                             std::size_t maximum_faces_per_ray)
+  {
+    const Singularities s = singularities_of(singularities);
+    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> singular;
+    for(const auto& [v, k] : s) {
+      if(v >= m_mesh->number_of_vertices())
+        throw TC::Invalid_input(TC::Error_code::invalid_vertex, "vertex " + std::to_string(v) + " does not exist", v);
+      singular.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
+    }
+    std::vector<face_descriptor> seeds;
+    if(seed_faces.is_none())
+      for(auto f : m_mesh->faces())
+        seeds.push_back(f);
+    else
+      seeds = faces_of(seed_faces, m_mesh->number_of_faces(), "seed_faces");
+    const std::vector<double> x = halfedge_angles(result);
+    const std::vector<Kernel::Vector_3> field = field_of(result);
+    const int n = result.n.cast<int>();
+    std::vector<TC::Streamline<Mesh>> lines;
+    {
+      py::gil_scoped_release unlocked;
+      auto x_map = boost::make_function_property_map<halfedge_descriptor, double>(
+        [&x](halfedge_descriptor h) { return x[std::size_t(h)]; });
+      auto field_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+        [&field](face_descriptor f) { return field[std::size_t(f)]; });
+      const std::size_t limit = maximum_faces_per_ray > 0 ? maximum_faces_per_ray
+                                                          : std::size_t(n) * m_mesh->number_of_faces();
+      lines = TC::trace_streamlines(*m_mesh, x_map, field_map, singular, seeds,
+                                    TC::parameters::symmetry_order(n, TC::parameters::maximum_faces_per_ray(limit)));
+    }
+    py::list out;
+    for(auto& line : lines) {
+      std::vector<double> p;
+      p.reserve(3 * line.points.size());
+      for(const auto& q : line.points)
+        p.insert(p.end(), q.begin(), q.end());
+      out.append(owning_array(std::move(p), {py::ssize_t(line.points.size()), 3}));
+    }
+    return out;
+  }
+
+  // the mesh with the field of `result` and the singularities, as a VTK (.vtk) or PLY (.ply) file, written
+  // completely or not at all
+  void write_field(const std::string& path, const Result& result, const py::object& singularities) const
+  {
+    const Singularities s = singularities_of(singularities);
+    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> singular;
+    for(const auto& [v, k] : s) {
+      if(v >= m_mesh->number_of_vertices())
+        throw TC::Invalid_input(TC::Error_code::invalid_vertex, "vertex " + std::to_string(v) + " does not exist", v);
+      singular.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
+    }
+    const std::vector<Kernel::Vector_3> field = field_of(result);
+    const int n = result.n.cast<int>();
+    const std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : std::string();
+    if(extension != ".vtk" && extension != ".ply")
+      throw py::value_error("write_field: the file name must end in .vtk or .ply, got \"" + path + "\"");
+    py::gil_scoped_release unlocked;
+    auto field_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+      [&field](face_descriptor f) { return field[std::size_t(f)]; });
+    TC::write_file_atomically(path, [&](std::ostream& os) {
+      if(extension == ".vtk")
+        TC::write_field_vtk(os, *m_mesh, field_map, singular, TC::parameters::symmetry_order(n));
+      else
+        TC::write_field_ply(os, *m_mesh, field_map, singular, TC::parameters::symmetry_order(n));
+    });
+  }
+
+  // the loops of loop_periods: boundary loops and homology generators, each with the halfedges it crosses as
+  // (source, target) vertex pairs, crossed from the face on their left to the other one
+  py::list loops() const
+  {
+    py::list out;
+    for(const auto& [boundary, component, halfedges] : m_solver->loops()) {
+      std::vector<std::int64_t> pairs;
+      for(halfedge_descriptor h : halfedges) {
+        pairs.push_back(std::int64_t(m_mesh->source(h)));
+        pairs.push_back(std::int64_t(m_mesh->target(h)));
+      }
+      py::dict d;
+      d["kind"] = boundary ? "boundary" : "generator";
+      d["component"] = component;
+      d["halfedges"] = owning_array(std::move(pairs), {py::ssize_t(halfedges.size()), 2});
+      out.append(d);
+    }
+    return out;
+  }
+
+  std::size_t number_of_vertices() const { return m_mesh->number_of_vertices(); }
+  std::size_t number_of_faces() const { return m_mesh->number_of_faces(); }
+  std::size_t number_of_loops() const { return m_solver->number_of_loops(); }
+  std::string backend() const { return m_solver->backend(); }
+  py::array_t<double> vertices() const
+  {
+    std::vector<double> p;
+    p.reserve(3 * m_mesh->number_of_vertices());
+    for(auto v : m_mesh->vertices())
+      for(int i = 0; i < 3; ++i)
+        p.push_back(CGAL::to_double(m_mesh->point(v)[i]));
+    return owning_array(std::move(p), {py::ssize_t(m_mesh->number_of_vertices()), 3});
+  }
+  py::array_t<std::int64_t> faces() const
+  {
+    std::vector<std::int64_t> t;
+    t.reserve(3 * m_mesh->number_of_faces());
+    for(auto f : m_mesh->faces())
+      for(auto v : CGAL::vertices_around_face(m_mesh->halfedge(f), *m_mesh))
+        t.push_back(std::int64_t(v));
+    return owning_array(std::move(t), {py::ssize_t(m_mesh->number_of_faces()), 3});
+  }
+  py::array_t<double> weights() const
+  {
+    std::vector<double> w = m_solver->weights();
+    const py::ssize_t ne = py::ssize_t(w.size());
+    return owning_array(std::move(w), {ne});
+  }
+  // one read-only array for the solver and all its results
+  py::object edges() const
+  {
+    if(!m_edges_array) {
+      std::vector<std::int64_t> copy = m_edges;
+      py::array_t<std::int64_t> a = owning_array(std::move(copy), {py::ssize_t(m_edges.size() / 2), 2});
+      a.attr("setflags")(py::arg("write") = false);
+      m_edges_array = a;
+    }
+    return m_edges_array;
+  }
+
+private:
+  // x per halfedge from a Result of this solver (its edges are the mesh's interior edges, in order)
+  std::vector<double> halfedge_angles(const Result& result) const
+  {
+    const auto connection = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result.connection);
+    std::vector<double> x(m_mesh->number_of_halfedges(), 0.);
+    if(!connection || std::size_t(connection.size()) != m_edges.size() / 2)
+      throw py::value_error("the result is not one of this solver (its number of edges differs)");
+    std::size_t i = 0;
+    for(auto e : m_mesh->edges()) {
+      if(m_mesh->is_border(e))
+        continue;
+      halfedge_descriptor h = m_mesh->halfedge(e);
+      if(std::size_t(m_mesh->source(h)) > std::size_t(m_mesh->target(h)))
+        h = m_mesh->opposite(h);
+      x[std::size_t(h)] = connection.data()[i];
+      x[std::size_t(m_mesh->opposite(h))] = -connection.data()[i];
+      ++i;
+    }
+    return x;
+  }
+  std::vector<Kernel::Vector_3> field_of(const Result& result) const
+  {
+    const auto f = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result.field);
+    if(!f || f.ndim() != 2 || std::size_t(f.shape(0)) != m_mesh->number_of_faces() || f.shape(1) != 3)
+      throw py::value_error("the result is not one of this solver (its number of faces differs)");
+    std::vector<Kernel::Vector_3> field(m_mesh->number_of_faces());
+    for(std::size_t i = 0; i < field.size(); ++i)
+      field[i] = Kernel::Vector_3(f.data()[3 * i], f.data()[3 * i + 1], f.data()[3 * i + 2]);
+    return field;
+  }
+
+  static py::dict singularity_dict(const Singularities& s)
+  {
+    py::dict d;
+    for(const auto& [v, k] : s)
+      d[py::int_(v)] = fraction(k);
+    return d;
+  }
+
+  static std::optional<Loop_periods> periods_of(const py::object& loop_periods)
+  {
+    if(loop_periods.is_none())
+      return std::nullopt;
+    Loop_periods periods;
+    for(const py::handle p : py::iter(loop_periods)) {
+      if(p.is_none())
+        periods.emplace_back();
+      else if(py::isinstance<py::bool_>(p) || !PyIndex_Check(p.ptr()))
+        throw py::type_error("loop_periods must hold integers or None, got " + std::string(py::repr(p)));
+      else
+        periods.emplace_back(int64_of(p, TC::Error_code::invalid_loop_periods, "the loop period"));
+    }
+    return periods;
+  }
+
+  // one target per face (rows of the faces that are neither constrained nor guided are not read), or a dict
+  // {face: vector}
+  std::vector<Kernel::Vector_3> directions_of(const py::object& directions) const
+  {
+    const std::size_t nf = m_mesh->number_of_faces();
+    std::vector<Kernel::Vector_3> targets(nf, CGAL::NULL_VECTOR);
+    auto vector_of = [](const py::handle& h) {
+      const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(h);
+      if(!a || a.ndim() != 1 || a.shape(0) != 3)
+        throw py::value_error("a direction must be three numbers, got " + std::string(py::repr(h)));
+      return Kernel::Vector_3(a.data()[0], a.data()[1], a.data()[2]);
+    };
+    if(py::isinstance<py::dict>(directions)) {
+      py::list keys;
+      for(const auto& item : py::reinterpret_borrow<py::dict>(directions))
+        keys.append(item.first);
+      const std::vector<face_descriptor> faces = faces_of(keys, nf, "directions");
+      std::size_t i = 0;
+      for(const auto& item : py::reinterpret_borrow<py::dict>(directions))
+        targets[std::size_t(faces[i++])] = vector_of(item.second);
+      return targets;
+    }
+    const py::array a = as_array(directions, "directions");
+    check_rows_of_three(a, "directions", "fiu", "real numbers");
+    if(std::size_t(a.shape(0)) != nf)
+      throw py::value_error("directions must have one row per face (" + std::to_string(nf) + "), got " +
+                            std::to_string(a.shape(0)));
+    const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+    for(std::size_t f = 0; f < nf; ++f)
+      targets[f] = Kernel::Vector_3(d.data()[3 * f], d.data()[3 * f + 1], d.data()[3 * f + 2]);
+    return targets;
+  }
+
+  Result result_of(Solve_output&& out, int n) const
+  {
+    Result r;
+    const TC::Solve_report& report = out.report;
+    const py::ssize_t ne = py::ssize_t(out.connection.size()), nf = py::ssize_t(m_mesh->number_of_faces());
+    r.connection = owning_array(std::move(out.connection), {ne});
+    r.edges = edges();
+    r.field = owning_array(std::move(out.field), {nf, 3});
+    r.directions = n > 1 ? py::object(owning_array(std::move(out.directions), {nf, py::ssize_t(n), 3})) : py::none();
+    r.n = py::int_(n);
+    r.energy = py::float_(report.energy);
+    r.guidance_energy = py::float_(report.guidance_energy);
+    r.max_residual = py::float_(report.max_vertex_residual);
+    r.max_loop_residual = py::float_(report.max_loop_residual);
+    r.integers_proven_optimal = py::bool_(report.integers_proven_optimal);
+    r.energy_lower_bound = py::float_(report.energy_lower_bound);
+    r.rounding_energy = py::float_(report.rounding_energy);
+    py::list periods;
+    py::dict boundary;
+    for(std::size_t l = 0; l < report.loops.size(); ++l) {
+      periods.append(report.loops[l].period);
+      if(report.loops[l].kind == TC::Loop_kind::boundary)
+        boundary[py::int_(l)] = fraction(report.loops[l].index);
+    }
+    r.loop_periods = periods;
+    r.boundary_indices = boundary;
+    py::list constraints;
+    for(const auto& c : report.constraints) {
+      py::dict d;
+      d["component"] = c.component;
+      d["from_face"] = c.from_face;
+      d["to_face"] = c.to_face;
+      d["length"] = c.length;
+      d["period"] = c.period;
+      d["residual"] = c.residual;
+      constraints.append(d);
+    }
+    r.constraints = constraints;
+    py::list guidance;
+    for(const auto& g : report.guidance) {
+      py::dict d;
+      d["face"] = g.face;
+      d["mismatch"] = g.mismatch;
+      guidance.append(d);
+    }
+    r.guidance = guidance;
+    py::dict timings;
+    timings["solve"] = out.solve_seconds;
+    timings["field"] = out.field_seconds;
+    timings["outputs"] = out.output_seconds;
+    r.timings = timings;
+    return r;
+  }
+
+public:
+  double m_mesh_seconds = 0, m_solver_seconds = 0; // reading the arrays or the file into the mesh; the C++ solver
+
+private:
+  std::unique_ptr<Mesh> m_mesh; // before the solver, which refers to it
+  std::unique_ptr<Solver_interface> m_solver;
+  std::vector<std::int64_t> m_edges;
+  mutable py::object m_edges_array; // made on first use, with the GIL
+  mutable std::shared_mutex m_mutex;
+};
+
+std::unique_ptr<Mesh> mesh_of_file(const std::string& path, bool triangulate)
+{
+  auto mesh = std::make_unique<Mesh>();
+  py::gil_scoped_release unlocked;
+  TC::read_triangle_mesh(path, *mesh, TC::parameters::triangulate(triangulate));
+  return mesh;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(trivial_connections, m)
+{
+  m.doc() = R"(Trivial connections on triangle meshes (CGAL Trivial Connections).
+
+Direction fields with exactly the singularities you prescribe, closest to Levi-Civita transport
+(Crane, Desbrun, Schroeder, "Trivial Connections on Discrete Surfaces", SGP 2010).
+
+    import numpy as np, trivial_connections as tc
+    solver = tc.Solver(V, F)                      # V: (n, 3) floats, F: (m, 3) vertex indices
+    result = solver.solve({0: 1, 17: 1})          # indices summing to the Euler characteristic
+    result.connection, result.edges, result.field
+
+Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .code and .where.)";
+
+  static py::exception<TC::Invalid_input> invalid_input(m, "InvalidInput", PyExc_ValueError);
+  invalid_input.doc() = "Bad input data: .code names the error (e.g. \"poincare_hopf_violated\"), .where is the "
+                        "vertex, face or loop concerned (or None); str() is the library's one-line message.";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if(p)
+        std::rethrow_exception(p);
+    } catch(const TC::Invalid_input& e) {
+      // an instance, with the two attributes the class documents
+      py::object error = py::reinterpret_borrow<py::object>(invalid_input.ptr())(e.what());
+      error.attr("code") = TC::error_code_name(e.code());
+      error.attr("where") = e.where() == TC::Invalid_input::no_location ? py::object(py::none())
+                                                                          : py::object(py::int_(e.where()));
+      PyErr_SetObject(invalid_input.ptr(), error.ptr());
+    }
+  });
+
+  m.def(
+    "read_singularities",
+    [](const std::string& path, const py::object& number_of_vertices) {
+      const std::size_t count =
+        number_of_vertices.is_none() ? TC::unchecked_vertex_count : number_of_vertices.cast<std::size_t>();
+      std::vector<std::pair<std::size_t, TC::Singularity_index>> s;
+      {
+        py::gil_scoped_release unlocked;
+        s = TC::read_singularities(path, count);
+      }
+      py::dict d;
+      for(const auto& [v, k] : s)
+        d[py::int_(v)] = fraction(k);
+      return d;
+    },
+    py::arg("path"), py::arg("number_of_vertices") = py::none(),
+    "Reads a singularity file (lines \"v k\", k an integer or p/q; # comments): {vertex: Fraction}. Raises "
+    "InvalidInput (parse_error, duplicate_singularity, invalid_vertex, io_error) with the file and line.");
+  m.def(
+    "write_singularities",
+    [](const std::string& path, const py::object& singularities) {
+      const Singularities s = singularities_of(singularities);
+      py::gil_scoped_release unlocked;
+      TC::write_file_atomically(path, [&](std::ostream& os) { TC::write_singularities(os, s); });
+    },
+    py::arg("path"), py::arg("singularities"),
+    "Writes singularities ({vertex: index} or pairs) in the format read_singularities() reads, completely or "
+    "not at all.");
+
+  m.def(
+    "write_streamlines",
+    [](const std::string& path, const py::list& lines) {
+      std::vector<TC::Streamline<Mesh>> s;
+      for(const py::handle line : lines) {
+        const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(line);
+        if(!a || a.ndim() != 2 || a.shape(1) != 3)
+          throw py::value_error("each streamline must be a (k, 3) array of points");
+        TC::Streamline<Mesh> l;
+        for(py::ssize_t i = 0; i < a.shape(0); ++i)
+          l.points.push_back({a.at(i, 0), a.at(i, 1), a.at(i, 2)});
+        s.push_back(std::move(l));
+      }
+      py::gil_scoped_release unlocked;
+      TC::write_file_atomically(path, [&](std::ostream& os) { TC::write_streamlines_vtk(os, s); });
+    },
+    py::arg("path"), py::arg("lines"),
+    "Writes polylines (from Solver.trace_streamlines()) as a legacy VTK file of lines, for ParaView and the "
+    "package's renderer (--streamlines); completely or not at all.");
+
+  py::class_<Result>(m, "Result", "What Solver.solve() returns: the connection, the field and the report.")
+    .def_readonly("connection", &Result::connection,
+                  "(e,) float64: x of each interior edge, for the halfedge from edges[i, 0] to edges[i, 1]")
+    .def_readonly("edges", &Result::edges, "(e, 2) int64: the interior edges (i < j), in the mesh's edge order")
+    .def_readonly("field", &Result::field, "(m, 3) float64: a unit tangent vector per face (one of the n directions)")
+    .def_readonly("directions", &Result::directions, "(m, n, 3) float64 for n > 1: the n directions per face; else None")
+    .def_readonly("n", &Result::n, "n of the n-direction field")
+    .def_readonly("energy", &Result::energy, "sum over interior edges of w_e x_e^2")
+    .def_readonly("guidance_energy", &Result::guidance_energy, "mu sum_g d_g^2 over the guided faces")
+    .def_readonly("max_residual", &Result::max_residual, "max over interior vertices of |K_v + sum x - 2 pi k_v|")
+    .def_readonly("max_loop_residual", &Result::max_loop_residual, "max residual over the loops")
+    .def_readonly("loop_periods", &Result::loop_periods, "the integer of every loop (Solver.number_of_loops)")
+    .def_readonly("boundary_indices", &Result::boundary_indices, "{loop: Fraction}: the index of every boundary loop")
+    .def_readonly("integers_proven_optimal", &Result::integers_proven_optimal,
+                  "True when the loop integers were proven energy-optimal")
+    .def_readonly("energy_lower_bound", &Result::energy_lower_bound,
+                  "no choice of the free integers gives less energy than this")
+    .def_readonly("rounding_energy", &Result::rounding_energy, "the energy with the integers rounded one by one")
+    .def_readonly("constraints", &Result::constraints, "one dict per path joining two constrained faces")
+    .def_readonly("guidance", &Result::guidance, "one dict per guided face: face, mismatch")
+    .def_readonly("timings", &Result::timings,
+                  "seconds in C++: solve (Trivial_connection_solver::solve), field (compute_field) and outputs "
+                  "(the arrays filled); the rest of a call's time is the binding's")
+    .def("__repr__", [](const Result& r) {
+      return "<trivial_connections.Result n=" + std::string(py::str(r.n)) +
+             " energy=" + std::string(py::str(r.energy)) + " max_residual=" + std::string(py::str(r.max_residual)) +
+             ">";
+    });
+
+  py::class_<Python_solver>(m, "Solver", R"(A prefactored trivial-connection solver for one triangle mesh.
+
+Solver(V, F, weights="hodge", backend="auto", constrained_faces=None, guided_faces=None,
+       guidance_weight=1.0, align_boundary=False)
+
+V: (n, 3) array of real numbers (any float or integer dtype, any layout); F: (m, 3) array of vertex indices
+(any integer dtype). The mesh must be an oriented 2-manifold of triangles (boundaries allowed). Building the
+solver factors the system once; every solve() after that costs back-substitutions only.
+weights: "hodge" (w_e = |e| / |e*|) or "unit". backend: "auto" (SimplicialLDLT or CHOLMOD by predicted cost,
+as the program), "ldlt" or "cholmod". constrained_faces / guided_faces: face numbers whose direction
+solve() prescribes (exactly) or draws the field towards (with weight guidance_weight).
+align_boundary: the field follows the boundary.
+Raises InvalidInput for a mesh the package refuses (code and where say why).)")
+    .def(py::init([](const py::object& V, const py::object& F, const std::string& weights, const std::string& backend,
+                     const py::object& constrained, const py::object& guided, double mu, bool align) {
+           const auto start = std::chrono::steady_clock::now();
+           std::unique_ptr<Mesh> mesh = mesh_of_arrays(V, F);
+           const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+           auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
+           solver->m_mesh_seconds = seconds;
+           return solver;
+         }),
+         py::arg("V"), py::arg("F"), py::kw_only(), py::arg("weights") = "hodge", py::arg("backend") = "auto",
+         py::arg("constrained_faces") = py::none(), py::arg("guided_faces") = py::none(),
+         py::arg("guidance_weight") = 1.0, py::arg("align_boundary") = false)
+    .def_static(
+      "from_file",
+      [](const std::string& path, bool triangulate, const std::string& weights, const std::string& backend,
+         const py::object& constrained, const py::object& guided, double mu, bool align) {
+        const auto start = std::chrono::steady_clock::now();
+        std::unique_ptr<Mesh> mesh = mesh_of_file(path, triangulate);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
+        solver->m_mesh_seconds = seconds;
+        return solver;
+      },
+      py::arg("path"), py::arg("triangulate") = false, py::kw_only(), py::arg("weights") = "hodge",
+      py::arg("backend") = "auto", py::arg("constrained_faces") = py::none(), py::arg("guided_faces") = py::none(),
+      py::arg("guidance_weight") = 1.0, py::arg("align_boundary") = false,
+      "A solver for the mesh of an OFF, OBJ, PLY, STL or GOCAD file (the package's validating reader; "
+      "triangulate=True splits polygons). Options as Solver().")
+    .def("solve", &Python_solver::solve, py::arg("singularities"), py::arg("n") = 1, py::arg("directions") = py::none(),
+         py::arg("loop_periods") = py::none(),
+         R"(The trivial connection with exactly these singularities, and its field.
+
+singularities: {vertex: index} or a sequence of (vertex, index) pairs (e.g. a (k, 2) integer array); an index
+is an int, a fractions.Fraction or a string "p/q", a multiple of 1/n. On every closed component the indices
+must sum to its Euler characteristic (Poincare-Hopf). n: 1 vectors, 2 lines, 4 crosses, ...
+directions: for constrained or guided faces, an (m, 3) array (one row per face; the other rows are not read)
+or {face: (3,) vector}. loop_periods: one int (or None: chosen by the solver) per loop.
+Returns a Result. Releases the GIL: solves from several threads run concurrently.)")
+    .def("set_constraints", &Python_solver::set_constraints, py::arg("constrained_faces") = py::none(),
+         py::arg("guided_faces") = py::none(),
+         "Changes the constrained and guided faces (as the constructor's options); returns what it did.")
+    .def("place_singularities", &Python_solver::place_singularities, py::kw_only(), py::arg("n") = 1,
+         py::arg("align_boundary") = false, py::arg("alignment_guide") = py::none(),
+         py::arg("alignment_strength") = 100.0, py::arg("fixed_singularities") = py::none(),
+         py::arg("loop_periods") = py::none(),
+         R"(Automatic placement: the singularities of the globally smoothest n-direction field (Knoeppel et al. 2013).
+
+Returns (singularities, report): {vertex: Fraction}, which satisfies Poincare-Hopf on every closed component and
+can be given to solve() as it is, and a dict (field_energy, singularities_per_index, ...). alignment_guide: an
+(m, 3) array (or {face: vector}) of guide directions whose length weighs them (principal_curvature_guide()), for
+Knoeppel's aligned field, with alignment_strength. fixed_singularities: kept as they are, the automatic ones nearest
+give way. align_boundary, loop_periods: as for the solver and solve().)")
+    .def("principal_curvature_guide", &Python_solver::principal_curvature_guide,
+         "Per face, the direction of largest principal curvature times the anisotropy |k1 - k2| ((m, 3) array), "
+         "and the two principal curvatures ((m, 2) array, larger absolute value first): a guide for n = 2 or 4.")
+    .def("spread_guided_faces", &Python_solver::spread_guided_faces, py::arg("guide"), py::arg("count"),
+         "Up to count faces spread over the mesh, strongest guide first: guided_faces for set_constraints().")
+    .def("refine_singularities", &Python_solver::refine_singularities, py::arg("singularities"), py::kw_only(),
+         py::arg("n") = 1, py::arg("directions") = py::none(), py::arg("loop_periods") = py::none(),
+         py::arg("fixed_vertices") = py::none(), py::arg("cancel_pairs") = false, py::arg("maximum_trials") = 500,
+         "Moves singularities to neighbouring vertices while the trivial connection's energy drops (each trial a "
+         "solve on the prefactored solver). Returns (singularities, report) with energy_before, energy_after, moves.")
+    .def("trace_streamlines", &Python_solver::trace_streamlines, py::arg("result"), py::arg("singularities"),
+         py::arg("seed_faces") = py::none(), py::arg("maximum_faces_per_ray") = 0,
+         "The streamlines of result's field from the barycentres of seed_faces (default: every face): a list of "
+         "(k, 3) polylines on the surface; a ray stops at the boundary, at a face with a singular vertex, when it "
+         "closes, or after maximum_faces_per_ray faces (0: n times the number of faces).")
+    .def("write_field", &Python_solver::write_field, py::arg("path"), py::arg("result"), py::arg("singularities"),
+         "Writes the mesh, result's field (its n directions) and the singularities as a legacy VTK (.vtk) or PLY "
+         "(.ply) file for ParaView, MeshLab or Blender; completely or not at all.")
+    .def_property_readonly("loops", &Python_solver::loops,
+                           "The loops whose integers loop_periods gives, in that order: dicts with kind (\"boundary\" "
+                           "or \"generator\": the 2g homology generators of each component), component and "
+                           "halfedges, a (k, 2) array of the (source, target) vertices of the halfedges crossed, each "
+                           "from the face on its left to the face on its right.")
+    .def_property_readonly(
+      "build_timings",
+      [](const Python_solver& s) {
+        py::dict d;
+        d["mesh"] = s.m_mesh_seconds;
+        d["solver"] = s.m_solver_seconds;
+        return d;
+      },
+      "seconds in C++ while the solver was built: mesh (the arrays or the file read into a validated Surface_mesh) "
+      "and solver (the C++ constructor, as from a Surface_mesh)")
+    .def_property_readonly("number_of_vertices", &Python_solver::number_of_vertices)
+    .def_property_readonly("number_of_faces", &Python_solver::number_of_faces)
+    .def_property_readonly("number_of_loops", &Python_solver::number_of_loops,
+                           "boundary loops and homology generators: the entries of loop_periods")
+    .def_property_readonly("backend", &Python_solver::backend, "\"ldlt\", \"cholmod\" or \"auto\"")
+    .def_property_readonly("edges", &Python_solver::edges, "(e, 2) int64: the interior edges, as in Result.edges")
+    .def_property_readonly("vertices", &Python_solver::vertices, "(n, 3) float64: the mesh's points (V)")
+    .def_property_readonly("faces", &Python_solver::faces,
+                           "(m, 3) int64: the mesh's triangles (F), counter-clockwise from its first halfedge")
+    .def_property_readonly("weights", &Python_solver::weights,
+                           "(e,) float64: the weight w_e of each interior edge in the energy, as in Result.edges");
+}

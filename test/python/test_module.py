@@ -1,0 +1,583 @@
+# Copyright (c) 2026 CGAL Trivial Connections contributors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# The Python module checked from first principles (shared/CONVENTIONS.md), in numpy, from V, F and the result
+# alone: holonomy around every interior vertex, Poincare-Hopf, the field parallel under the connection, the
+# optimality of the energy on every face; then the inputs numpy users pass (dtypes, layouts, renumbering) and
+# every bad input. Run by ctest (test python_module) with PYTHONPATH=build/python.
+
+import fractions
+import math
+import os
+import subprocess
+import tempfile
+import threading
+
+import numpy as np
+import pytest
+
+import trivial_connections as tc
+
+# ---- meshes the tests make ---------------------------------------------------------------------------------
+
+
+def icosphere(levels):
+    """A closed genus-0 triangle mesh: an octahedron, each triangle split in four `levels` times, on the sphere."""
+    V = [np.array(p, float) for p in [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]]
+    F = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
+    for _ in range(levels):
+        middle = {}
+
+        def mid(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in middle:
+                middle[key] = len(V)
+                V.append((V[a] + V[b]) / 2)
+            return middle[key]
+
+        G = []
+        for a, b, c in F:
+            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            G += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+        F = G
+    V = np.array([v / np.linalg.norm(v) for v in V])
+    # a little irregularity, so that no symmetry hides an error
+    V *= (1 + 0.05 * np.sin(7 * V[:, :1] + 3 * V[:, 1:2]))
+    return V, np.array(F)
+
+
+def torus(nu, nv, R=2.0, r=0.7, twist=0.1):
+    """A closed genus-1 mesh of revolution, slightly twisted unless twist = 0."""
+    u, v = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
+    a, b = 2 * np.pi * u / nu, 2 * np.pi * v / nv + twist * np.sin(2 * np.pi * u / nu)
+    V = np.stack([(R + r * np.cos(b)) * np.cos(a), (R + r * np.cos(b)) * np.sin(a), r * np.sin(b)], -1).reshape(-1, 3)
+    idx = lambda i, j: (i % nu) * nv + (j % nv)
+    F = []
+    for i in range(nu):
+        for j in range(nv):
+            F += [(idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)), (idx(i, j), idx(i + 1, j + 1), idx(i, j + 1))]
+    return V, np.array(F)
+
+
+def bumpy_disk(n):
+    """A disk (one boundary loop) of (n+1)^2 vertices on a bumpy height field."""
+    x, y = np.meshgrid(np.linspace(-1, 1, n + 1), np.linspace(-1, 1, n + 1), indexing="ij")
+    z = 0.3 * np.exp(-3 * (x**2 + y**2)) + 0.05 * np.sin(3 * x)
+    V = np.stack([x, y, z], -1).reshape(-1, 3)
+    idx = lambda i, j: i * (n + 1) + j
+    F = []
+    for i in range(n):
+        for j in range(n):
+            F += [(idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)), (idx(i, j), idx(i + 1, j + 1), idx(i, j + 1))]
+    return V, np.array(F)
+
+
+# ---- the conventions, in numpy -----------------------------------------------------------------------------
+
+
+def corner_angles(V, F):
+    A = np.zeros(F.shape)
+    for k in range(3):
+        p, q, r = V[F[:, k]], V[F[:, (k + 1) % 3]], V[F[:, (k + 2) % 3]]
+        e1, e2 = q - p, r - p
+        A[:, k] = np.arctan2(np.linalg.norm(np.cross(e1, e2), axis=1), np.einsum("ij,ij->i", e1, e2))
+    return A
+
+
+def halfedge_x(result):
+    """x(h) for every directed interior edge (i, j), from Result.edges and Result.connection."""
+    x = {}
+    for (i, j), value in zip(result.edges, result.connection):
+        x[(int(i), int(j))] = value
+        x[(int(j), int(i))] = -value
+    return x
+
+
+def boundary_vertices(F):
+    count = {}
+    for f in F:
+        for k in range(3):
+            a, b = int(f[k]), int(f[(k + 1) % 3])
+            count[(min(a, b), max(a, b))] = count.get((min(a, b), max(a, b)), 0) + 1
+    return {v for e, c in count.items() if c == 1 for v in e}
+
+
+def vertex_indices(V, F, result):
+    """k_v = (K_v + sum of x going counter-clockwise around v) / 2 pi at every interior vertex."""
+    x = halfedge_x(result)
+    angles = corner_angles(V, F)
+    K = np.full(len(V), 2 * np.pi)
+    turn = np.zeros(len(V))
+    for f, (a, b, c) in enumerate(F):
+        for k, (v, p, q) in enumerate([(a, b, c), (b, c, a), (c, a, b)]):
+            K[v] -= angles[f, k]
+            turn[v] += x.get((int(q), int(v)), 0.0)  # from face (v, p, q) across edge q -> v to the next one
+    inner = sorted(set(F.ravel()) - boundary_vertices(F))
+    return {v: (K[v] + turn[v]) / (2 * np.pi) for v in inner}
+
+
+def unit(a):
+    return a / np.linalg.norm(a, axis=-1, keepdims=True)
+
+
+def face_normals(V, F):
+    return unit(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]))
+
+
+def parallel_defect(V, F, result):
+    """Max over interior edges of the angle between the transported field and the field, modulo 2 pi / n."""
+    x = halfedge_x(result)
+    N = face_normals(V, F)
+    face_of = {}
+    for f, (a, b, c) in enumerate(F):
+        for p, q in [(a, b), (b, c), (c, a)]:
+            face_of[(int(p), int(q))] = f
+    worst = 0.0
+    for (i, j), value in x.items():
+        if (j, i) not in face_of or (i, j) not in face_of:
+            continue
+        f, g = face_of[(i, j)], face_of[(j, i)]
+        e = unit(V[j] - V[i])
+        u = result.field[f]
+        a, b = u @ e, u @ np.cross(N[f], e)
+        w = a * e + b * np.cross(N[g], e)  # Levi-Civita: unfolded about the edge
+        w = np.cos(value) * w + np.sin(value) * np.cross(N[g], w)  # then the rotation x(h)
+        v = result.field[g]
+        angle = math.atan2(np.cross(w, v) @ N[g], w @ v)
+        step = 2 * np.pi / result.n
+        worst = max(worst, abs((angle + step / 2) % step - step / 2))
+    return worst
+
+
+def face_divergence(F, result, weights):
+    """Per face, the sum over its interior halfedges h of w_e x(h)."""
+    x = halfedge_x(result)
+    w = {}
+    for (i, j), value in zip(result.edges, weights):
+        w[(int(i), int(j))] = w[(int(j), int(i))] = value
+    div = np.zeros(len(F))
+    for f, (a, b, c) in enumerate(F):
+        for p, q in [(a, b), (b, c), (c, a)]:
+            if (int(p), int(q)) in x:
+                div[f] += w[(int(p), int(q))] * x[(int(p), int(q))]
+    return div
+
+
+def check_invariants(V, F, solver, singularities, result, n=1, closed_components_chi=None, optimal=True):
+    k = vertex_indices(V, F, result)
+    given = {int(v): float(fractions.Fraction(s)) for v, s in singularities.items()}
+    residual = max(abs(2 * np.pi * (k[v] - given.get(v, 0.0))) for v in k)
+    assert residual < 1e-9, "holonomy around a vertex"
+    assert residual <= result.max_residual + 1e-12
+    for v, kv in k.items():
+        assert abs(n * kv - round(n * kv)) < 1e-9, "indices are multiples of 1/n"
+    if closed_components_chi is not None:
+        assert abs(sum(k.values()) - closed_components_chi) < 1e-9, "Poincare-Hopf"
+    assert parallel_defect(V, F, result) < 1e-9, "the field is parallel under the connection"
+    if optimal:
+        div = face_divergence(F, result, solver.weights)
+        scale = np.abs(solver.weights).max() * max(1.0, np.abs(result.connection).max())
+        assert np.abs(div).max() < 1e-9 * scale, "optimality: no weighted divergence on any face"
+    energy = float(np.sum(solver.weights * result.connection**2))
+    assert abs(energy - result.energy) < 1e-9 * max(1.0, energy)
+
+
+# ---- the tests ----------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("weights", ["hodge", "unit"])
+@pytest.mark.parametrize("n", [1, 2, 4])
+def test_sphere_invariants(weights, n):
+    V, F = icosphere(3)
+    solver = tc.Solver(V, F, weights=weights)
+    s = {0: fractions.Fraction(1), 1: fractions.Fraction(1)} if n == 1 else \
+        {v: fractions.Fraction(1, n) for v in range(2 * n)}
+    result = solver.solve(s, n=n)
+    check_invariants(V, F, solver, s, result, n=n, closed_components_chi=2)
+    if n > 1:
+        assert result.directions.shape == (len(F), n, 3)
+        assert np.allclose(result.directions[:, 0], result.field)
+        assert np.allclose(np.linalg.norm(result.directions, axis=2), 1)
+
+
+def test_torus_loops_and_integers():
+    V, F = torus(24, 12)
+    solver = tc.Solver(V, F)
+    assert solver.number_of_loops == 2
+    s = {0: 1, 100: -1}
+    result = solver.solve(s)
+    # the generators' integers are a choice: their holonomy is a multiple of 2 pi, so the divergence check
+    # holds only for the vertex cycles; it is checked here with the integers the solver chose, prescribed
+    check_invariants(V, F, solver, s, result, closed_components_chi=0, optimal=False)
+    again = solver.solve(s, loop_periods=result.loop_periods)
+    assert np.allclose(again.connection, result.connection, atol=1e-12)
+    assert result.integers_proven_optimal
+
+
+def test_disk_boundary_index():
+    V, F = bumpy_disk(16)
+    solver = tc.Solver(V, F)
+    result = solver.solve({})
+    check_invariants(V, F, solver, {}, result, optimal=False)
+    assert list(result.boundary_indices.values()) == [fractions.Fraction(1)]
+
+
+def test_input_types_and_renumbering():
+    V, F = icosphere(2)
+    s = {3: 1, 40: 1}
+    reference = tc.Solver(V, F).solve(s)
+    wide_V, wide_F = np.zeros((len(V), 6)), np.zeros((len(F), 6), np.int64)
+    wide_V[:, ::2], wide_F[:, 1::2] = V, F
+    for V2, F2 in [(V.astype(np.float32), F.astype(np.int32)), (np.asfortranarray(V), np.asfortranarray(F)),
+                   (wide_V[:, ::2], wide_F[:, 1::2]), (V.tolist(), F.tolist()), (V, F.astype(np.uint16))]:
+        r = tc.Solver(V2, F2).solve(s)
+        tol = 1e-4 if np.asarray(V2).dtype == np.float32 else 1e-12
+        assert np.abs(r.connection - reference.connection).max() < tol
+    # renumbered vertices and faces: the same connection on the same edges, the same energy
+    rng = np.random.default_rng(5)
+    p = rng.permutation(len(V))
+    q = rng.permutation(len(F))
+    inverse = np.argsort(p)
+    V2, F2 = V[p], inverse[F[q]]
+    r = tc.Solver(V2, F2).solve({int(inverse[v]): k for v, k in s.items()})
+    assert abs(r.energy - reference.energy) < 1e-10 * reference.energy
+    x = halfedge_x(reference)
+    for (i, j), value in zip(r.edges, r.connection):
+        assert abs(x[(int(p[i]), int(p[j]))] - value) < 1e-9
+
+
+def test_singularity_forms():
+    V, F = icosphere(2)
+    solver = tc.Solver(V, F)
+    a = solver.solve({5: "1/2", 9: fractions.Fraction(3, 2)}, n=2)
+    b = solver.solve([(5, fractions.Fraction(1, 2)), (9, "3/2")], n=2)
+    c = solver.solve(np.array([[5, 1], [9, 1]]))
+    d = solver.solve({np.int64(5): np.int32(1), 9: 1})
+    assert np.array_equal(a.connection, b.connection)
+    assert np.array_equal(c.connection, d.connection)
+    # the edges are one read-only array, shared by the solver and its results
+    assert a.edges is b.edges and a.edges is solver.edges and not a.edges.flags.writeable
+
+
+@pytest.mark.parametrize("make, code", [
+    (lambda V, F: (V, F + len(V)), "invalid_vertex"),
+    (lambda V, F: (V, -F - 1), "invalid_vertex"),
+    (lambda V, F: (V, F[:, ::-1][:1].tolist() + F[1:].tolist()), "inconsistent_orientation"),
+    (lambda V, F: (np.where(np.arange(len(V))[:, None] == 0, np.nan, V), F), "degenerate_face"),
+    (lambda V, F: (V, np.zeros((0, 3), int)), "empty_mesh"),
+    (lambda V, F: (V, np.vstack([F, F[:1]])), "non_manifold"),
+])
+def test_bad_meshes(make, code):
+    V, F = icosphere(1)
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.Solver(*make(V, F))
+    assert error.value.code == code
+    assert isinstance(error.value, ValueError)
+    assert (error.value.where is None) == (code == "empty_mesh")
+
+
+def test_bad_shapes_and_types():
+    V, F = icosphere(1)
+    with pytest.raises(ValueError):
+        tc.Solver(V[:, :2], F)
+    with pytest.raises(ValueError):
+        tc.Solver(V, F[:, :2])
+    with pytest.raises(TypeError):
+        tc.Solver(V, F.astype(float))
+    with pytest.raises(TypeError):
+        tc.Solver(V.astype(bool), F)
+    with pytest.raises(TypeError):
+        tc.Solver("not an array", F)
+    with pytest.raises(ValueError):
+        tc.Solver(V, F, weights="cotan")
+    with pytest.raises(ValueError):
+        tc.Solver(V, F, backend="lu")
+
+
+def test_bad_singularities():
+    V, F = icosphere(1)
+    solver = tc.Solver(V, F)
+    cases = [({0: 1}, "poincare_hopf_violated"), ({0: 1, 1000: 1}, "invalid_vertex"),
+             ({-1: 1, 0: 1}, "invalid_vertex"), ({0: "1/3", 1: "5/3"}, "index_not_multiple"),
+             ({0: 2**62, 1: 2 - 2**62}, "invalid_index"), ({0: 2**70, 1: 1}, "invalid_index"),
+             ({2**70: 1, 1: 1}, "invalid_vertex"), ({0: fractions.Fraction(2**80 + 1, 2**79), 1: 1}, "invalid_index"),
+             ({0: "1/0", 1: 2}, "parse_error"),
+             ({0: "one", 1: 1}, "parse_error")]
+    for s, code in cases:
+        with pytest.raises(tc.InvalidInput) as error:
+            solver.solve(s)
+        assert error.value.code == code, (s, str(error.value))
+    with pytest.raises(tc.InvalidInput) as error:
+        solver.solve({0: 1, 1: 1}, n=0)
+    assert error.value.code == "invalid_symmetry_order"
+    with pytest.raises(TypeError):
+        solver.solve({0: 0.5, 1: 1.5}, n=2)
+    with pytest.raises(TypeError):
+        solver.solve({0.0: 1, 1: 1})
+    # the solver keeps working after errors
+    check_invariants(V, F, solver, {0: 1, 1: 1}, solver.solve({0: 1, 1: 1}), closed_components_chi=2)
+
+
+def test_concurrent_solves_agree():
+    V, F = icosphere(4)
+    solver = tc.Solver(V, F)
+    sets = [{v: 1, v + 500: 1} for v in range(8)]
+    expected = [solver.solve(s).connection for s in sets]
+    answers = [None] * len(sets)
+
+    def work(t):
+        for i in range(t, len(sets), 4):
+            answers[i] = solver.solve(sets[i]).connection
+
+    threads = [threading.Thread(target=work, args=(t,)) for t in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for a, b in zip(answers, expected):
+        assert np.array_equal(a, b)
+
+
+def test_equals_the_program():
+    program = os.environ.get("TC_PROGRAM")
+    if not program:
+        pytest.skip("TC_PROGRAM (the trivial_connections program) not given")
+    V, F = icosphere(2)
+    s = {2: "1/4", 7: "3/4", 11: "1"}
+    with tempfile.TemporaryDirectory() as d:
+        mesh, sing, conn = (os.path.join(d, name) for name in ["m.off", "s.sing", "c.txt"])
+        with open(mesh, "w") as f:
+            f.write(f"OFF\n{len(V)} {len(F)} 0\n")
+            f.writelines(f"{a!r} {b!r} {c!r}\n" for a, b, c in V.tolist())
+            f.writelines(f"3 {a} {b} {c}\n" for a, b, c in F.tolist())
+        with open(sing, "w") as f:
+            f.writelines(f"{v} {k}\n" for v, k in s.items())
+        field = os.path.join(d, "f.txt")
+        subprocess.run([program, mesh, "--singularities", sing, "--n", "4", "--connection", conn, "--field", field],
+                       check=True, stdout=subprocess.DEVNULL)
+        program_field = np.array([[float(t) for t in line.split()] for line in open(field)
+                                  if line.strip() and not line.startswith("#")])
+        written = {}
+        for line in open(conn):
+            if line.strip() and not line.startswith("#"):
+                i, j, x, w = line.split()
+                written[(int(i), int(j))] = float(x)
+    result = tc.Solver(V, F).solve(s, n=4)
+    assert len(written) == len(result.edges)
+    for (i, j), x in zip(result.edges, result.connection):
+        assert abs(written[(int(i), int(j))] - x) < 1e-12
+    assert program_field.shape == result.field.shape
+    assert np.abs(program_field - result.field).max() < 1e-12
+
+
+def test_real_meshes():
+    meshes = os.environ.get("TC_CGAL_MESHES")  # data/meshes of CGAL's data set
+    if not meshes or not os.path.isdir(meshes):
+        pytest.skip("CGAL's data set not found (TC_CGAL_MESHES)")
+    # closed genus 3, bordered (7 holes), closed genus 1
+    for name, s, chi in [("elephant.off", {0: -1, 10: -1, 20: -1, 30: -1}, -4), ("holes.off", {}, None),
+                         ("knot1.off", {}, 0)]:
+        solver = tc.Solver.from_file(os.path.join(meshes, name))
+        V, F = solver.vertices, solver.faces
+        assert V.shape == (solver.number_of_vertices, 3) and F.shape == (solver.number_of_faces, 3)
+        result = solver.solve(s)
+        check_invariants(V, F, solver, s, result, closed_components_chi=chi, optimal=False)
+        # the same mesh from the arrays (its edges in another order): the same answer
+        x = halfedge_x(result)
+        again = tc.Solver(V, F).solve(s)
+        assert abs(again.energy - result.energy) < 1e-12 * result.energy
+        for (i, j), value in zip(again.edges, again.connection):
+            assert abs(x[(int(i), int(j))] - value) < 1e-10
+
+
+def resident_bytes():
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/statm"), reason="needs /proc (Linux)")
+@pytest.mark.skipif(bool(os.environ.get("TC_SANITIZED")), reason="AddressSanitizer's quarantine keeps freed memory")
+def test_no_leak_over_1000_solves():
+    V, F = icosphere(3)  # 512 faces: every solve returns about 40 KB of arrays
+    solver = tc.Solver(V, F)
+    for _ in range(50):
+        solver.solve({0: 1, 1: 1}, n=4 if _ % 2 else 1)
+    before = resident_bytes()
+    for i in range(1000):
+        r = solver.solve({0: 1, 1: 1}, n=4 if i % 2 else 1)
+        del r
+        try:
+            solver.solve({0: 1})
+        except tc.InvalidInput:
+            pass
+    grown = resident_bytes() - before
+    assert grown < 4 << 20, f"resident memory grew by {grown} bytes over 1000 solves"
+
+
+def test_automatic_placement():
+    # the octahedral sphere: eight +1/4 for a cross field, one near each vertex of the octahedron
+    V, F = icosphere(3)
+    solver = tc.Solver(V, F)
+    placed, report = solver.place_singularities(n=4)
+    assert placed and all(k == fractions.Fraction(1, 4) for k in placed.values())
+    assert sum(placed.values()) == 2 and len(placed) == 8
+    assert report["singularities_per_index"] == {fractions.Fraction(1, 4): 8}
+    result = solver.solve(placed, n=4)
+    check_invariants(V, F, solver, placed, result, n=4, closed_components_chi=2)
+    assert result.energy <= report["field_energy"] * (1 + 1e-9)
+    # a slender torus of revolution: no singularity for n = 1, 2, 4; on a fat one the smoothest cross field has
+    # rings of +-1/4 (its 4th power turns fast), which the refinement that cancels pairs removes
+    V, F = torus(96, 16, R=6.0, r=1.0, twist=0.0)
+    solver = tc.Solver(V, F)
+    for n in (1, 2, 4):
+        assert solver.place_singularities(n=n)[0] == {}
+    V, F = torus(48, 24, R=2.0, r=0.7, twist=0.0)
+    solver = tc.Solver(V, F)
+    rings, _ = solver.place_singularities(n=4)
+    assert sum(rings.values()) == 0
+    refined, report = solver.refine_singularities(rings, n=4, cancel_pairs=True)
+    assert refined == {} and report["local_minimum"] and report["energy_after"] <= report["energy_before"]
+    # curvature alignment: a valid set, and guided faces spread over the mesh
+    V, F = icosphere(3)
+    V = V * np.array([1.0, 1.5, 2.2])
+    solver = tc.Solver(V, F)
+    guide, curvatures = solver.principal_curvature_guide()
+    assert guide.shape == (len(F), 3) and curvatures.shape == (len(F), 2)
+    assert np.all(np.abs(curvatures[:, 0]) >= np.abs(curvatures[:, 1]) - 1e-12)
+    aligned, report = solver.place_singularities(n=2, alignment_guide=guide)
+    assert report["aligned"] and sum(aligned.values()) == 2
+    faces = solver.spread_guided_faces(guide, 30)
+    assert 0 < len(faces) <= 30 and len(set(faces)) == len(faces)
+
+
+def test_refinement_moves_close_singularities_apart():
+    V, F = icosphere(3)
+    solver = tc.Solver(V, F)
+    start = {0: 1, int(F[0][1]) if F[0][0] == 0 else int(F[0][0]): 1}
+    refined, report = solver.refine_singularities(start)
+    assert report["energy_after"] < report["energy_before"]
+    assert report["moves"] and sum(refined.values()) == 2
+    result = solver.solve(refined)
+    assert abs(result.energy + result.guidance_energy - report["energy_after"]) < 1e-9 * report["energy_after"]
+    fixed, _ = solver.refine_singularities(start, fixed_vertices=[0])
+    assert fixed.get(0) == 1
+
+
+def test_streamlines():
+    V, F = icosphere(3)
+    solver = tc.Solver(V, F)
+    placed, _ = solver.place_singularities(n=4)
+    result = solver.solve(placed, n=4)
+    lines = solver.trace_streamlines(result, placed, seed_faces=range(0, len(F), 37))
+    assert lines
+    for line in lines:
+        assert line.ndim == 2 and line.shape[1] == 3 and len(line) >= 2 and np.all(np.isfinite(line))
+        # on the surface: every point within the mesh's bounding box, steps shorter than the mesh
+        assert np.all(line.min(0) >= V.min(0) - 1e-9) and np.all(line.max(0) <= V.max(0) + 1e-9)
+    with pytest.raises(ValueError):
+        other = tc.Solver(*icosphere(1)).solve({0: 1, 1: 1})
+        solver.trace_streamlines(other, {0: 1, 1: 1})
+
+
+def test_files(tmp_path):
+    V, F = icosphere(2)
+    solver = tc.Solver(V, F)
+    s = {3: fractions.Fraction(1, 2), 9: fractions.Fraction(3, 2)}
+    path = tmp_path / "s.sing"
+    tc.write_singularities(str(path), s)
+    assert tc.read_singularities(str(path), len(V)) == s
+    result = solver.solve(s, n=2)
+    for name in ["f.vtk", "f.ply"]:
+        solver.write_field(str(tmp_path / name), result, s)
+        assert (tmp_path / name).stat().st_size > 1000
+    with pytest.raises(ValueError):
+        solver.write_field(str(tmp_path / "f.txt"), result, s)
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.write_singularities(str(tmp_path / "missing" / "s.sing"), s)
+    assert error.value.code == "io_error" and not (tmp_path / "missing").exists()
+    (tmp_path / "bad.sing").write_text("3 1/2\n3 1/2\n")
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.read_singularities(str(tmp_path / "bad.sing"))
+    assert error.value.code == "duplicate_singularity" and error.value.where == 3
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.read_singularities(str(tmp_path / "none.sing"))
+    assert error.value.code == "io_error"
+
+
+def test_loops_are_the_generators_and_holes():
+    V, F = torus(24, 12)
+    solver = tc.Solver(V, F)
+    loops = solver.loops
+    assert [l["kind"] for l in loops] == ["generator", "generator"]
+    face_of = {(int(a), int(b)): f for f, t in enumerate(F) for a, b in zip(t, np.roll(t, -1))}
+    s = {0: 1, 100: -1}
+    result = solver.solve(s)
+    x = halfedge_x(result)
+    for loop in loops:
+        h = loop["halfedges"]
+        assert h.shape[1] == 2 and len(h) > 0
+        # a closed dual loop: each halfedge crosses into the face of the next one
+        for (a, b), (c, d) in zip(h, np.roll(h, -1, axis=0)):
+            assert face_of[(int(b), int(a))] == face_of[(int(c), int(d))]
+        # trivial holonomy: a vector carried once around the loop by the connection (unfolding about each edge
+        # crossed, then the rotation x) comes back to itself (n = 1)
+        N = face_normals(V, F)
+        f0 = face_of[(int(h[0][0]), int(h[0][1]))]
+        u0 = unit(np.cross(N[f0], V[F[f0][1]] - V[F[f0][0]]))
+        u = u0
+        for a, b in h:
+            f, g = face_of[(int(a), int(b))], face_of[(int(b), int(a))]
+            e = unit(V[b] - V[a])
+            w = (u @ e) * e + (u @ np.cross(N[f], e)) * np.cross(N[g], e)
+            angle = x[(int(a), int(b))]
+            u = np.cos(angle) * w + np.sin(angle) * np.cross(N[g], w)
+        assert np.linalg.norm(u - u0) < 1e-9
+    V, F = bumpy_disk(8)
+    assert [l["kind"] for l in tc.Solver(V, F).loops] == ["boundary"]
+
+
+def test_streamline_file(tmp_path):
+    V, F = icosphere(2)
+    solver = tc.Solver(V, F)
+    s = {0: 1, 1: 1}
+    result = solver.solve(s)
+    lines = solver.trace_streamlines(result, s, seed_faces=[5, 50, 100])
+    tc.write_streamlines(str(tmp_path / "s.vtk"), lines)
+    text = (tmp_path / "s.vtk").read_text()
+    assert f"LINES {len(lines)} {sum(len(l) for l in lines) + len(lines)}" in text
+    with pytest.raises(ValueError):
+        tc.write_streamlines(str(tmp_path / "t.vtk"), [np.zeros((3, 2))])
+    assert not (tmp_path / "t.vtk").exists()
+
+
+def test_constraints_and_guidance():
+    V, F = icosphere(3)
+    N = face_normals(V, F)
+    rng = np.random.default_rng(2)
+    pinned = [3, 200, 411]
+    solver = tc.Solver(V, F, constrained_faces=pinned)
+    targets = np.cross(N, rng.normal(size=(len(F), 3)))  # tangent to every face
+    s = {0: "1/4", 1: "1/4", 2: "1/4", 3: "1/4", 4: "1/4", 5: "1/4", 6: "1/4", 7: "1/4"}
+    result = solver.solve(s, n=4, directions=targets)
+    check_invariants(V, F, solver, s, result, n=4, closed_components_chi=2, optimal=False)
+    for f in pinned:  # the field points along the target there, modulo a quarter turn
+        u, t = result.field[f], unit(targets[f])
+        angle = math.atan2(np.cross(t, u) @ N[f], t @ u)
+        assert abs((angle + np.pi / 4) % (np.pi / 2) - np.pi / 4) < 1e-9
+    assert len(result.constraints) == len(pinned) - 1
+    # other faces pinned on the same factorization: the new targets hold there
+    update = solver.set_constraints(constrained_faces=[10, 20], guided_faces=[30, 40, 50])
+    assert update["links"] >= 1
+    result = solver.solve(s, n=4, directions={10: targets[10], 20: targets[20], 30: targets[30],
+                                              40: targets[40], 50: targets[50]})
+    for f in [10, 20]:
+        u, t = result.field[f], unit(targets[f])
+        angle = math.atan2(np.cross(t, u) @ N[f], t @ u)
+        assert abs((angle + np.pi / 4) % (np.pi / 2) - np.pi / 4) < 1e-9
+    assert [g["face"] for g in result.guidance] == [30, 40, 50] and result.guidance_energy > 0
+    with pytest.raises(tc.InvalidInput) as error:
+        solver.solve(s, n=4)  # the pinned faces need directions
+    assert error.value.code == "invalid_constraint"
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.Solver(V, F, constrained_faces=[len(F)])
+    assert error.value.code == "invalid_constraint"

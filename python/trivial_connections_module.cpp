@@ -235,6 +235,24 @@ public:
   virtual const char* backend() const = 0;
 };
 
+// The vertices of `s` in `mesh` (vertex i is the i-th of the arrays or the file); a vertex out of range is
+// the user's error.
+std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> vertex_descriptors(const Mesh& mesh,
+                                                                                    const Singularities& s)
+{
+  std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
+  out.reserve(s.size());
+  for(const auto& [v, k] : s) {
+    if(v >= mesh.number_of_vertices())
+      throw TC::Invalid_input(TC::Error_code::invalid_vertex,
+                              "vertex " + std::to_string(v) + " does not exist (the mesh has " +
+                                std::to_string(mesh.number_of_vertices()) + " vertices)",
+                              v);
+    out.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
+  }
+  return out;
+}
+
 // x(h) kept straight in the per-edge output array: x of the halfedge from the smaller vertex index to the larger
 // one, its opposite's the negative (nothing on the border)
 struct Edge_connection_map
@@ -316,28 +334,15 @@ public:
   Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities, int n,
                      const std::vector<Kernel::Vector_3>* directions, const Loop_periods* loop_periods) override
   {
-    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> s;
-    s.reserve(singularities.size());
-    for(const auto& [v, k] : singularities) {
-      if(v >= m_mesh.number_of_vertices())
-        throw TC::Invalid_input(TC::Error_code::invalid_vertex,
-                                "vertex " + std::to_string(v) + " does not exist (the mesh has " +
-                                  std::to_string(m_mesh.number_of_vertices()) + " vertices)",
-                                v);
-      s.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
-    }
-    // the output maps: vectors indexed like the mesh's halfedges and faces
+    const auto s = vertex_descriptors(m_mesh, singularities);
     Solve_output out;
     out.connection.assign(std::size_t(m_interior_edges), 0.);
     out.field.assign(3 * m_mesh.number_of_faces(), 0.);
     const Edge_connection_map halfedge_x{&m_mesh, &m_edge_slot, out.connection.data()};
     const Face_vector_map face_field{out.field.data()};
-    std::vector<Kernel::Vector_3> targets;
-    if(directions != nullptr)
-      targets = *directions;
-    targets.resize(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
+    // directions_of() gives one per face
     auto target_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
-      [&targets](face_descriptor f) { return targets[std::size_t(f)]; });
+      [directions](face_descriptor f) { return directions ? (*directions)[std::size_t(f)] : CGAL::NULL_VECTOR; });
 
     using Clock = std::chrono::steady_clock;
     const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
@@ -428,10 +433,9 @@ public:
     std::vector<double> x(m_mesh.number_of_halfedges(), 0.);
     auto halfedge_x = boost::make_function_property_map<halfedge_descriptor, double&>(
       [&x](halfedge_descriptor h) -> double& { return x[std::size_t(h)]; });
-    std::vector<Kernel::Vector_3> targets = directions ? *directions : std::vector<Kernel::Vector_3>();
-    targets.resize(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
+    // directions_of() gives one per face
     auto target_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
-      [&targets](face_descriptor f) { return targets[std::size_t(f)]; });
+      [directions](face_descriptor f) { return directions ? (*directions)[std::size_t(f)] : CGAL::NULL_VECTOR; });
     std::vector<vertex_descriptor> fixed_vertices;
     for(std::size_t v : fixed)
       fixed_vertices.push_back(vertex(v));
@@ -480,11 +484,7 @@ private:
   }
   std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> descriptors(const Singularities& s) const
   {
-    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
-    out.reserve(s.size());
-    for(const auto& [v, k] : s)
-      out.emplace_back(vertex(v), k);
-    return out;
+    return vertex_descriptors(m_mesh, s);
   }
 
   const Mesh& m_mesh;
@@ -712,12 +712,7 @@ public:
                              std::size_t maximum_faces_per_ray)
   {
     const Singularities s = singularities_of(singularities);
-    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> singular;
-    for(const auto& [v, k] : s) {
-      if(v >= m_mesh->number_of_vertices())
-        throw TC::Invalid_input(TC::Error_code::invalid_vertex, "vertex " + std::to_string(v) + " does not exist", v);
-      singular.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
-    }
+    const auto singular = vertex_descriptors(*m_mesh, s);
     std::vector<face_descriptor> seeds;
     if(seed_faces.is_none())
       for(auto f : m_mesh->faces())
@@ -755,12 +750,7 @@ public:
   void write_field(const std::string& path, const Result& result, const py::object& singularities) const
   {
     const Singularities s = singularities_of(singularities);
-    std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> singular;
-    for(const auto& [v, k] : s) {
-      if(v >= m_mesh->number_of_vertices())
-        throw TC::Invalid_input(TC::Error_code::invalid_vertex, "vertex " + std::to_string(v) + " does not exist", v);
-      singular.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
-    }
+    const auto singular = vertex_descriptors(*m_mesh, s);
     const std::vector<Kernel::Vector_3> field = field_of(result);
     const int n = result.n.cast<int>();
     const std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : std::string();

@@ -7,7 +7,7 @@
 // unit, built by the top-level CMakeLists.txt when pybind11 and Python's headers are found.
 //
 // Arrays come in as numpy arrays of any integer (faces) or real (points) type and layout; each is read once
-// into the Surface_mesh the solver needs, and the results are numpy arrays that own the solver's output
+// into the Surface_mesh the solver needs (and the solver's arrays made from their validated connectivity), and the results are numpy arrays that own the solver's output
 // vectors (no copy on the way out). The GIL is released while the solver is built and while it solves, so
 // solves on one solver from several Python threads run at the same time, as the C++ solver allows;
 // set_constraints() waits for them and they for it.
@@ -78,35 +78,76 @@ py::array as_array(const py::handle& h, const char* name)
   return py::array::ensure(h);
 }
 
-// The mesh of V, F, validated by the package (triangle_soup_to_mesh): vertex i and face f of the arrays are
-// vertex i and face f of the mesh.
-std::unique_ptr<Mesh> mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
+// The mesh of V, F, and the solver's arrays of it, made from the soup's validated connectivity rather than derived
+// from the mesh again (Solver_access::make): that is what makes a solver from arrays cost no more than one from a
+// Surface_mesh. Vertex i and face f of the arrays are vertex i and face f of the mesh.
+struct Mesh_of_arrays
+{
+  std::unique_ptr<Mesh> mesh;
+  std::optional<TC::internal::Mesh_arrays<Mesh>> arrays; // consumed by the solver
+};
+
+// The rows of a C-ordered (m, 3) int64 array, seen as triangles (no copy), for the package's soup validation
+struct Triangle_rows
+{
+  using Row = std::array<std::int64_t, 3>;
+  static_assert(sizeof(Row) == 3 * sizeof(std::int64_t), "rows of an (m, 3) array");
+  const Row* first;
+  std::size_t count;
+  const Row* begin() const { return first; }
+  const Row* end() const { return first + count; }
+  std::size_t size() const { return count; }
+};
+
+// The rows of a C-ordered (n, 3) float64 array as points, made as they are read (no copy)
+struct Point_rows
+{
+  struct iterator
+  {
+    const double* p;
+    Kernel::Point_3 operator*() const { return Kernel::Point_3(p[0], p[1], p[2]); }
+    iterator& operator++() { p += 3; return *this; }
+    bool operator!=(const iterator& o) const { return p != o.p; }
+  };
+  const double* first;
+  std::size_t count;
+  iterator begin() const { return {first}; }
+  iterator end() const { return {first + 3 * count}; }
+};
+
+Mesh_of_arrays mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
 {
   const py::array V = as_array(v_in, "V"), F = as_array(f_in, "F");
   check_rows_of_three(V, "V", "fiu", "real numbers");
   check_rows_of_three(F, "F", "iu", "integers (vertex indices)");
+  // one copy at most, when the dtype or the layout differs
   const auto points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(V);
   const auto faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(F);
   if(!points || !faces)
     throw py::type_error("V and F must be convertible to float64 and int64 arrays");
-  std::vector<Kernel::Point_3> p(std::size_t(points.shape(0)));
-  const double* x = points.data();
-  for(std::size_t i = 0; i < p.size(); ++i)
-    p[i] = Kernel::Point_3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-  std::vector<std::array<std::size_t, 3>> t(std::size_t(faces.shape(0)));
-  const std::int64_t* f = faces.data();
+  const Point_rows p{points.data(), std::size_t(points.shape(0))};
+  const Triangle_rows t{reinterpret_cast<const Triangle_rows::Row*>(faces.data()), std::size_t(faces.shape(0))};
+  Mesh_of_arrays out;
+  out.mesh = std::make_unique<Mesh>();
+  py::gil_scoped_release unlocked; // the arrays are held above
   for(std::size_t i = 0; i < t.size(); ++i)
-    for(std::size_t j = 0; j < 3; ++j) {
-      if(f[3 * i + j] < 0)
+    for(std::size_t j = 0; j < 3; ++j)
+      if(t.first[i][j] < 0)
         throw TC::Invalid_input(TC::Error_code::invalid_vertex,
-                                "face " + std::to_string(i) + " uses vertex " + std::to_string(f[3 * i + j]) +
+                                "face " + std::to_string(i) + " uses vertex " + std::to_string(t.first[i][j]) +
                                   ": vertex indices start at 0",
                                 i);
-      t[i][j] = std::size_t(f[3 * i + j]);
-    }
-  auto mesh = std::make_unique<Mesh>();
-  TC::triangle_soup_to_mesh(p, t, *mesh);
-  return mesh;
+  TC::internal::io::Triangle_soup_connectivity soup = TC::internal::io::validate_triangle_soup(p.count, t);
+  std::vector<halfedge_descriptor> corner_halfedges;
+  TC::Mesh_input_order<Mesh> order = TC::internal::io::build_mesh(p, soup, *out.mesh, &corner_halfedges);
+  std::vector<int> corner_vertices(3 * soup.triangles.size());
+  for(std::size_t f = 0; f < soup.triangles.size(); ++f)
+    for(std::size_t k = 0; k < 3; ++k)
+      corner_vertices[3 * f + k] = soup.triangles[f][k];
+  soup.triangles = {};
+  out.arrays.emplace(*out.mesh, std::move(order.vertices), std::move(order.faces), std::move(corner_halfedges),
+                     std::move(corner_vertices), std::move(soup.opposite));
+  return out;
 }
 
 // A Python integer (int, numpy integer: anything with __index__) as an int64; `too_large` when it does not fit.
@@ -233,6 +274,8 @@ public:
   virtual TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
                                             const std::vector<face_descriptor>& guided) = 0;
   virtual const char* backend() const = 0;
+  // the vertices of each interior edge, two per edge (smaller first), in the order of Result.connection
+  virtual const std::vector<std::int64_t>& edge_vertices() const = 0;
 };
 
 // The vertices of `s` in `mesh` (vertex i is the i-th of the arrays or the file); a vertex out of range is
@@ -315,20 +358,31 @@ class Solver_of : public Solver_interface
   using Solver = TC::Trivial_connection_solver<Mesh, Kernel, SolverTraits>;
 
 public:
-  Solver_of(const Mesh& mesh, const Options& o, const char* name)
-    : m_mesh(mesh),
-      m_solver(mesh, TC::parameters::weighting(
-                       o.weighting, TC::parameters::constrained_faces(
-                                      o.constrained, TC::parameters::guided_faces(
-                                                       o.guided, TC::parameters::guidance_weight(
-                                                                   o.guidance_weight, TC::parameters::align_with_boundary(
-                                                                                        o.align_boundary)))))),
-      m_name(name)
+  // `arrays`: the solver's arrays of `mesh` when made with it (mesh_of_arrays), else derived from it
+  Solver_of(const Mesh& mesh, std::optional<TC::internal::Mesh_arrays<Mesh>>&& arrays, const Options& o,
+            const char* name)
+    : m_mesh(mesh), m_name(name)
   {
+    const auto np = TC::parameters::weighting(
+      o.weighting,
+      TC::parameters::constrained_faces(
+        o.constrained,
+        TC::parameters::guided_faces(
+          o.guided, TC::parameters::guidance_weight(o.guidance_weight,
+                                                    TC::parameters::align_with_boundary(o.align_boundary)))));
+    if(arrays)
+      m_solver = TC::internal::Solver_access<Solver>::make(mesh, std::move(*arrays), np);
+    else
+      m_solver = std::make_unique<Solver>(mesh, np);
     m_edge_slot.assign(mesh.number_of_edges(), -1);
     for(auto e : mesh.edges())
-      if(!mesh.is_border(e))
+      if(!mesh.is_border(e)) {
         m_edge_slot[std::size_t(e)] = m_interior_edges++;
+        const auto h = mesh.halfedge(e);
+        const std::int64_t a = std::int64_t(mesh.source(h)), b = std::int64_t(mesh.target(h));
+        m_edge_vertices.push_back((std::min)(a, b));
+        m_edge_vertices.push_back((std::max)(a, b));
+      }
   }
 
   Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities, int n,
@@ -348,11 +402,11 @@ public:
     const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     Clock::time_point start = Clock::now();
     const auto np = TC::parameters::symmetry_order(n, TC::parameters::face_directions(target_map));
-    out.report = loop_periods != nullptr ? m_solver.solve(s, halfedge_x, TC::parameters::loop_periods(*loop_periods, np))
-                                         : m_solver.solve(s, halfedge_x, np);
+    out.report = loop_periods != nullptr ? m_solver->solve(s, halfedge_x, TC::parameters::loop_periods(*loop_periods, np))
+                                         : m_solver->solve(s, halfedge_x, np);
     out.solve_seconds = seconds_since(start);
     start = Clock::now();
-    m_solver.compute_field(halfedge_x, face_field, np);
+    m_solver->compute_field(halfedge_x, face_field, np);
     out.field_seconds = seconds_since(start);
     start = Clock::now();
 
@@ -380,7 +434,7 @@ public:
     return out;
   }
 
-  std::size_t number_of_loops() const override { return m_solver.loops().size(); }
+  std::size_t number_of_loops() const override { return m_solver->loops().size(); }
 
   TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide, double strength,
                              const Singularities& fixed, const Loop_periods* periods,
@@ -389,17 +443,17 @@ public:
     namespace P = TC::parameters;
     const auto kept = descriptors(fixed);
     std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
-    const Loop_periods none(m_solver.loops().size()); // every integer chosen, as without the parameter
+    const Loop_periods none(m_solver->loops().size()); // every integer chosen, as without the parameter
     const auto np = P::symmetry_order(n, P::align_with_boundary(align_boundary, P::fixed_singularities(
                                                                   kept, P::loop_periods(periods ? *periods : none))));
     TC::Placement_report report;
     if(guide != nullptr) {
       auto guide_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
         [guide](face_descriptor f) { return (*guide)[std::size_t(f)]; });
-      report = TC::place_singularities(m_solver, std::back_inserter(out),
+      report = TC::place_singularities(*m_solver, std::back_inserter(out),
                                        P::alignment_guide(guide_map, P::alignment_strength(strength, np)));
     } else
-      report = TC::place_singularities(m_solver, std::back_inserter(out), np);
+      report = TC::place_singularities(*m_solver, std::back_inserter(out), np);
     for(const auto& [v, k] : out)
       placed.emplace_back(std::size_t(v), k);
     return report;
@@ -410,7 +464,7 @@ public:
     std::vector<Kernel::Vector_3> guide(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
     auto map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3&>(
       [&guide](face_descriptor f) -> Kernel::Vector_3& { return guide[std::size_t(f)]; });
-    TC::principal_curvature_guide(m_solver, map, &curvatures);
+    TC::principal_curvature_guide(*m_solver, map, &curvatures);
     return guide;
   }
 
@@ -419,7 +473,7 @@ public:
     auto map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
       [&guide](face_descriptor f) { return guide[std::size_t(f)]; });
     std::vector<std::size_t> faces;
-    for(face_descriptor f : TC::spread_guided_faces(m_solver, map, count))
+    for(face_descriptor f : TC::spread_guided_faces(*m_solver, map, count))
       faces.push_back(std::size_t(f));
     return faces;
   }
@@ -439,9 +493,9 @@ public:
     std::vector<vertex_descriptor> fixed_vertices;
     for(std::size_t v : fixed)
       fixed_vertices.push_back(vertex(v));
-    const Loop_periods none(m_solver.loops().size()); // every integer chosen, as without the parameter
+    const Loop_periods none(m_solver->loops().size()); // every integer chosen, as without the parameter
     return TC::refine_singularities(
-      m_solver, descriptors(start), halfedge_x,
+      *m_solver, descriptors(start), halfedge_x,
       P::symmetry_order(n, P::face_directions(target_map, P::loop_periods(periods ? *periods : none,
         P::fixed_vertices(fixed_vertices, P::cancel_pairs(cancel_pairs, P::maximum_trials(trials)))))));
   }
@@ -449,7 +503,7 @@ public:
   std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> loops() const override
   {
     std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> out;
-    for(const auto& l : m_solver.loops())
+    for(const auto& l : m_solver->loops())
       out.emplace_back(l.kind == TC::Loop_kind::boundary, l.component, l.halfedges);
     return out;
   }
@@ -459,18 +513,20 @@ public:
     std::vector<double> w;
     for(auto e : m_mesh.edges())
       if(!m_mesh.is_border(e))
-        w.push_back(m_solver.weight(e));
+        w.push_back(m_solver->weight(e));
     return w;
   }
 
   TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
                                     const std::vector<face_descriptor>& guided) override
   {
-    return m_solver.set_constraints(
+    return m_solver->set_constraints(
       TC::parameters::constrained_faces(constrained, TC::parameters::guided_faces(guided)));
   }
 
   const char* backend() const override { return m_name; }
+
+  const std::vector<std::int64_t>& edge_vertices() const override { return m_edge_vertices; }
 
 private:
   vertex_descriptor vertex(std::size_t v) const
@@ -488,10 +544,11 @@ private:
   }
 
   const Mesh& m_mesh;
-  Solver m_solver;
   const char* m_name;
+  std::unique_ptr<Solver> m_solver; // not movable: made in place
   std::vector<std::int64_t> m_edge_slot; // per edge, its entry in Result.connection (-1: border)
   std::int64_t m_interior_edges = 0;
+  std::vector<std::int64_t> m_edge_vertices; // per interior edge in that order, its vertices (smaller first)
 };
 
 }  // namespace
@@ -529,9 +586,9 @@ std::vector<face_descriptor> faces_of(const py::handle& list, std::size_t number
 class Python_solver
 {
 public:
-  Python_solver(std::unique_ptr<Mesh> mesh, const std::string& weights, const std::string& backend,
+  Python_solver(Mesh_of_arrays mesh, const std::string& weights, const std::string& backend,
                 const py::object& constrained, const py::object& guided, double guidance_weight, bool align_boundary)
-    : m_mesh(std::move(mesh))
+    : m_mesh(std::move(mesh.mesh))
   {
     Options o;
     if(weights == "unit")
@@ -551,24 +608,17 @@ public:
     py::gil_scoped_release unlocked;
     const auto start = std::chrono::steady_clock::now();
     if(backend == "ldlt")
-      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, o, "ldlt");
+      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, std::move(mesh.arrays), o, "ldlt");
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
     else if(backend == "cholmod")
-      m_solver = std::make_unique<Solver_of<TC::Cholmod_solver_traits>>(*m_mesh, o, "cholmod");
+      m_solver = std::make_unique<Solver_of<TC::Cholmod_solver_traits>>(*m_mesh, std::move(mesh.arrays), o, "cholmod");
     else
-      m_solver = std::make_unique<Solver_of<TC::Automatic_solver_traits>>(*m_mesh, o, "auto");
+      m_solver = std::make_unique<Solver_of<TC::Automatic_solver_traits>>(*m_mesh, std::move(mesh.arrays), o, "auto");
 #else
     else
-      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, o, "auto");
+      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, std::move(mesh.arrays), o, "auto");
 #endif
     m_solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for(auto e : m_mesh->edges())
-      if(!m_mesh->is_border(e)) {
-        const auto h = m_mesh->halfedge(e);
-        const std::int64_t a = std::int64_t(m_mesh->source(h)), b = std::int64_t(m_mesh->target(h));
-        m_edges.push_back((std::min)(a, b));
-        m_edges.push_back((std::max)(a, b));
-      }
   }
 
   Result solve(const py::object& singularities, int n, const py::object& directions, const py::object& loop_periods)
@@ -819,8 +869,9 @@ public:
   py::object edges() const
   {
     if(!m_edges_array) {
-      std::vector<std::int64_t> copy = m_edges;
-      py::array_t<std::int64_t> a = owning_array(std::move(copy), {py::ssize_t(m_edges.size() / 2), 2});
+      std::vector<std::int64_t> copy = m_solver->edge_vertices();
+      const py::ssize_t ne = py::ssize_t(copy.size() / 2);
+      py::array_t<std::int64_t> a = owning_array(std::move(copy), {ne, 2});
       a.attr("setflags")(py::arg("write") = false);
       m_edges_array = a;
     }
@@ -833,7 +884,7 @@ private:
   {
     const auto connection = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result.connection);
     std::vector<double> x(m_mesh->number_of_halfedges(), 0.);
-    if(!connection || std::size_t(connection.size()) != m_edges.size() / 2)
+    if(!connection || std::size_t(connection.size()) != m_solver->edge_vertices().size() / 2)
       throw py::value_error("the result is not one of this solver (its number of edges differs)");
     std::size_t i = 0;
     for(auto e : m_mesh->edges()) {
@@ -976,7 +1027,6 @@ public:
 private:
   std::unique_ptr<Mesh> m_mesh; // before the solver, which refers to it
   std::unique_ptr<Solver_interface> m_solver;
-  std::vector<std::int64_t> m_edges;
   mutable py::object m_edges_array; // made on first use, with the GIL
   mutable std::shared_mutex m_mutex;
 };
@@ -1116,7 +1166,7 @@ Raises InvalidInput for a mesh the package refuses (code and where say why).)")
     .def(py::init([](const py::object& V, const py::object& F, const std::string& weights, const std::string& backend,
                      const py::object& constrained, const py::object& guided, double mu, bool align) {
            const auto start = std::chrono::steady_clock::now();
-           std::unique_ptr<Mesh> mesh = mesh_of_arrays(V, F);
+           Mesh_of_arrays mesh = mesh_of_arrays(V, F);
            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
            auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
            solver->m_mesh_seconds = seconds;
@@ -1130,7 +1180,7 @@ Raises InvalidInput for a mesh the package refuses (code and where say why).)")
       [](const std::string& path, bool triangulate, const std::string& weights, const std::string& backend,
          const py::object& constrained, const py::object& guided, double mu, bool align) {
         const auto start = std::chrono::steady_clock::now();
-        std::unique_ptr<Mesh> mesh = mesh_of_file(path, triangulate);
+        Mesh_of_arrays mesh{mesh_of_file(path, triangulate), std::nullopt};
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
         solver->m_mesh_seconds = seconds;

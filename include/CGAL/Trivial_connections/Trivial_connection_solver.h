@@ -42,6 +42,7 @@
 #include <cmath>
 #include <cstdint>
 #include <future>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -186,16 +187,32 @@ public:
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Trivial_connection_solver(const TriangleMesh& tm,
                                      const NamedParameters& np = parameters::default_values())
+    : Trivial_connection_solver(tm,
+                                [&] {
+                                  notify(progress_of(np), Phase::mesh_setup, 0);
+                                  return Mesh(tm);
+                                }(),
+                                np)
+  {
+  }
+
+  /// not copyable: it holds the factorization and refers to the mesh
+  Trivial_connection_solver(const Trivial_connection_solver&) = delete;
+  /// not copyable
+  Trivial_connection_solver& operator=(const Trivial_connection_solver&) = delete;
+
+private:
+  // From the mesh's arrays, made already: by the constructor above, or from the validated connectivity a mesh was
+  // just built from (internal::Solver_access::make()), which spares deriving it from the mesh again.
+  template <class NamedParameters>
+  Trivial_connection_solver(const TriangleMesh& tm, Mesh&& mesh, const NamedParameters& np)
     : m_tm(tm),
       m_traits(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits),
                                                   Geom_traits())),
       m_weighting(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::weighting),
                                                      Weighting::hodge_star)),
       m_progress(progress_of(np)),
-      m_mesh([&] {
-        notify(Phase::mesh_setup, 0);
-        return Mesh(tm);
-      }())
+      m_mesh(std::move(mesh))
   {
     std::vector<int> user_faces, guided;
     read_face_sets(np, user_faces, guided);
@@ -252,10 +269,7 @@ public:
     m_progress = nullptr; // the callback may not outlive the constructor call
   }
 
-  /// not copyable: it holds the factorization and refers to the mesh
-  Trivial_connection_solver(const Trivial_connection_solver&) = delete;
-  /// not copyable
-  Trivial_connection_solver& operator=(const Trivial_connection_solver&) = delete;
+public:
 
   /// \name Mesh information
   /// @{
@@ -637,6 +651,13 @@ struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverT
   static const Mesh_arrays<TriangleMesh>& mesh(const Solver& s) { return s.m_mesh; }
   static const Mesh_geometry& geometry(const Solver& s) { return s.m_geometry; }
   static const Mesh_topology& topology(const Solver& s) { return s.m_topology; }
+  // a solver of tm from its arrays, made from the connectivity tm was built from (see Mesh_arrays)
+  template <class NamedParameters = parameters::Default_named_parameters>
+  static std::unique_ptr<Solver> make(const TriangleMesh& tm, Mesh_arrays<TriangleMesh>&& mesh,
+                                      const NamedParameters& np = parameters::default_values())
+  {
+    return std::unique_ptr<Solver>(new Solver(tm, std::move(mesh), np));
+  }
 };
 
 } // namespace internal

@@ -18,6 +18,7 @@
 #include <boost/graph/graph_traits.hpp>
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -74,11 +75,14 @@ void add_elements(CGAL::Surface_mesh<P>& tm, std::size_t nv, std::size_t ne, std
 
 /*
   Builds the mesh from validated connectivity with the low-level functions of `MutableFaceGraph`:
-  vertex i is the i-th vertex added, face f the f-th face added; isolated vertices are kept.
+  vertex i is the i-th vertex added, face f the f-th face added; isolated vertices are kept. When
+  `corner_halfedges` is given, it receives the halfedge of each corner c of the soup (from vertex
+  soup.source(c) to soup.target(c), in face c / 3).
 */
 template <class TriangleMesh, class PointRange>
-Mesh_input_order<TriangleMesh> build_mesh(const PointRange& points, const Triangle_soup_connectivity& soup,
-                                          TriangleMesh& tm)
+Mesh_input_order<TriangleMesh>
+build_mesh(const PointRange& points, const Triangle_soup_connectivity& soup, TriangleMesh& tm,
+           std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor>* corner_halfedges = nullptr)
 {
   using GT = boost::graph_traits<TriangleMesh>;
   using halfedge_descriptor = typename GT::halfedge_descriptor;
@@ -137,6 +141,8 @@ Mesh_input_order<TriangleMesh> build_mesh(const PointRange& points, const Triang
   for(std::size_t v = 0; v < nv; ++v)
     if(incoming[v] != GT::null_halfedge())
       set_halfedge(order.vertices[v], incoming[v], tm);
+  if(corner_halfedges != nullptr)
+    *corner_halfedges = std::move(h);
   return order;
 }
 

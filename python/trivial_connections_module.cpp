@@ -624,16 +624,8 @@ public:
   Result solve(const py::object& singularities, int n, const py::object& directions, const py::object& loop_periods)
   {
     const auto s = singularities_of(singularities);
-    std::optional<std::vector<Kernel::Vector_3>> targets;
-    if(!directions.is_none())
-      targets = directions_of(directions);
-    const std::optional<Loop_periods> periods = periods_of(loop_periods);
-    Solve_output out;
-    {
-      py::gil_scoped_release unlocked;
-      std::shared_lock<std::shared_mutex> reading(m_mutex);
-      out = m_solver->solve(s, n, targets ? &*targets : nullptr, periods ? &*periods : nullptr);
-    }
+    const Optional_inputs in = optional_inputs(directions, loop_periods);
+    Solve_output out = reading([&] { return m_solver->solve(s, n, in.directions_or_null(), in.periods_or_null()); });
     return result_of(std::move(out), n);
   }
 
@@ -659,18 +651,11 @@ public:
                                 const py::object& fixed, const py::object& loop_periods)
   {
     const Singularities kept = singularities_of(fixed);
-    std::optional<std::vector<Kernel::Vector_3>> guide;
-    if(!alignment_guide.is_none())
-      guide = directions_of(alignment_guide);
-    const std::optional<Loop_periods> periods = periods_of(loop_periods);
+    const Optional_inputs in = optional_inputs(alignment_guide, loop_periods);
     Singularities placed;
-    TC::Placement_report report;
-    {
-      py::gil_scoped_release unlocked;
-      std::shared_lock<std::shared_mutex> reading(m_mutex);
-      report = m_solver->place(n, align_boundary, guide ? &*guide : nullptr, strength, kept,
-                               periods ? &*periods : nullptr, placed);
-    }
+    const TC::Placement_report report = reading([&] {
+      return m_solver->place(n, align_boundary, in.directions_or_null(), strength, kept, in.periods_or_null(), placed);
+    });
     py::dict d;
     d["n"] = report.symmetry_order;
     d["aligned"] = report.aligned;
@@ -720,22 +705,15 @@ public:
                                  std::size_t maximum_trials)
   {
     const Singularities s = singularities_of(start);
-    std::optional<std::vector<Kernel::Vector_3>> targets;
-    if(!directions.is_none())
-      targets = directions_of(directions);
-    const std::optional<Loop_periods> periods = periods_of(loop_periods);
+    const Optional_inputs in = optional_inputs(directions, loop_periods);
     std::vector<std::size_t> fixed;
     if(!fixed_vertices.is_none())
       for(const py::handle v : py::iter(fixed_vertices))
         fixed.push_back(vertex_number(v));
-    TC::Refinement_report<vertex_descriptor> r;
-    {
-      py::gil_scoped_release unlocked;
-      // it solves again and again on the solver: as a solve, beside other solves
-      std::shared_lock<std::shared_mutex> reading(m_mutex);
-      r = m_solver->refine(s, n, targets ? &*targets : nullptr, periods ? &*periods : nullptr, fixed, cancel_pairs,
-                           maximum_trials);
-    }
+    // it solves again and again on the solver: as a solve, beside other solves
+    const TC::Refinement_report<vertex_descriptor> r = reading([&] {
+      return m_solver->refine(s, n, in.directions_or_null(), in.periods_or_null(), fixed, cancel_pairs, maximum_trials);
+    });
     Singularities refined;
     for(const auto& [v, k] : r.singularities)
       refined.emplace_back(std::size_t(v), k);
@@ -916,6 +894,33 @@ private:
     for(const auto& [v, k] : s)
       d[py::int_(v)] = fraction(k);
     return d;
+  }
+
+  // The optional per-face directions and loop periods of a call, read with the GIL
+  struct Optional_inputs
+  {
+    std::optional<std::vector<Kernel::Vector_3>> directions;
+    std::optional<Loop_periods> periods;
+    const std::vector<Kernel::Vector_3>* directions_or_null() const { return directions ? &*directions : nullptr; }
+    const Loop_periods* periods_or_null() const { return periods ? &*periods : nullptr; }
+  };
+
+  Optional_inputs optional_inputs(const py::object& directions, const py::object& loop_periods) const
+  {
+    Optional_inputs in;
+    if(!directions.is_none())
+      in.directions = directions_of(directions);
+    in.periods = periods_of(loop_periods);
+    return in;
+  }
+
+  // f() without the GIL, beside the solver's other readers (solves, placement), never during set_constraints()
+  template <class F>
+  auto reading(F&& f) const -> decltype(f())
+  {
+    py::gil_scoped_release unlocked;
+    std::shared_lock<std::shared_mutex> lock(m_mutex);
+    return f();
   }
 
   static std::optional<Loop_periods> periods_of(const py::object& loop_periods)

@@ -583,6 +583,31 @@ std::vector<face_descriptor> faces_of(const py::handle& list, std::size_t number
   return faces;
 }
 
+void check_backend(const std::string& backend)
+{
+  if(backend != "auto" && backend != "ldlt" && backend != "cholmod")
+    throw py::value_error("backend must be \"auto\", \"ldlt\" or \"cholmod\", got \"" + backend + "\"");
+#ifndef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  if(backend == "cholmod")
+    throw py::value_error("backend \"cholmod\": this build of the module has no CHOLMOD (libsuitesparse-dev)");
+#endif
+}
+
+// The solver of `mesh` with the backend named (checked by check_backend()); `arrays` as for Solver_of
+std::unique_ptr<Solver_interface> make_solver(const Mesh& mesh, std::optional<TC::internal::Mesh_arrays<Mesh>>&& arrays,
+                                              const Options& o, const std::string& backend)
+{
+  if(backend == "ldlt")
+    return std::make_unique<Solver_of<TC::Default_solver_traits>>(mesh, std::move(arrays), o, "ldlt");
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  if(backend == "cholmod")
+    return std::make_unique<Solver_of<TC::Cholmod_solver_traits>>(mesh, std::move(arrays), o, "cholmod");
+  return std::make_unique<Solver_of<TC::Automatic_solver_traits>>(mesh, std::move(arrays), o, "auto");
+#else
+  return std::make_unique<Solver_of<TC::Default_solver_traits>>(mesh, std::move(arrays), o, "auto");
+#endif
+}
+
 class Python_solver
 {
 public:
@@ -599,25 +624,10 @@ public:
     o.guided = faces_of(guided, m_mesh->number_of_faces(), "guided_faces");
     o.guidance_weight = guidance_weight;
     o.align_boundary = align_boundary;
-    if(backend != "auto" && backend != "ldlt" && backend != "cholmod")
-      throw py::value_error("backend must be \"auto\", \"ldlt\" or \"cholmod\", got \"" + backend + "\"");
-#ifndef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-    if(backend == "cholmod")
-      throw py::value_error("backend \"cholmod\": this build of the module has no CHOLMOD (libsuitesparse-dev)");
-#endif
+    check_backend(backend);
     py::gil_scoped_release unlocked;
     const auto start = std::chrono::steady_clock::now();
-    if(backend == "ldlt")
-      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, std::move(mesh.arrays), o, "ldlt");
-#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-    else if(backend == "cholmod")
-      m_solver = std::make_unique<Solver_of<TC::Cholmod_solver_traits>>(*m_mesh, std::move(mesh.arrays), o, "cholmod");
-    else
-      m_solver = std::make_unique<Solver_of<TC::Automatic_solver_traits>>(*m_mesh, std::move(mesh.arrays), o, "auto");
-#else
-    else
-      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, std::move(mesh.arrays), o, "auto");
-#endif
+    m_solver = make_solver(*m_mesh, std::move(mesh.arrays), o, backend);
     m_solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
@@ -1076,6 +1086,46 @@ Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .c
       PyErr_SetObject(invalid_input.ptr(), error.ptr());
     }
   });
+
+  m.def(
+    "_reference_build",
+    [](const py::object& V, const py::object& F, const std::string& backend) {
+      check_backend(backend);
+      const py::array v = as_array(V, "V"), f = as_array(F, "F");
+      check_rows_of_three(v, "V", "fiu", "real numbers");
+      check_rows_of_three(f, "F", "iu", "integers (vertex indices)");
+      const auto points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
+      const auto faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(f);
+      if(!points || !faces)
+        throw py::type_error("V and F must be convertible to float64 and int64 arrays");
+      // the arrays a C++ program holds (not timed)
+      std::vector<Kernel::Point_3> p;
+      for(py::ssize_t i = 0; i < points.shape(0); ++i)
+        p.emplace_back(points.at(i, 0), points.at(i, 1), points.at(i, 2));
+      std::vector<std::array<std::size_t, 3>> t;
+      for(py::ssize_t i = 0; i < faces.shape(0); ++i)
+        t.push_back({std::size_t(faces.at(i, 0)), std::size_t(faces.at(i, 1)), std::size_t(faces.at(i, 2))});
+      double to_mesh = 0, solver = 0;
+      {
+        py::gil_scoped_release unlocked;
+        const auto t0 = std::chrono::steady_clock::now();
+        Mesh mesh;
+        TC::triangle_soup_to_mesh(p, t, mesh);
+        const auto t1 = std::chrono::steady_clock::now();
+        std::unique_ptr<Solver_interface> s = make_solver(mesh, std::nullopt, Options(), backend);
+        const auto t2 = std::chrono::steady_clock::now();
+        to_mesh = std::chrono::duration<double>(t1 - t0).count();
+        solver = std::chrono::duration<double>(t2 - t1).count();
+      }
+      py::dict d;
+      d["soup_to_mesh"] = to_mesh;
+      d["solver"] = solver;
+      return d;
+    },
+    py::arg("V"), py::arg("F"), py::arg("backend") = "auto",
+    R"(The benchmark's reference (benchmark/python/binding_overhead.py), not part of the API: what a C++ program
+holding V and F does, triangle_soup_to_mesh() into a Surface_mesh, then the Trivial_connection_solver
+constructor on it, with default options. Returns the seconds of each: {"soup_to_mesh": s, "solver": s}.)");
 
   m.def(
     "read_singularities",

@@ -7,7 +7,8 @@
 // unit, built by the top-level CMakeLists.txt when pybind11 and Python's headers are found.
 //
 // Arrays come in as numpy arrays of any integer (faces) or real (points) type and layout; each is read once
-// into the Surface_mesh the solver needs (and the solver's arrays made from their validated connectivity), and the results are numpy arrays that own the solver's output
+// into the Surface_mesh the solver refers to and into the solver's own arrays, made from the validated
+// connectivity rather than read back out of the mesh. The results are numpy arrays that own the solver's output
 // vectors (no copy on the way out). The GIL is released while the solver is built and while it solves, so
 // solves on one solver from several Python threads run at the same time, as the C++ solver allows;
 // set_constraints() waits for them and they for it.
@@ -1301,8 +1302,9 @@ give way. align_boundary, loop_periods: as for the solver and solve().)")
         d["solver"] = s.m_solver_seconds;
         return d;
       },
-      "seconds in C++ while the solver was built: mesh (the arrays or the file read into a validated Surface_mesh) "
-      "and solver (the C++ constructor, as from a Surface_mesh)")
+      "seconds in C++ while the solver was built: mesh (the arrays validated and made into a Surface_mesh and the "
+      "solver's arrays, or the file read into a validated Surface_mesh) and solver (the C++ constructor: from "
+      "those arrays, or from the Surface_mesh of the file)")
     .def_property_readonly("number_of_vertices", &Python_solver::number_of_vertices)
     .def_property_readonly("number_of_faces", &Python_solver::number_of_faces)
     .def_property_readonly("number_of_loops", &Python_solver::number_of_loops,

@@ -33,6 +33,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -79,13 +80,34 @@ py::array as_array(const py::handle& h, const char* name)
   return py::array::ensure(h);
 }
 
-// The mesh of V, F, and the solver's arrays of it, made from the soup's validated connectivity rather than derived
-// from the mesh again (Solver_access::make): that is what makes a solver from arrays cost no more than one from a
-// Surface_mesh. Vertex i and face f of the arrays are vertex i and face f of the mesh.
+// The mesh of V, F, and the solver's arrays of it, made from the soup's validated connectivity rather than read
+// back out of the mesh (Solver_access::make). The Surface_mesh is built on a second thread meanwhile: the solver
+// reads nothing of it while it is constructed (its arrays and a vertex point map over V stand for it), and
+// wait_for_mesh() joins that thread before anything reads the mesh. This is what makes a solver from arrays cost
+// no more than from a Surface_mesh made of them. Vertex i and face f of the arrays are vertex i and face f of the
+// mesh. From a file: the mesh only, complete.
 struct Mesh_of_arrays
 {
   std::unique_ptr<Mesh> mesh;
+  std::size_t number_of_faces = 0;
   std::optional<TC::internal::Mesh_arrays<Mesh>> arrays; // consumed by the solver
+  const double* points = nullptr; // V as C-ordered float64 rows, owned by points_owner
+  py::object points_owner;
+  std::unique_ptr<TC::internal::io::Triangle_soup_connectivity> soup; // read by the mesh's construction
+  std::future<void> building; // the mesh's construction; last, so that it is joined before the rest goes
+
+  void wait_for_mesh()
+  {
+    if(building.valid())
+      building.get();
+  }
+  Mesh_of_arrays() = default;
+  Mesh_of_arrays(Mesh_of_arrays&&) = default;
+  ~Mesh_of_arrays()
+  {
+    if(building.valid())
+      building.wait();
+  }
 };
 
 // The rows of a C-ordered (m, 3) int64 array, seen as triangles (no copy), for the package's soup validation
@@ -130,6 +152,9 @@ Mesh_of_arrays mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
   const Triangle_rows t{reinterpret_cast<const Triangle_rows::Row*>(faces.data()), std::size_t(faces.shape(0))};
   Mesh_of_arrays out;
   out.mesh = std::make_unique<Mesh>();
+  out.points = points.data();
+  out.points_owner = points;
+  out.number_of_faces = t.size();
   py::gil_scoped_release unlocked; // the arrays are held above
   for(std::size_t i = 0; i < t.size(); ++i)
     for(std::size_t j = 0; j < 3; ++j)
@@ -138,16 +163,28 @@ Mesh_of_arrays mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
                                 "face " + std::to_string(i) + " uses vertex " + std::to_string(t.first[i][j]) +
                                   ": vertex indices start at 0",
                                 i);
-  TC::internal::io::Triangle_soup_connectivity soup = TC::internal::io::validate_triangle_soup(p.count, t);
-  std::vector<halfedge_descriptor> corner_halfedges;
-  TC::Mesh_input_order<Mesh> order = TC::internal::io::build_mesh(p, soup, *out.mesh, &corner_halfedges);
-  std::vector<int> corner_vertices(3 * soup.triangles.size());
-  for(std::size_t f = 0; f < soup.triangles.size(); ++f)
+  out.soup = std::make_unique<TC::internal::io::Triangle_soup_connectivity>(
+    TC::internal::io::validate_triangle_soup(p.count, t));
+  const TC::internal::io::Triangle_soup_connectivity& soup = *out.soup;
+  out.building = std::async(std::launch::async, [p, &soup, mesh = out.mesh.get()] {
+    TC::internal::io::build_mesh(p, soup, *mesh);
+  });
+  // meanwhile, the solver's arrays (the soup is only read on both sides)
+  std::vector<vertex_descriptor> vertices(p.count);
+  for(std::size_t i = 0; i < p.count; ++i)
+    vertices[i] = vertex_descriptor(Mesh::size_type(i));
+  std::vector<face_descriptor> face_descriptors(t.size());
+  for(std::size_t f = 0; f < t.size(); ++f)
+    face_descriptors[f] = face_descriptor(Mesh::size_type(f));
+  std::vector<int> corner_vertices(3 * t.size());
+  for(std::size_t f = 0; f < t.size(); ++f)
     for(std::size_t k = 0; k < 3; ++k)
       corner_vertices[3 * f + k] = soup.triangles[f][k];
-  soup.triangles = {};
-  out.arrays.emplace(*out.mesh, std::move(order.vertices), std::move(order.faces), std::move(corner_halfedges),
-                     std::move(corner_vertices), std::move(soup.opposite));
+  const Mesh& mesh = *out.mesh; // its index maps read nothing of it
+  out.arrays.emplace(get(boost::vertex_index, mesh), get(boost::face_index, mesh), std::move(vertices),
+                     std::move(face_descriptors),
+                     TC::internal::io::surface_mesh_corner_halfedges<Kernel::Point_3>(soup),
+                     std::move(corner_vertices), std::vector<int>(soup.opposite));
   return out;
 }
 
@@ -345,6 +382,26 @@ struct Face_vector_map
   }
 };
 
+// The points the solver reads while it is built: V's rows (Solver(V, F): the mesh may still be under
+// construction), else the mesh's own
+struct Point_source
+{
+  using key_type = vertex_descriptor;
+  using value_type = Kernel::Point_3;
+  using reference = Kernel::Point_3;
+  using category = boost::readable_property_map_tag;
+  const double* xyz;
+  const Mesh* mesh;
+
+  friend Kernel::Point_3 get(const Point_source& m, vertex_descriptor v)
+  {
+    if(m.xyz == nullptr)
+      return m.mesh->point(v);
+    const double* p = m.xyz + 3 * std::size_t(v);
+    return Kernel::Point_3(p[0], p[1], p[2]);
+  }
+};
+
 struct Options
 {
   TC::Weighting weighting = TC::Weighting::hodge_star;
@@ -359,22 +416,26 @@ class Solver_of : public Solver_interface
   using Solver = TC::Trivial_connection_solver<Mesh, Kernel, SolverTraits>;
 
 public:
-  // `arrays`: the solver's arrays of `mesh` when made with it (mesh_of_arrays), else derived from it
-  Solver_of(const Mesh& mesh, std::optional<TC::internal::Mesh_arrays<Mesh>>&& arrays, const Options& o,
-            const char* name)
-    : m_mesh(mesh), m_name(name)
+  // From `source`: its arrays when it has them (mesh_of_arrays(); the mesh may then still be under construction,
+  // and is waited for once the solver is built), else from its mesh
+  Solver_of(Mesh_of_arrays& source, const Options& o, const char* name)
+    : m_mesh(*source.mesh), m_name(name)
   {
+    const Mesh& mesh = *source.mesh;
     const auto np = TC::parameters::weighting(
       o.weighting,
       TC::parameters::constrained_faces(
         o.constrained,
         TC::parameters::guided_faces(
-          o.guided, TC::parameters::guidance_weight(o.guidance_weight,
-                                                    TC::parameters::align_with_boundary(o.align_boundary)))));
-    if(arrays)
-      m_solver = TC::internal::Solver_access<Solver>::make(mesh, std::move(*arrays), np);
+          o.guided, TC::parameters::guidance_weight(
+                      o.guidance_weight, TC::parameters::align_with_boundary(
+                                           o.align_boundary, CGAL::parameters::vertex_point_map(
+                                                               Point_source{source.points, &mesh}))))));
+    if(source.arrays)
+      m_solver = TC::internal::Solver_access<Solver>::make(mesh, std::move(*source.arrays), np);
     else
       m_solver = std::make_unique<Solver>(mesh, np);
+    source.wait_for_mesh();
     m_edge_slot.assign(mesh.number_of_edges(), -1);
     for(auto e : mesh.edges())
       if(!mesh.is_border(e)) {
@@ -594,42 +655,43 @@ void check_backend(const std::string& backend)
 #endif
 }
 
-// The solver of `mesh` with the backend named (checked by check_backend()); `arrays` as for Solver_of
-std::unique_ptr<Solver_interface> make_solver(const Mesh& mesh, std::optional<TC::internal::Mesh_arrays<Mesh>>&& arrays,
-                                              const Options& o, const std::string& backend)
+// The solver of `source` (as for Solver_of) with the backend named (checked by check_backend())
+std::unique_ptr<Solver_interface> make_solver(Mesh_of_arrays& source, const Options& o, const std::string& backend)
 {
   if(backend == "ldlt")
-    return std::make_unique<Solver_of<TC::Default_solver_traits>>(mesh, std::move(arrays), o, "ldlt");
+    return std::make_unique<Solver_of<TC::Default_solver_traits>>(source, o, "ldlt");
 #ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
   if(backend == "cholmod")
-    return std::make_unique<Solver_of<TC::Cholmod_solver_traits>>(mesh, std::move(arrays), o, "cholmod");
-  return std::make_unique<Solver_of<TC::Automatic_solver_traits>>(mesh, std::move(arrays), o, "auto");
+    return std::make_unique<Solver_of<TC::Cholmod_solver_traits>>(source, o, "cholmod");
+  return std::make_unique<Solver_of<TC::Automatic_solver_traits>>(source, o, "auto");
 #else
-  return std::make_unique<Solver_of<TC::Default_solver_traits>>(mesh, std::move(arrays), o, "auto");
+  return std::make_unique<Solver_of<TC::Default_solver_traits>>(source, o, "auto");
 #endif
 }
 
 class Python_solver
 {
 public:
+  // `mesh` keeps its mesh until the solver is built and the mesh complete: on an error before, its destructor waits
+  // for the mesh's construction before freeing it
   Python_solver(Mesh_of_arrays mesh, const std::string& weights, const std::string& backend,
                 const py::object& constrained, const py::object& guided, double guidance_weight, bool align_boundary)
-    : m_mesh(std::move(mesh.mesh))
   {
     Options o;
     if(weights == "unit")
       o.weighting = TC::Weighting::unit;
     else if(weights != "hodge")
       throw py::value_error("weights must be \"hodge\" or \"unit\", got \"" + weights + "\"");
-    o.constrained = faces_of(constrained, m_mesh->number_of_faces(), "constrained_faces");
-    o.guided = faces_of(guided, m_mesh->number_of_faces(), "guided_faces");
+    o.constrained = faces_of(constrained, mesh.number_of_faces, "constrained_faces");
+    o.guided = faces_of(guided, mesh.number_of_faces, "guided_faces");
     o.guidance_weight = guidance_weight;
     o.align_boundary = align_boundary;
     check_backend(backend);
     py::gil_scoped_release unlocked;
     const auto start = std::chrono::steady_clock::now();
-    m_solver = make_solver(*m_mesh, std::move(mesh.arrays), o, backend);
+    m_solver = make_solver(mesh, o, backend); // the mesh complete when it returns
     m_solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    m_mesh = std::move(mesh.mesh);
   }
 
   Result solve(const py::object& singularities, int n, const py::object& directions, const py::object& loop_periods)
@@ -1110,10 +1172,11 @@ Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .c
       {
         py::gil_scoped_release unlocked;
         const auto t0 = std::chrono::steady_clock::now();
-        Mesh mesh;
-        TC::triangle_soup_to_mesh(p, t, mesh);
+        Mesh_of_arrays mesh;
+        mesh.mesh = std::make_unique<Mesh>();
+        TC::triangle_soup_to_mesh(p, t, *mesh.mesh);
         const auto t1 = std::chrono::steady_clock::now();
-        std::unique_ptr<Solver_interface> s = make_solver(mesh, std::nullopt, Options(), backend);
+        std::unique_ptr<Solver_interface> s = make_solver(mesh, Options(), backend);
         const auto t2 = std::chrono::steady_clock::now();
         to_mesh = std::chrono::duration<double>(t1 - t0).count();
         solver = std::chrono::duration<double>(t2 - t1).count();
@@ -1236,7 +1299,9 @@ Raises InvalidInput for a mesh the package refuses (code and where say why).)")
       [](const std::string& path, bool triangulate, const std::string& weights, const std::string& backend,
          const py::object& constrained, const py::object& guided, double mu, bool align) {
         const auto start = std::chrono::steady_clock::now();
-        Mesh_of_arrays mesh{mesh_of_file(path, triangulate), std::nullopt};
+        Mesh_of_arrays mesh;
+        mesh.mesh = mesh_of_file(path, triangulate);
+        mesh.number_of_faces = mesh.mesh->number_of_faces();
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
         solver->m_mesh_seconds = seconds;

@@ -150,11 +150,11 @@ struct Mesh_arrays
     check_manifold_vertices(tm);
   }
 
-  // From connectivity validated already, as the soup a mesh was just built from (IO/internal/build_mesh.h):
-  // vertex i, face f and corner halfedge c of the arrays are vertices[i], faces[f] and corner_halfedges[c] of tm,
-  // and the index maps of tm number them i and f. Nothing is derived from tm again, so that a mesh built
-  // from arrays costs its construction only; check_and_read_points() completes the set-up as above.
-  Mesh_arrays(const TriangleMesh& tm, std::vector<vertex_descriptor>&& vertices,
+  // From connectivity validated already, as the soup a mesh is built from (IO/internal/build_mesh.h): vertex i,
+  // face f and corner halfedge c of the arrays are vertices[i], faces[f] and corner_halfedges[c] of the mesh,
+  // which vertex_index and face_index number i and f. Nothing is read from the mesh, which may still be under
+  // construction; check_and_read_points() completes the set-up as above.
+  Mesh_arrays(Vertex_index_map vertex_indices, Face_index_map face_indices, std::vector<vertex_descriptor>&& vertices,
               std::vector<face_descriptor>&& faces, std::vector<halfedge_descriptor>&& corner_halfedges,
               std::vector<int>&& corner_vertices, std::vector<int>&& opposite_corners)
     : nv(int(vertices.size())),
@@ -164,8 +164,8 @@ struct Mesh_arrays
       halfedges(std::move(corner_halfedges)),
       corner_vertex(std::move(corner_vertices)),
       opposite_corner(std::move(opposite_corners)),
-      vertex_index(CGAL::get_initialized_vertex_index_map(tm)),
-      face_index(CGAL::get_initialized_face_index_map(tm))
+      vertex_index(vertex_indices),
+      face_index(face_indices)
   {
     CGAL_precondition(halfedges.size() == 3 * std::size_t(nf) && corner_vertex.size() == halfedges.size() &&
                       opposite_corner.size() == halfedges.size());

@@ -138,16 +138,25 @@ struct Point_rows
   iterator end() const { return {first + 3 * count}; }
 };
 
-Mesh_of_arrays mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
+// V and F checked and as C-ordered float64 and int64 arrays (one copy at most, when the dtype or the layout differs)
+using Point_array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Face_array = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+std::pair<Point_array, Face_array> checked_arrays(const py::handle& v_in, const py::handle& f_in)
 {
   const py::array V = as_array(v_in, "V"), F = as_array(f_in, "F");
   check_rows_of_three(V, "V", "fiu", "real numbers");
   check_rows_of_three(F, "F", "iu", "integers (vertex indices)");
-  // one copy at most, when the dtype or the layout differs
-  const auto points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(V);
-  const auto faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(F);
+  auto points = Point_array::ensure(V);
+  auto faces = Face_array::ensure(F);
   if(!points || !faces)
     throw py::type_error("V and F must be convertible to float64 and int64 arrays");
+  return {std::move(points), std::move(faces)};
+}
+
+Mesh_of_arrays mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
+{
+  const auto [points, faces] = checked_arrays(v_in, f_in);
   const Point_rows p{points.data(), std::size_t(points.shape(0))};
   const Triangle_rows t{reinterpret_cast<const Triangle_rows::Row*>(faces.data()), std::size_t(faces.shape(0))};
   Mesh_of_arrays out;
@@ -1154,13 +1163,7 @@ Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .c
     "_reference_build",
     [](const py::object& V, const py::object& F, const std::string& backend) {
       check_backend(backend);
-      const py::array v = as_array(V, "V"), f = as_array(F, "F");
-      check_rows_of_three(v, "V", "fiu", "real numbers");
-      check_rows_of_three(f, "F", "iu", "integers (vertex indices)");
-      const auto points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
-      const auto faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(f);
-      if(!points || !faces)
-        throw py::type_error("V and F must be convertible to float64 and int64 arrays");
+      const auto [points, faces] = checked_arrays(V, F);
       // the arrays a C++ program holds (not timed)
       std::vector<Kernel::Point_3> p;
       for(py::ssize_t i = 0; i < points.shape(0); ++i)

@@ -212,9 +212,9 @@ private:
       return CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point);
   }
 
-  // From the mesh's arrays, made already: by the constructor above, or from the validated connectivity a mesh is
-  // built from (internal::Solver_access::make()), which spares deriving them from the mesh again. With such arrays
-  // and a vertex point map in np, it reads nothing of tm (which may then still be under construction).
+  // From the mesh's arrays, made already: by the constructor above, or from the validated connectivity a mesh
+  // is built from (internal::Solver_access::make()), which spares deriving them from the mesh again. With such
+  // arrays and a vertex point map in np, it reads nothing of tm (which may then still be under construction).
   template <class NamedParameters>
   Trivial_connection_solver(const TriangleMesh& tm, Mesh&& mesh, const NamedParameters& np)
     : m_tm(tm),

@@ -113,7 +113,8 @@ inline bool match_edges(Triangle_soup_connectivity& soup)
       const std::array<int, 3>& t = soup.triangles[f];
       for(std::size_t k = 0; k < 3; ++k) {
         const int a = t[k], b = t[(k + 1) % 3], c = int(3 * f + k);
-        bucket[std::size_t(fill[std::size_t((std::min)(a, b))]++)] = a < b ? std::make_pair(b, c) : std::make_pair(a, -1 - c);
+        bucket[std::size_t(fill[std::size_t((std::min)(a, b))]++)] =
+          a < b ? std::make_pair(b, c) : std::make_pair(a, -1 - c);
       }
     }
   }
@@ -309,7 +310,6 @@ inline void check_fans(const Triangle_soup_connectivity& soup)
   throw Invalid_input(Error_code::non_manifold, "non-manifold vertex " + std::to_string(first_bad_vertex) +
                                                   ": the faces around it form separate fans", first_bad_vertex);
 }
-
 
 // Steps 4 and 5 of the validation below: fills `soup.opposite` or throws.
 inline void connect_triangle_soup(Triangle_soup_connectivity& soup)

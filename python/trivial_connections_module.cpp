@@ -43,6 +43,12 @@
 #include <utility>
 #include <vector>
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 namespace py = pybind11;
 namespace TC = CGAL::Trivial_connections;
 
@@ -176,6 +182,10 @@ Mesh_of_arrays mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
     TC::internal::io::validate_triangle_soup(p.count, t));
   const TC::internal::io::Triangle_soup_connectivity& soup = *out.soup;
   out.building = std::async(std::launch::async, [p, &soup, mesh = out.mesh.get()] {
+#ifdef __linux__
+    // in the time the solver's own threads leave (a Linux thread's nice value is its own)
+    setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 19);
+#endif
     TC::internal::io::build_mesh(p, soup, *mesh);
   });
   // meanwhile, the solver's arrays (the soup is only read on both sides)

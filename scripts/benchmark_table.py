@@ -336,7 +336,10 @@ def python_table(bindings, lines, command):
                  "program that holds a Surface_mesh already: the arrays carry no adjacency, and finding it (the soup's "
                  "validation) costs more than reading it out of a halfedge structure, which the constructor does. "
                  "The module builds its solver from the soup's validated connectivity rather than from the "
-                 "Surface_mesh it also makes. Solve: `Solver.solve()` timed in Python against the C++ `solve()` + "
+                 "Surface_mesh it also makes, and makes that mesh on a second thread at the lowest priority while the "
+                 "constructor runs: on a mesh whose constructor keeps both cores busy (cheese, genus 133, mostly the "
+                 "loop metric) it finds no idle time, and the two paths are even (0.99–1.06 over the runs of "
+                 "2026-12-03). Solve: `Solver.solve()` timed in Python against the C++ `solve()` + "
                  "`compute_field()` inside it (target ≤ 1.05 at 75k faces).")
     lines.append("")
     lines.append("| mesh | faces | Solver(V, F) | C++: soup to mesh | C++: constructor | arrays | mesh "

@@ -7,7 +7,8 @@
 // unit, built by the top-level CMakeLists.txt when pybind11 and Python's headers are found.
 //
 // Arrays come in as numpy arrays of any integer (faces) or real (points) type and layout; each is read once
-// into the Surface_mesh the solver needs, and the results are numpy arrays that own the solver's output
+// into the Surface_mesh the solver refers to and into the solver's own arrays, made from the validated
+// connectivity rather than read back out of the mesh. The results are numpy arrays that own the solver's output
 // vectors (no copy on the way out). The GIL is released while the solver is built and while it solves, so
 // solves on one solver from several Python threads run at the same time, as the C++ solver allows;
 // set_constraints() waits for them and they for it.
@@ -32,6 +33,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -40,6 +42,12 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
 
 namespace py = pybind11;
 namespace TC = CGAL::Trivial_connections;
@@ -78,35 +86,125 @@ py::array as_array(const py::handle& h, const char* name)
   return py::array::ensure(h);
 }
 
-// The mesh of V, F, validated by the package (triangle_soup_to_mesh): vertex i and face f of the arrays are
-// vertex i and face f of the mesh.
-std::unique_ptr<Mesh> mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
+// The mesh of V, F, and the solver's arrays of it, made from the soup's validated connectivity rather than read
+// back out of the mesh (Solver_access::make). The Surface_mesh is built on a second thread meanwhile: the solver
+// reads nothing of it while it is constructed (its arrays and a vertex point map over V stand for it), and
+// wait_for_mesh() joins that thread before anything reads the mesh. This is what makes a solver from arrays cost
+// no more than from a Surface_mesh made of them. Vertex i and face f of the arrays are vertex i and face f of the
+// mesh. From a file: the mesh only, complete.
+struct Mesh_of_arrays
+{
+  std::unique_ptr<Mesh> mesh;
+  std::size_t number_of_faces = 0;
+  std::optional<TC::internal::Mesh_arrays<Mesh>> arrays; // consumed by the solver
+  const double* points = nullptr; // V as C-ordered float64 rows, owned by points_owner
+  py::object points_owner;
+  std::unique_ptr<TC::internal::io::Triangle_soup_connectivity> soup; // read by the mesh's construction
+  std::future<void> building; // the mesh's construction; last, so that it is joined before the rest goes
+
+  void wait_for_mesh()
+  {
+    if(building.valid())
+      building.get();
+  }
+  Mesh_of_arrays() = default;
+  Mesh_of_arrays(Mesh_of_arrays&&) = default;
+  ~Mesh_of_arrays()
+  {
+    if(building.valid())
+      building.wait();
+  }
+};
+
+// The rows of a C-ordered (m, 3) int64 array, seen as triangles (no copy), for the package's soup validation
+struct Triangle_rows
+{
+  using Row = std::array<std::int64_t, 3>;
+  static_assert(sizeof(Row) == 3 * sizeof(std::int64_t), "rows of an (m, 3) array");
+  const Row* first;
+  std::size_t count;
+  const Row* begin() const { return first; }
+  const Row* end() const { return first + count; }
+  std::size_t size() const { return count; }
+};
+
+// The rows of a C-ordered (n, 3) float64 array as points, made as they are read (no copy)
+struct Point_rows
+{
+  struct iterator
+  {
+    const double* p;
+    Kernel::Point_3 operator*() const { return Kernel::Point_3(p[0], p[1], p[2]); }
+    iterator& operator++() { p += 3; return *this; }
+    bool operator!=(const iterator& o) const { return p != o.p; }
+  };
+  const double* first;
+  std::size_t count;
+  iterator begin() const { return {first}; }
+  iterator end() const { return {first + 3 * count}; }
+};
+
+// V and F checked and as C-ordered float64 and int64 arrays (one copy at most, when the dtype or the layout differs)
+using Point_array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Face_array = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+std::pair<Point_array, Face_array> checked_arrays(const py::handle& v_in, const py::handle& f_in)
 {
   const py::array V = as_array(v_in, "V"), F = as_array(f_in, "F");
   check_rows_of_three(V, "V", "fiu", "real numbers");
   check_rows_of_three(F, "F", "iu", "integers (vertex indices)");
-  const auto points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(V);
-  const auto faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(F);
+  auto points = Point_array::ensure(V);
+  auto faces = Face_array::ensure(F);
   if(!points || !faces)
     throw py::type_error("V and F must be convertible to float64 and int64 arrays");
-  std::vector<Kernel::Point_3> p(std::size_t(points.shape(0)));
-  const double* x = points.data();
-  for(std::size_t i = 0; i < p.size(); ++i)
-    p[i] = Kernel::Point_3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-  std::vector<std::array<std::size_t, 3>> t(std::size_t(faces.shape(0)));
-  const std::int64_t* f = faces.data();
+  return {std::move(points), std::move(faces)};
+}
+
+Mesh_of_arrays mesh_of_arrays(const py::handle& v_in, const py::handle& f_in)
+{
+  const auto [points, faces] = checked_arrays(v_in, f_in);
+  const Point_rows p{points.data(), std::size_t(points.shape(0))};
+  const Triangle_rows t{reinterpret_cast<const Triangle_rows::Row*>(faces.data()), std::size_t(faces.shape(0))};
+  Mesh_of_arrays out;
+  out.mesh = std::make_unique<Mesh>();
+  out.points = points.data();
+  out.points_owner = points;
+  out.number_of_faces = t.size();
+  py::gil_scoped_release unlocked; // the arrays are held above
   for(std::size_t i = 0; i < t.size(); ++i)
-    for(std::size_t j = 0; j < 3; ++j) {
-      if(f[3 * i + j] < 0)
+    for(std::size_t j = 0; j < 3; ++j)
+      if(t.first[i][j] < 0)
         throw TC::Invalid_input(TC::Error_code::invalid_vertex,
-                                "face " + std::to_string(i) + " uses vertex " + std::to_string(f[3 * i + j]) +
+                                "face " + std::to_string(i) + " uses vertex " + std::to_string(t.first[i][j]) +
                                   ": vertex indices start at 0",
                                 i);
-      t[i][j] = std::size_t(f[3 * i + j]);
-    }
-  auto mesh = std::make_unique<Mesh>();
-  TC::triangle_soup_to_mesh(p, t, *mesh);
-  return mesh;
+  out.soup = std::make_unique<TC::internal::io::Triangle_soup_connectivity>(
+    TC::internal::io::validate_triangle_soup(p.count, t));
+  const TC::internal::io::Triangle_soup_connectivity& soup = *out.soup;
+  out.building = std::async(std::launch::async, [p, &soup, mesh = out.mesh.get()] {
+#ifdef __linux__
+    // in the time the solver's own threads leave (a Linux thread's nice value is its own)
+    setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 19);
+#endif
+    TC::internal::io::build_mesh(p, soup, *mesh);
+  });
+  // meanwhile, the solver's arrays (the soup is only read on both sides)
+  std::vector<vertex_descriptor> vertices(p.count);
+  for(std::size_t i = 0; i < p.count; ++i)
+    vertices[i] = vertex_descriptor(Mesh::size_type(i));
+  std::vector<face_descriptor> face_descriptors(t.size());
+  for(std::size_t f = 0; f < t.size(); ++f)
+    face_descriptors[f] = face_descriptor(Mesh::size_type(f));
+  std::vector<int> corner_vertices(3 * t.size());
+  for(std::size_t f = 0; f < t.size(); ++f)
+    for(std::size_t k = 0; k < 3; ++k)
+      corner_vertices[3 * f + k] = soup.triangles[f][k];
+  const Mesh& mesh = *out.mesh; // its index maps read nothing of it
+  out.arrays.emplace(get(boost::vertex_index, mesh), get(boost::face_index, mesh), std::move(vertices),
+                     std::move(face_descriptors),
+                     TC::internal::io::surface_mesh_corner_halfedges<Kernel::Point_3>(soup),
+                     std::move(corner_vertices), std::vector<int>(soup.opposite));
+  return out;
 }
 
 // A Python integer (int, numpy integer: anything with __index__) as an int64; `too_large` when it does not fit.
@@ -233,6 +331,8 @@ public:
   virtual TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
                                             const std::vector<face_descriptor>& guided) = 0;
   virtual const char* backend() const = 0;
+  // the vertices of each interior edge, two per edge (smaller first), in the order of Result.connection
+  virtual const std::vector<std::int64_t>& edge_vertices() const = 0;
 };
 
 // The vertices of `s` in `mesh` (vertex i is the i-th of the arrays or the file); a vertex out of range is
@@ -301,6 +401,26 @@ struct Face_vector_map
   }
 };
 
+// The points the solver reads while it is built: V's rows (Solver(V, F): the mesh may still be under
+// construction), else the mesh's own
+struct Point_source
+{
+  using key_type = vertex_descriptor;
+  using value_type = Kernel::Point_3;
+  using reference = Kernel::Point_3;
+  using category = boost::readable_property_map_tag;
+  const double* xyz;
+  const Mesh* mesh;
+
+  friend Kernel::Point_3 get(const Point_source& m, vertex_descriptor v)
+  {
+    if(m.xyz == nullptr)
+      return m.mesh->point(v);
+    const double* p = m.xyz + 3 * std::size_t(v);
+    return Kernel::Point_3(p[0], p[1], p[2]);
+  }
+};
+
 struct Options
 {
   TC::Weighting weighting = TC::Weighting::hodge_star;
@@ -315,20 +435,35 @@ class Solver_of : public Solver_interface
   using Solver = TC::Trivial_connection_solver<Mesh, Kernel, SolverTraits>;
 
 public:
-  Solver_of(const Mesh& mesh, const Options& o, const char* name)
-    : m_mesh(mesh),
-      m_solver(mesh, TC::parameters::weighting(
-                       o.weighting, TC::parameters::constrained_faces(
-                                      o.constrained, TC::parameters::guided_faces(
-                                                       o.guided, TC::parameters::guidance_weight(
-                                                                   o.guidance_weight, TC::parameters::align_with_boundary(
-                                                                                        o.align_boundary)))))),
-      m_name(name)
+  // From `source`: its arrays when it has them (mesh_of_arrays(); the mesh may then still be under construction,
+  // and is waited for once the solver is built), else from its mesh
+  Solver_of(Mesh_of_arrays& source, const Options& o, const char* name)
+    : m_mesh(*source.mesh), m_name(name)
   {
+    const Mesh& mesh = *source.mesh;
+    const auto np = TC::parameters::weighting(
+      o.weighting,
+      TC::parameters::constrained_faces(
+        o.constrained,
+        TC::parameters::guided_faces(
+          o.guided, TC::parameters::guidance_weight(
+                      o.guidance_weight, TC::parameters::align_with_boundary(
+                                           o.align_boundary, CGAL::parameters::vertex_point_map(
+                                                               Point_source{source.points, &mesh}))))));
+    if(source.arrays)
+      m_solver = TC::internal::Solver_access<Solver>::make(mesh, std::move(*source.arrays), np);
+    else
+      m_solver = std::make_unique<Solver>(mesh, np);
+    source.wait_for_mesh();
     m_edge_slot.assign(mesh.number_of_edges(), -1);
     for(auto e : mesh.edges())
-      if(!mesh.is_border(e))
+      if(!mesh.is_border(e)) {
         m_edge_slot[std::size_t(e)] = m_interior_edges++;
+        const auto h = mesh.halfedge(e);
+        const std::int64_t a = std::int64_t(mesh.source(h)), b = std::int64_t(mesh.target(h));
+        m_edge_vertices.push_back((std::min)(a, b));
+        m_edge_vertices.push_back((std::max)(a, b));
+      }
   }
 
   Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities, int n,
@@ -348,11 +483,11 @@ public:
     const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     Clock::time_point start = Clock::now();
     const auto np = TC::parameters::symmetry_order(n, TC::parameters::face_directions(target_map));
-    out.report = loop_periods != nullptr ? m_solver.solve(s, halfedge_x, TC::parameters::loop_periods(*loop_periods, np))
-                                         : m_solver.solve(s, halfedge_x, np);
+    out.report = loop_periods != nullptr ? m_solver->solve(s, halfedge_x, TC::parameters::loop_periods(*loop_periods, np))
+                                         : m_solver->solve(s, halfedge_x, np);
     out.solve_seconds = seconds_since(start);
     start = Clock::now();
-    m_solver.compute_field(halfedge_x, face_field, np);
+    m_solver->compute_field(halfedge_x, face_field, np);
     out.field_seconds = seconds_since(start);
     start = Clock::now();
 
@@ -380,7 +515,7 @@ public:
     return out;
   }
 
-  std::size_t number_of_loops() const override { return m_solver.loops().size(); }
+  std::size_t number_of_loops() const override { return m_solver->loops().size(); }
 
   TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide, double strength,
                              const Singularities& fixed, const Loop_periods* periods,
@@ -389,17 +524,17 @@ public:
     namespace P = TC::parameters;
     const auto kept = descriptors(fixed);
     std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
-    const Loop_periods none(m_solver.loops().size()); // every integer chosen, as without the parameter
+    const Loop_periods none(m_solver->loops().size()); // every integer chosen, as without the parameter
     const auto np = P::symmetry_order(n, P::align_with_boundary(align_boundary, P::fixed_singularities(
                                                                   kept, P::loop_periods(periods ? *periods : none))));
     TC::Placement_report report;
     if(guide != nullptr) {
       auto guide_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
         [guide](face_descriptor f) { return (*guide)[std::size_t(f)]; });
-      report = TC::place_singularities(m_solver, std::back_inserter(out),
+      report = TC::place_singularities(*m_solver, std::back_inserter(out),
                                        P::alignment_guide(guide_map, P::alignment_strength(strength, np)));
     } else
-      report = TC::place_singularities(m_solver, std::back_inserter(out), np);
+      report = TC::place_singularities(*m_solver, std::back_inserter(out), np);
     for(const auto& [v, k] : out)
       placed.emplace_back(std::size_t(v), k);
     return report;
@@ -410,7 +545,7 @@ public:
     std::vector<Kernel::Vector_3> guide(m_mesh.number_of_faces(), CGAL::NULL_VECTOR);
     auto map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3&>(
       [&guide](face_descriptor f) -> Kernel::Vector_3& { return guide[std::size_t(f)]; });
-    TC::principal_curvature_guide(m_solver, map, &curvatures);
+    TC::principal_curvature_guide(*m_solver, map, &curvatures);
     return guide;
   }
 
@@ -419,7 +554,7 @@ public:
     auto map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
       [&guide](face_descriptor f) { return guide[std::size_t(f)]; });
     std::vector<std::size_t> faces;
-    for(face_descriptor f : TC::spread_guided_faces(m_solver, map, count))
+    for(face_descriptor f : TC::spread_guided_faces(*m_solver, map, count))
       faces.push_back(std::size_t(f));
     return faces;
   }
@@ -439,9 +574,9 @@ public:
     std::vector<vertex_descriptor> fixed_vertices;
     for(std::size_t v : fixed)
       fixed_vertices.push_back(vertex(v));
-    const Loop_periods none(m_solver.loops().size()); // every integer chosen, as without the parameter
+    const Loop_periods none(m_solver->loops().size()); // every integer chosen, as without the parameter
     return TC::refine_singularities(
-      m_solver, descriptors(start), halfedge_x,
+      *m_solver, descriptors(start), halfedge_x,
       P::symmetry_order(n, P::face_directions(target_map, P::loop_periods(periods ? *periods : none,
         P::fixed_vertices(fixed_vertices, P::cancel_pairs(cancel_pairs, P::maximum_trials(trials)))))));
   }
@@ -449,7 +584,7 @@ public:
   std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> loops() const override
   {
     std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> out;
-    for(const auto& l : m_solver.loops())
+    for(const auto& l : m_solver->loops())
       out.emplace_back(l.kind == TC::Loop_kind::boundary, l.component, l.halfedges);
     return out;
   }
@@ -459,18 +594,20 @@ public:
     std::vector<double> w;
     for(auto e : m_mesh.edges())
       if(!m_mesh.is_border(e))
-        w.push_back(m_solver.weight(e));
+        w.push_back(m_solver->weight(e));
     return w;
   }
 
   TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
                                     const std::vector<face_descriptor>& guided) override
   {
-    return m_solver.set_constraints(
+    return m_solver->set_constraints(
       TC::parameters::constrained_faces(constrained, TC::parameters::guided_faces(guided)));
   }
 
   const char* backend() const override { return m_name; }
+
+  const std::vector<std::int64_t>& edge_vertices() const override { return m_edge_vertices; }
 
 private:
   vertex_descriptor vertex(std::size_t v) const
@@ -488,10 +625,11 @@ private:
   }
 
   const Mesh& m_mesh;
-  Solver m_solver;
   const char* m_name;
+  std::unique_ptr<Solver> m_solver; // not movable: made in place
   std::vector<std::int64_t> m_edge_slot; // per edge, its entry in Result.connection (-1: border)
   std::int64_t m_interior_edges = 0;
+  std::vector<std::int64_t> m_edge_vertices; // per interior edge in that order, its vertices (smaller first)
 };
 
 }  // namespace
@@ -526,64 +664,60 @@ std::vector<face_descriptor> faces_of(const py::handle& list, std::size_t number
   return faces;
 }
 
+void check_backend(const std::string& backend)
+{
+  if(backend != "auto" && backend != "ldlt" && backend != "cholmod")
+    throw py::value_error("backend must be \"auto\", \"ldlt\" or \"cholmod\", got \"" + backend + "\"");
+#ifndef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  if(backend == "cholmod")
+    throw py::value_error("backend \"cholmod\": this build of the module has no CHOLMOD (libsuitesparse-dev)");
+#endif
+}
+
+// The solver of `source` (as for Solver_of) with the backend named (checked by check_backend())
+std::unique_ptr<Solver_interface> make_solver(Mesh_of_arrays& source, const Options& o, const std::string& backend)
+{
+  if(backend == "ldlt")
+    return std::make_unique<Solver_of<TC::Default_solver_traits>>(source, o, "ldlt");
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+  if(backend == "cholmod")
+    return std::make_unique<Solver_of<TC::Cholmod_solver_traits>>(source, o, "cholmod");
+  return std::make_unique<Solver_of<TC::Automatic_solver_traits>>(source, o, "auto");
+#else
+  return std::make_unique<Solver_of<TC::Default_solver_traits>>(source, o, "auto");
+#endif
+}
+
 class Python_solver
 {
 public:
-  Python_solver(std::unique_ptr<Mesh> mesh, const std::string& weights, const std::string& backend,
+  // `mesh` keeps its mesh until the solver is built and the mesh complete: on an error before, its destructor waits
+  // for the mesh's construction before freeing it
+  Python_solver(Mesh_of_arrays mesh, const std::string& weights, const std::string& backend,
                 const py::object& constrained, const py::object& guided, double guidance_weight, bool align_boundary)
-    : m_mesh(std::move(mesh))
   {
     Options o;
     if(weights == "unit")
       o.weighting = TC::Weighting::unit;
     else if(weights != "hodge")
       throw py::value_error("weights must be \"hodge\" or \"unit\", got \"" + weights + "\"");
-    o.constrained = faces_of(constrained, m_mesh->number_of_faces(), "constrained_faces");
-    o.guided = faces_of(guided, m_mesh->number_of_faces(), "guided_faces");
+    o.constrained = faces_of(constrained, mesh.number_of_faces, "constrained_faces");
+    o.guided = faces_of(guided, mesh.number_of_faces, "guided_faces");
     o.guidance_weight = guidance_weight;
     o.align_boundary = align_boundary;
-    if(backend != "auto" && backend != "ldlt" && backend != "cholmod")
-      throw py::value_error("backend must be \"auto\", \"ldlt\" or \"cholmod\", got \"" + backend + "\"");
-#ifndef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-    if(backend == "cholmod")
-      throw py::value_error("backend \"cholmod\": this build of the module has no CHOLMOD (libsuitesparse-dev)");
-#endif
+    check_backend(backend);
     py::gil_scoped_release unlocked;
     const auto start = std::chrono::steady_clock::now();
-    if(backend == "ldlt")
-      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, o, "ldlt");
-#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
-    else if(backend == "cholmod")
-      m_solver = std::make_unique<Solver_of<TC::Cholmod_solver_traits>>(*m_mesh, o, "cholmod");
-    else
-      m_solver = std::make_unique<Solver_of<TC::Automatic_solver_traits>>(*m_mesh, o, "auto");
-#else
-    else
-      m_solver = std::make_unique<Solver_of<TC::Default_solver_traits>>(*m_mesh, o, "auto");
-#endif
+    m_solver = make_solver(mesh, o, backend); // the mesh complete when it returns
     m_solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for(auto e : m_mesh->edges())
-      if(!m_mesh->is_border(e)) {
-        const auto h = m_mesh->halfedge(e);
-        const std::int64_t a = std::int64_t(m_mesh->source(h)), b = std::int64_t(m_mesh->target(h));
-        m_edges.push_back((std::min)(a, b));
-        m_edges.push_back((std::max)(a, b));
-      }
+    m_mesh = std::move(mesh.mesh);
   }
 
   Result solve(const py::object& singularities, int n, const py::object& directions, const py::object& loop_periods)
   {
     const auto s = singularities_of(singularities);
-    std::optional<std::vector<Kernel::Vector_3>> targets;
-    if(!directions.is_none())
-      targets = directions_of(directions);
-    const std::optional<Loop_periods> periods = periods_of(loop_periods);
-    Solve_output out;
-    {
-      py::gil_scoped_release unlocked;
-      std::shared_lock<std::shared_mutex> reading(m_mutex);
-      out = m_solver->solve(s, n, targets ? &*targets : nullptr, periods ? &*periods : nullptr);
-    }
+    const Optional_inputs in = optional_inputs(directions, loop_periods);
+    Solve_output out = reading([&] { return m_solver->solve(s, n, in.directions_or_null(), in.periods_or_null()); });
     return result_of(std::move(out), n);
   }
 
@@ -609,18 +743,11 @@ public:
                                 const py::object& fixed, const py::object& loop_periods)
   {
     const Singularities kept = singularities_of(fixed);
-    std::optional<std::vector<Kernel::Vector_3>> guide;
-    if(!alignment_guide.is_none())
-      guide = directions_of(alignment_guide);
-    const std::optional<Loop_periods> periods = periods_of(loop_periods);
+    const Optional_inputs in = optional_inputs(alignment_guide, loop_periods);
     Singularities placed;
-    TC::Placement_report report;
-    {
-      py::gil_scoped_release unlocked;
-      std::shared_lock<std::shared_mutex> reading(m_mutex);
-      report = m_solver->place(n, align_boundary, guide ? &*guide : nullptr, strength, kept,
-                               periods ? &*periods : nullptr, placed);
-    }
+    const TC::Placement_report report = reading([&] {
+      return m_solver->place(n, align_boundary, in.directions_or_null(), strength, kept, in.periods_or_null(), placed);
+    });
     py::dict d;
     d["n"] = report.symmetry_order;
     d["aligned"] = report.aligned;
@@ -670,22 +797,15 @@ public:
                                  std::size_t maximum_trials)
   {
     const Singularities s = singularities_of(start);
-    std::optional<std::vector<Kernel::Vector_3>> targets;
-    if(!directions.is_none())
-      targets = directions_of(directions);
-    const std::optional<Loop_periods> periods = periods_of(loop_periods);
+    const Optional_inputs in = optional_inputs(directions, loop_periods);
     std::vector<std::size_t> fixed;
     if(!fixed_vertices.is_none())
       for(const py::handle v : py::iter(fixed_vertices))
         fixed.push_back(vertex_number(v));
-    TC::Refinement_report<vertex_descriptor> r;
-    {
-      py::gil_scoped_release unlocked;
-      // it solves again and again on the solver: as a solve, beside other solves
-      std::shared_lock<std::shared_mutex> reading(m_mutex);
-      r = m_solver->refine(s, n, targets ? &*targets : nullptr, periods ? &*periods : nullptr, fixed, cancel_pairs,
-                           maximum_trials);
-    }
+    // it solves again and again on the solver: as a solve, beside other solves
+    const TC::Refinement_report<vertex_descriptor> r = reading([&] {
+      return m_solver->refine(s, n, in.directions_or_null(), in.periods_or_null(), fixed, cancel_pairs, maximum_trials);
+    });
     Singularities refined;
     for(const auto& [v, k] : r.singularities)
       refined.emplace_back(std::size_t(v), k);
@@ -819,8 +939,9 @@ public:
   py::object edges() const
   {
     if(!m_edges_array) {
-      std::vector<std::int64_t> copy = m_edges;
-      py::array_t<std::int64_t> a = owning_array(std::move(copy), {py::ssize_t(m_edges.size() / 2), 2});
+      std::vector<std::int64_t> copy = m_solver->edge_vertices();
+      const py::ssize_t ne = py::ssize_t(copy.size() / 2);
+      py::array_t<std::int64_t> a = owning_array(std::move(copy), {ne, 2});
       a.attr("setflags")(py::arg("write") = false);
       m_edges_array = a;
     }
@@ -833,7 +954,7 @@ private:
   {
     const auto connection = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result.connection);
     std::vector<double> x(m_mesh->number_of_halfedges(), 0.);
-    if(!connection || std::size_t(connection.size()) != m_edges.size() / 2)
+    if(!connection || std::size_t(connection.size()) != m_solver->edge_vertices().size() / 2)
       throw py::value_error("the result is not one of this solver (its number of edges differs)");
     std::size_t i = 0;
     for(auto e : m_mesh->edges()) {
@@ -865,6 +986,33 @@ private:
     for(const auto& [v, k] : s)
       d[py::int_(v)] = fraction(k);
     return d;
+  }
+
+  // The optional per-face directions and loop periods of a call, read with the GIL
+  struct Optional_inputs
+  {
+    std::optional<std::vector<Kernel::Vector_3>> directions;
+    std::optional<Loop_periods> periods;
+    const std::vector<Kernel::Vector_3>* directions_or_null() const { return directions ? &*directions : nullptr; }
+    const Loop_periods* periods_or_null() const { return periods ? &*periods : nullptr; }
+  };
+
+  Optional_inputs optional_inputs(const py::object& directions, const py::object& loop_periods) const
+  {
+    Optional_inputs in;
+    if(!directions.is_none())
+      in.directions = directions_of(directions);
+    in.periods = periods_of(loop_periods);
+    return in;
+  }
+
+  // f() without the GIL, beside the solver's other readers (solves, placement), never during set_constraints()
+  template <class F>
+  auto reading(F&& f) const -> decltype(f())
+  {
+    py::gil_scoped_release unlocked;
+    std::shared_lock<std::shared_mutex> lock(m_mutex);
+    return f();
   }
 
   static std::optional<Loop_periods> periods_of(const py::object& loop_periods)
@@ -976,7 +1124,6 @@ public:
 private:
   std::unique_ptr<Mesh> m_mesh; // before the solver, which refers to it
   std::unique_ptr<Solver_interface> m_solver;
-  std::vector<std::int64_t> m_edges;
   mutable py::object m_edges_array; // made on first use, with the GIL
   mutable std::shared_mutex m_mutex;
 };
@@ -1021,6 +1168,41 @@ Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .c
       PyErr_SetObject(invalid_input.ptr(), error.ptr());
     }
   });
+
+  m.def(
+    "_reference_build",
+    [](const py::object& V, const py::object& F, const std::string& backend) {
+      check_backend(backend);
+      const auto [points, faces] = checked_arrays(V, F);
+      // the arrays a C++ program holds (not timed)
+      std::vector<Kernel::Point_3> p;
+      for(py::ssize_t i = 0; i < points.shape(0); ++i)
+        p.emplace_back(points.at(i, 0), points.at(i, 1), points.at(i, 2));
+      std::vector<std::array<std::size_t, 3>> t;
+      for(py::ssize_t i = 0; i < faces.shape(0); ++i)
+        t.push_back({std::size_t(faces.at(i, 0)), std::size_t(faces.at(i, 1)), std::size_t(faces.at(i, 2))});
+      double to_mesh = 0, solver = 0;
+      {
+        py::gil_scoped_release unlocked;
+        const auto t0 = std::chrono::steady_clock::now();
+        Mesh_of_arrays mesh;
+        mesh.mesh = std::make_unique<Mesh>();
+        TC::triangle_soup_to_mesh(p, t, *mesh.mesh);
+        const auto t1 = std::chrono::steady_clock::now();
+        std::unique_ptr<Solver_interface> s = make_solver(mesh, Options(), backend);
+        const auto t2 = std::chrono::steady_clock::now();
+        to_mesh = std::chrono::duration<double>(t1 - t0).count();
+        solver = std::chrono::duration<double>(t2 - t1).count();
+      }
+      py::dict d;
+      d["soup_to_mesh"] = to_mesh;
+      d["solver"] = solver;
+      return d;
+    },
+    py::arg("V"), py::arg("F"), py::arg("backend") = "auto",
+    R"(The benchmark's reference (benchmark/python/binding_overhead.py), not part of the API: what a C++ program
+holding V and F does, triangle_soup_to_mesh() into a Surface_mesh, then the Trivial_connection_solver
+constructor on it, with default options. Returns the seconds of each: {"soup_to_mesh": s, "solver": s}.)");
 
   m.def(
     "read_singularities",
@@ -1116,7 +1298,7 @@ Raises InvalidInput for a mesh the package refuses (code and where say why).)")
     .def(py::init([](const py::object& V, const py::object& F, const std::string& weights, const std::string& backend,
                      const py::object& constrained, const py::object& guided, double mu, bool align) {
            const auto start = std::chrono::steady_clock::now();
-           std::unique_ptr<Mesh> mesh = mesh_of_arrays(V, F);
+           Mesh_of_arrays mesh = mesh_of_arrays(V, F);
            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
            auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
            solver->m_mesh_seconds = seconds;
@@ -1130,7 +1312,9 @@ Raises InvalidInput for a mesh the package refuses (code and where say why).)")
       [](const std::string& path, bool triangulate, const std::string& weights, const std::string& backend,
          const py::object& constrained, const py::object& guided, double mu, bool align) {
         const auto start = std::chrono::steady_clock::now();
-        std::unique_ptr<Mesh> mesh = mesh_of_file(path, triangulate);
+        Mesh_of_arrays mesh;
+        mesh.mesh = mesh_of_file(path, triangulate);
+        mesh.number_of_faces = mesh.mesh->number_of_faces();
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
         solver->m_mesh_seconds = seconds;
@@ -1196,8 +1380,9 @@ give way. align_boundary, loop_periods: as for the solver and solve().)")
         d["solver"] = s.m_solver_seconds;
         return d;
       },
-      "seconds in C++ while the solver was built: mesh (the arrays or the file read into a validated Surface_mesh) "
-      "and solver (the C++ constructor, as from a Surface_mesh)")
+      "seconds in C++ while the solver was built: mesh (the arrays validated and made into a Surface_mesh and the "
+      "solver's arrays, or the file read into a validated Surface_mesh) and solver (the C++ constructor: from "
+      "those arrays, or from the Surface_mesh of the file)")
     .def_property_readonly("number_of_vertices", &Python_solver::number_of_vertices)
     .def_property_readonly("number_of_faces", &Python_solver::number_of_faces)
     .def_property_readonly("number_of_loops", &Python_solver::number_of_loops,

@@ -6,6 +6,7 @@
 #   bash scripts/run_benchmarks.sh --integers [--no-build] [--out FILE]
 #   bash scripts/run_benchmarks.sh --placement [--sizes ...] [--backends ...] [--repetitions N] [--no-build]
 #                                  [--table-only] [--out FILE]
+#   bash scripts/run_benchmarks.sh --python [--repetitions N] [--no-build] [--out FILE]
 #
 #   --sizes        small (default, a few minutes): CGAL meshes 5k-90k faces and a 300k subdivision;
 #                  large: ~1.2M faces (genus 0, 11, 133); huge: ~5M faces; all; or a comma list.
@@ -26,6 +27,11 @@
 #                  build-bench/benchmark-results/placement-BACKEND-SIZE.json, and its table as the section
 #                  "Automatic placement" of FILE (replaced in place, the other sections kept as they are). The suite
 #                  also writes that section, from the same JSON files.
+#   --python       instead of the suite: the Python module (built in build-bench-cholmod, or build-bench without
+#                  CHOLMOD) against the C++ calls it makes, benchmark/python/binding_overhead.py on five CGAL meshes
+#                  (5k-89k faces; 9 repetitions unless --repetitions, about 1 min) into
+#                  build-bench/benchmark-results/python-binding.json, and its table as the section "The Python
+#                  binding" of FILE (replaced in place). The suite also writes that section, from the same file.
 #
 # JSON results go to build-bench/benchmark-results/BACKEND-SIZE.json and accumulate across runs: the table is
 # made from all of them (the newest result of each mesh wins), so the large meshes can be run separately.
@@ -44,19 +50,22 @@ JOBS="${JOBS:-2}"
 INTEGERS=0
 PLACEMENT=0
 FLOOR=0
+PYTHON_BINDING=0
+REPETITIONS_GIVEN=0
 
 while [ $# -gt 0 ]; do
   case "$1" in
     --sizes) SIZES="$2"; shift 2 ;;
     --backends) BACKENDS="$2"; shift 2 ;;
-    --repetitions) REPETITIONS="$2"; shift 2 ;;
+    --repetitions) REPETITIONS="$2"; REPETITIONS_GIVEN=1; shift 2 ;;
     --no-build) BUILD=0; shift ;;
     --table-only) TABLE_ONLY=1; shift ;;
     --out) OUT="$2"; shift 2 ;;
     --integers) INTEGERS=1; shift ;;
     --placement) PLACEMENT=1; shift ;;
     --floor) FLOOR=1; shift ;;
-    -h|--help) sed -n '2,34p' "$0"; exit 0 ;;
+    --python) PYTHON_BINDING=1; shift ;;
+    -h|--help) sed -n '2,39p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -107,6 +116,34 @@ mkdir -p "$RESULTS_DIR" "$TC_BENCH_MESH_CACHE"
 
 PYTHON=python3
 command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
+
+if [ "$PYTHON_BINDING" = 1 ]; then
+  dir="$ROOT/build-bench"
+  extra=()
+  if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then
+    dir="$ROOT/build-bench-cholmod"
+    extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
+  fi
+  if [ "$BUILD" = 1 ]; then
+    cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON \
+          -DTRIVIAL_CONNECTIONS_WITH_PYTHON=ON "${extra[@]}" >/dev/null
+    cmake --build "$dir" -j "$JOBS" --target trivial_connections_python
+  fi
+  ls "$dir"/python/trivial_connections*.so >/dev/null 2>&1 || { echo "run_benchmarks.sh: the Python module is not built in $dir/python" >&2; exit 1; }
+  [ -f "$OUT" ] || { echo "run_benchmarks.sh: $OUT missing (run the suite first)" >&2; exit 1; }
+  meshes=()
+  for m in elephant cheese turbine bunny00 refined_elephant; do meshes+=("$ROOT/.cgal-data/data/meshes/$m.off"); done
+  [ -f "${meshes[0]}" ] || { echo "run_benchmarks.sh: CGAL's meshes are missing: run bash scripts/fetch_cgal_data.sh" >&2; exit 1; }
+  COMMIT="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  if ! git -C "$ROOT" diff --quiet HEAD -- include python 2>/dev/null; then COMMIT="$COMMIT+modified"; fi
+  reps=9
+  [ "$REPETITIONS_GIVEN" = 1 ] && reps="$REPETITIONS"
+  PYTHONPATH="$dir/python" /usr/bin/python3 "$ROOT/benchmark/python/binding_overhead.py" "${meshes[@]}" \
+    --repetitions "$reps" --json "$RESULTS_DIR/python-binding.json.tmp" --commit "$COMMIT"
+  mv "$RESULTS_DIR/python-binding.json.tmp" "$RESULTS_DIR/python-binding.json"
+  /usr/bin/python3 "$ROOT/scripts/benchmark_table.py" --section python --out "$OUT" "$RESULTS_DIR/python-binding.json"
+  exit 0
+fi
 
 # the suite, or the placement benchmark (its JSON files named placement-BACKEND-SIZE.json)
 TARGET=trivial_connections_benchmark

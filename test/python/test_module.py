@@ -266,6 +266,8 @@ def test_singularity_forms():
     (lambda V, F: (np.where(np.arange(len(V))[:, None] == 0, np.nan, V), F), "degenerate_face"),
     (lambda V, F: (V, np.zeros((0, 3), int)), "empty_mesh"),
     (lambda V, F: (V, np.vstack([F, F[:1]])), "non_manifold"),
+    # two spheres sharing vertex 0: two fans there
+    (lambda V, F: (np.vstack([V, V + 3]), np.vstack([F, np.where(F == 0, 0, F + len(V))])), "non_manifold"),
 ])
 def test_bad_meshes(make, code):
     V, F = icosphere(1)
@@ -274,6 +276,15 @@ def test_bad_meshes(make, code):
     assert error.value.code == code
     assert isinstance(error.value, ValueError)
     assert (error.value.where is None) == (code == "empty_mesh")
+
+
+def test_reference_build_for_the_benchmark():
+    # benchmark/python/binding_overhead.py's reference: the C++ path from the same arrays, timed in C++
+    V, F = icosphere(1)
+    t = tc._reference_build(V, F)
+    assert set(t) == {"soup_to_mesh", "solver"} and all(v > 0 for v in t.values())
+    with pytest.raises(tc.InvalidInput):
+        tc._reference_build(V, F + len(V))
 
 
 def test_bad_shapes_and_types():

@@ -42,6 +42,7 @@
 #include <cmath>
 #include <cstdint>
 #include <future>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -186,16 +187,43 @@ public:
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Trivial_connection_solver(const TriangleMesh& tm,
                                      const NamedParameters& np = parameters::default_values())
+    : Trivial_connection_solver(tm,
+                                [&] {
+                                  notify(progress_of(np), Phase::mesh_setup, 0);
+                                  return Mesh(tm);
+                                }(),
+                                np)
+  {
+  }
+
+  /// not copyable: it holds the factorization and refers to the mesh
+  Trivial_connection_solver(const Trivial_connection_solver&) = delete;
+  /// not copyable
+  Trivial_connection_solver& operator=(const Trivial_connection_solver&) = delete;
+
+private:
+  // the vertex point map of np, else tm's: the default is not made when np has one (Solver_access::make())
+  template <class NamedParameters>
+  static auto vertex_point_map_of(const TriangleMesh& tm, const NamedParameters& np)
+  {
+    if constexpr(CGAL::parameters::is_default_parameter<NamedParameters, CGAL::internal_np::vertex_point_t>::value)
+      return get_const_property_map(CGAL::vertex_point, tm);
+    else
+      return CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point);
+  }
+
+  // From the mesh's arrays, made already: by the constructor above, or from the validated connectivity a mesh
+  // is built from (internal::Solver_access::make()), which spares deriving them from the mesh again. With such
+  // arrays and a vertex point map in np, it reads nothing of tm (which may then still be under construction).
+  template <class NamedParameters>
+  Trivial_connection_solver(const TriangleMesh& tm, Mesh&& mesh, const NamedParameters& np)
     : m_tm(tm),
       m_traits(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits),
                                                   Geom_traits())),
       m_weighting(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::weighting),
                                                      Weighting::hodge_star)),
       m_progress(progress_of(np)),
-      m_mesh([&] {
-        notify(Phase::mesh_setup, 0);
-        return Mesh(tm);
-      }())
+      m_mesh(std::move(mesh))
   {
     std::vector<int> user_faces, guided;
     read_face_sets(np, user_faces, guided);
@@ -209,10 +237,7 @@ public:
     // corner angles (not needed by the system) run beside the factorization.
     m_topology = internal::Mesh_topology(m_mesh);
     internal::Concurrent_node_order<Solver_traits> node_order(m_mesh, m_topology);
-    m_mesh.check_and_read_points(CGAL::parameters::choose_parameter(
-                                   CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-                                   get_const_property_map(CGAL::vertex_point, tm)),
-                                 m_traits);
+    m_mesh.check_and_read_points(vertex_point_map_of(tm, np), m_traits);
     notify(Phase::mesh_setup, 1);
     notify(Phase::geometry, 0);
     m_geometry = internal::Mesh_geometry(m_mesh, m_weighting);
@@ -252,10 +277,7 @@ public:
     m_progress = nullptr; // the callback may not outlive the constructor call
   }
 
-  /// not copyable: it holds the factorization and refers to the mesh
-  Trivial_connection_solver(const Trivial_connection_solver&) = delete;
-  /// not copyable
-  Trivial_connection_solver& operator=(const Trivial_connection_solver&) = delete;
+public:
 
   /// \name Mesh information
   /// @{
@@ -637,6 +659,14 @@ struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverT
   static const Mesh_arrays<TriangleMesh>& mesh(const Solver& s) { return s.m_mesh; }
   static const Mesh_geometry& geometry(const Solver& s) { return s.m_geometry; }
   static const Mesh_topology& topology(const Solver& s) { return s.m_topology; }
+  // a solver of tm from its arrays, made from the connectivity tm is built from (see Mesh_arrays); with a
+  // vertex_point_map in np, nothing of tm is read until the constructor has returned
+  template <class NamedParameters = parameters::Default_named_parameters>
+  static std::unique_ptr<Solver> make(const TriangleMesh& tm, Mesh_arrays<TriangleMesh>&& mesh,
+                                      const NamedParameters& np = parameters::default_values())
+  {
+    return std::unique_ptr<Solver>(new Solver(tm, std::move(mesh), np));
+  }
 };
 
 } // namespace internal

@@ -72,9 +72,39 @@ void add_elements(CGAL::Surface_mesh<P>& tm, std::size_t nv, std::size_t ne, std
     edge_halfedge[e] = typename SM::Halfedge_index(size_type(2 * e));
 }
 
+// The halfedge of each corner in the mesh build_mesh() makes: edge k is the k-th edge met in corner order; its
+// first corner gets edge_halfedge(k), the corner across it the opposite of that.
+template <class Halfedge, class EdgeHalfedge, class Opposite>
+std::vector<Halfedge> corner_halfedges(const Triangle_soup_connectivity& soup, EdgeHalfedge edge_halfedge,
+                                       Opposite opposite)
+{
+  const std::size_t nc = soup.opposite.size();
+  std::vector<Halfedge> h(nc);
+  std::size_t next_edge = 0;
+  for(std::size_t c = 0; c < nc; ++c) {
+    const int t = soup.opposite[c];
+    h[c] = (t >= 0 && std::size_t(t) < c) ? opposite(h[std::size_t(t)]) : edge_halfedge(next_edge++);
+  }
+  return h;
+}
+
+// The same for a Surface_mesh, known before build_mesh() has made it (add_elements(): edge k holds the halfedges 2k
+// and 2k + 1, each the other's opposite), so that the mesh can be built while its halfedges are used elsewhere.
+template <class P>
+std::vector<typename CGAL::Surface_mesh<P>::Halfedge_index>
+surface_mesh_corner_halfedges(const Triangle_soup_connectivity& soup)
+{
+  using SM = CGAL::Surface_mesh<P>;
+  using H = typename SM::Halfedge_index;
+  return corner_halfedges<H>(
+    soup, [](std::size_t k) { return H(typename SM::size_type(2 * k)); },
+    [](H g) { return H(typename SM::size_type(std::size_t(g) ^ 1)); });
+}
+
 /*
   Builds the mesh from validated connectivity with the low-level functions of `MutableFaceGraph`:
-  vertex i is the i-th vertex added, face f the f-th face added; isolated vertices are kept.
+  vertex i is the i-th vertex added, face f the f-th face added; isolated vertices are kept. Corner c of the
+  soup (from vertex soup.source(c) to soup.target(c), in face c / 3) is the halfedge corner_halfedges() gives.
 */
 template <class TriangleMesh, class PointRange>
 Mesh_input_order<TriangleMesh> build_mesh(const PointRange& points, const Triangle_soup_connectivity& soup,
@@ -100,13 +130,8 @@ Mesh_input_order<TriangleMesh> build_mesh(const PointRange& points, const Triang
   for(const auto& p : points)
     put(vpm, order.vertices[i++], p);
 
-  // edge k is the k-th edge met in corner order
-  std::vector<halfedge_descriptor> h(nc);
-  std::size_t next_edge = 0;
-  for(std::size_t c = 0; c < nc; ++c) {
-    const int t = soup.opposite[c];
-    h[c] = (t >= 0 && std::size_t(t) < c) ? opposite(h[std::size_t(t)], tm) : edge_halfedge[next_edge++];
-  }
+  std::vector<halfedge_descriptor> h = corner_halfedges<halfedge_descriptor>(
+    soup, [&](std::size_t k) { return edge_halfedge[k]; }, [&](halfedge_descriptor g) { return opposite(g, tm); });
   std::vector<halfedge_descriptor> incoming(nv, GT::null_halfedge());
   std::vector<halfedge_descriptor> border_from(nv, GT::null_halfedge()); // the border halfedge leaving a vertex
   for(std::size_t c = 0; c < nc; ++c) {

@@ -91,14 +91,64 @@ inline void check_not_degenerate(std::size_t f, const std::array<int, 3>& t)
 }
 
 /*
-  Steps 4 and 5 of the validation below, on `soup.triangles` (indices in range, three different vertices):
-  fills `soup.opposite` or throws.
-  Directed edges are found in per-vertex lists of outgoing corners (in corner order; lists longer than
-  `sorted_from` are sorted by (target, corner) and searched by bisection), each edge once from its first
-  corner. The fan check walks around every vertex; only when a vertex fails it, the union-find below finds
-  the fans to name in the message.
+  Step 4 of the validation below, on `soup.triangles` (indices in range, three different vertices): fills
+  `soup.opposite`, or returns false when an edge is in more than two faces or two faces traverse it the same
+  way. The corners are bucketed by the smaller vertex of their edge (a counting sort, whose scattered writes
+  are cheap where scattered reads are not), and each bucket sorted by the larger vertex: the corners of an
+  edge are then adjacent.
 */
-inline void connect_triangle_soup(Triangle_soup_connectivity& soup)
+inline bool match_edges(Triangle_soup_connectivity& soup)
+{
+  const std::size_t number_of_points = soup.number_of_vertices, nf = soup.triangles.size();
+  std::vector<int> first(number_of_points + 1, 0);
+  for(const std::array<int, 3>& t : soup.triangles)
+    for(std::size_t k = 0; k < 3; ++k)
+      ++first[std::size_t((std::min)(t[k], t[(k + 1) % 3])) + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  // (larger vertex, corner c if it goes from the smaller vertex to the larger, else -1 - c)
+  std::vector<std::pair<int, int>> bucket(3 * nf);
+  {
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for(std::size_t f = 0; f < nf; ++f) {
+      const std::array<int, 3>& t = soup.triangles[f];
+      for(std::size_t k = 0; k < 3; ++k) {
+        const int a = t[k], b = t[(k + 1) % 3], c = int(3 * f + k);
+        bucket[std::size_t(fill[std::size_t((std::min)(a, b))]++)] =
+          a < b ? std::make_pair(b, c) : std::make_pair(a, -1 - c);
+      }
+    }
+  }
+  soup.opposite.assign(3 * nf, -1);
+  for(std::size_t v = 0; v < number_of_points; ++v) {
+    const auto begin = bucket.begin() + first[v], end = bucket.begin() + first[v + 1];
+    std::sort(begin, end);
+    for(auto it = begin; it != end;) {
+      auto run = it + 1;
+      while(run != end && run->first == it->first)
+        ++run;
+      if(run - it > 2)
+        return false; // more than two faces
+      if(run - it == 2) {
+        // sorted: the corner going down (negative) first
+        if(!(it->second < 0 && (it + 1)->second >= 0))
+          return false; // both the same way
+        const int down = -1 - it->second, up = (it + 1)->second;
+        soup.opposite[std::size_t(down)] = up;
+        soup.opposite[std::size_t(up)] = down;
+      }
+      it = run;
+    }
+  }
+  return true;
+}
+
+/*
+  Step 4 again when match_edges() failed, to name the first offending edge in corner order: directed edges
+  are found in per-vertex lists of outgoing corners (lists longer than `sorted_from` are sorted by
+  (target, corner) and searched by bisection), each edge once from its first corner. Throws (or, were
+  match_edges() wrong, fills `soup.opposite` as it should have).
+*/
+inline void report_first_bad_edge(Triangle_soup_connectivity& soup)
 {
   const std::size_t number_of_points = soup.number_of_vertices;
   const int nc = int(3 * soup.triangles.size());
@@ -109,8 +159,11 @@ inline void connect_triangle_soup(Triangle_soup_connectivity& soup)
   std::vector<std::pair<int, int>> out(static_cast<std::size_t>(nc)); // (target, corner)
   {
     std::vector<int> fill(first.begin(), first.end() - 1);
-    for(int c = 0; c < nc; ++c)
-      out[std::size_t(fill[std::size_t(soup.source(c))]++)] = std::make_pair(soup.target(c), c);
+    for(std::size_t f = 0; f < soup.triangles.size(); ++f) {
+      const std::array<int, 3>& t = soup.triangles[f];
+      for(std::size_t k = 0; k < 3; ++k)
+        out[std::size_t(fill[std::size_t(t[k])]++)] = std::make_pair(t[(k + 1) % 3], int(3 * f + k));
+    }
   }
   constexpr int sorted_from = 16;
   for(std::size_t v = 0; v < number_of_points; ++v)
@@ -175,15 +228,30 @@ inline void connect_triangle_soup(Triangle_soup_connectivity& soup)
       done[std::size_t(ba[0])] = true;
     }
   }
+}
 
+/*
+  Step 5 of the validation below, once `soup.opposite` is filled: walks around every vertex; only when a
+  vertex fails, the union-find below finds the fans to name in the message. Throws or returns.
+*/
+inline void check_fans(const Triangle_soup_connectivity& soup)
+{
+  const std::size_t number_of_points = soup.number_of_vertices;
+  const int nc = int(3 * soup.triangles.size());
   // 5. one fan per vertex: walking around each vertex from one of its corners, through the faces that share
   // an edge at it, must meet all its corners
+  std::vector<int> degree_of(number_of_points, 0), corner_at(number_of_points, -1);
+  for(int c = nc - 1; c >= 0; --c) {
+    const std::size_t v = std::size_t(soup.source(c));
+    ++degree_of[v];
+    corner_at[v] = c;
+  }
   std::size_t first_bad_vertex = number_of_points;
   for(std::size_t v = 0; v < number_of_points && first_bad_vertex == number_of_points; ++v) {
-    const int degree = first[v + 1] - first[v];
+    const int degree = degree_of[v];
     if(degree == 0)
       continue;
-    const int c0 = out[std::size_t(first[v])].second;
+    const int c0 = corner_at[v];
     int seen = 1;
     // forward: the corner of the face across the edge that ends at v (the previous corner of c)
     int c = soup.opposite[std::size_t(Triangle_soup_connectivity::next(Triangle_soup_connectivity::next(c0)))];
@@ -241,6 +309,14 @@ inline void connect_triangle_soup(Triangle_soup_connectivity& soup)
                         bad_vertex);
   throw Invalid_input(Error_code::non_manifold, "non-manifold vertex " + std::to_string(first_bad_vertex) +
                                                   ": the faces around it form separate fans", first_bad_vertex);
+}
+
+// Steps 4 and 5 of the validation below: fills `soup.opposite` or throws.
+inline void connect_triangle_soup(Triangle_soup_connectivity& soup)
+{
+  if(!match_edges(soup))
+    report_first_bad_edge(soup);
+  check_fans(soup);
 }
 
 /*

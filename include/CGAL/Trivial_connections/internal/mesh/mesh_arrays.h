@@ -8,6 +8,7 @@
 
 #include <CGAL/Trivial_connections/exceptions.h>
 
+#include <CGAL/assertions.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -146,6 +148,32 @@ struct Mesh_arrays
       opposite_corner[i] = corner_of(o, tm);
     }
     check_manifold_vertices(tm);
+  }
+
+  // From connectivity validated already, as the soup a mesh is built from (IO/internal/build_mesh.h): vertex i,
+  // face f and corner halfedge c of the arrays are vertices[i], faces[f] and corner_halfedges[c] of the mesh,
+  // which vertex_index and face_index number i and f. Nothing is read from the mesh, which may still be under
+  // construction; check_and_read_points() completes the set-up as above.
+  Mesh_arrays(Vertex_index_map vertex_indices, Face_index_map face_indices, std::vector<vertex_descriptor>&& vertices,
+              std::vector<face_descriptor>&& faces, std::vector<halfedge_descriptor>&& corner_halfedges,
+              std::vector<int>&& corner_vertices, std::vector<int>&& opposite_corners)
+    : nv(int(vertices.size())),
+      nf(int(faces.size())),
+      vertex_descriptors(std::move(vertices)),
+      face_descriptors(std::move(faces)),
+      halfedges(std::move(corner_halfedges)),
+      corner_vertex(std::move(corner_vertices)),
+      opposite_corner(std::move(opposite_corners)),
+      vertex_index(vertex_indices),
+      face_index(face_indices)
+  {
+    CGAL_precondition(halfedges.size() == 3 * std::size_t(nf) && corner_vertex.size() == halfedges.size() &&
+                      opposite_corner.size() == halfedges.size());
+    if(nf == 0)
+      throw Invalid_input(Error_code::empty_mesh, "the mesh has no face");
+    faces_at_vertex.assign(nv, 0);
+    for(int v : corner_vertex)
+      ++faces_at_vertex[v];
   }
 
   // The points (finite) and non-degenerate faces. Writes `points` only.

@@ -167,33 +167,38 @@ async function solve() {
   return true;
 }
 
-async function edit(change) {
-  const before = snapshot();
-  change();
+// shows the current state: solved when every closed component balances, else the markers and the reason
+async function show() {
   showBalance();
   if (!balance().every(b => b.balanced)) {
     status.textContent = "unbalanced: the indices of a closed component must sum to its Euler characteristic";
     status.className = "error";
-    undoStack.push(before);
-    redoStack.length = 0;
+    window.__editor.unbalanced = true;
     drawMarkers();
     draw();
-    return;
+    return true;
   }
-  if (await solve()) {
+  window.__editor.unbalanced = false;
+  return solve();
+}
+
+async function edit(change) {
+  const before = snapshot();
+  change();
+  if (await show()) {
     undoStack.push(before);
     redoStack.length = 0;
   } else {
-    restore(before);
+    restore(before); // refused by the server: the reason stays shown
     showBalance();
   }
 }
 
 // the vertex of the clicked face nearest to the click
 const raycaster = new THREE.Raycaster();
-function pickVertex(event) {
+function pickVertex(clientX, clientY) {
   const r = renderer.domElement.getBoundingClientRect();
-  const p = new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1, -((event.clientY - r.top) / r.height) * 2 + 1);
+  const p = new THREE.Vector2(((clientX - r.left) / r.width) * 2 - 1, -((clientY - r.top) / r.height) * 2 + 1);
   raycaster.setFromCamera(p, camera);
   const hit = raycaster.intersectObject(mesh)[0];
   if (!hit) return -1;
@@ -205,11 +210,20 @@ function pickVertex(event) {
   return best;
 }
 
+// where vertex v is on the screen, and whether a click there picks it (for tests: window.__editor.screenOf)
+function screenOf(v) {
+  const p = new THREE.Vector3(V[3 * v], V[3 * v + 1], V[3 * v + 2]).project(camera);
+  const r = renderer.domElement.getBoundingClientRect();
+  const x = r.left + (p.x + 1) / 2 * r.width, y = r.top + (1 - p.y) / 2 * r.height;
+  const inside = Math.abs(p.x) < 0.95 && Math.abs(p.y) < 0.95;
+  return { x, y, picked: inside && pickVertex(x, y) === v };
+}
+
 let pressed = null;
 renderer.domElement.addEventListener("pointerdown", e => { pressed = [e.clientX, e.clientY]; });
 renderer.domElement.addEventListener("pointerup", e => {
   if (!pressed || Math.hypot(e.clientX - pressed[0], e.clientY - pressed[1]) > 4) return; // a drag orbits
-  const v = pickVertex(e);
+  const v = pickVertex(e.clientX, e.clientY);
   if (v < 0) return;
   edit(() => {
     if (e.altKey) state.singularities.delete(v);
@@ -223,15 +237,13 @@ document.getElementById("undo").onclick = () => {
   if (!undoStack.length) return;
   redoStack.push(snapshot());
   restore(undoStack.pop());
-  showBalance();
-  solve();
+  show();
 };
 document.getElementById("redo").onclick = () => {
   if (!redoStack.length) return;
   undoStack.push(snapshot());
   restore(redoStack.pop());
-  showBalance();
-  solve();
+  show();
 };
 
 async function start() {
@@ -239,7 +251,8 @@ async function start() {
   header = frame.header;
   V = frame.arrays.V;
   F = frame.arrays.F;
-  window.__editor = { component: frame.arrays.component, solves: 0, state, camera, renderer, edit, solve, balance };
+  window.__editor = { component: frame.arrays.component, solves: 0, state, edit, solve, balance, screenOf,
+                      singularities: () => [...state.singularities].map(([v, k]) => [v, indexText(k)]) };
   state.n = header.n;
   document.getElementById("n").value = String(header.n);
   for (const [v, k] of header.singularities) state.singularities.set(v, parseIndex(k));

@@ -86,8 +86,17 @@ class Session:
                               ("component", self.component.astype("<i4"))])
 
     def solve_frame(self, request):
-        n = int(request.get("n", self.n))
-        singularities = {int(v): str(k) for v, k in request.get("singularities", [])}
+        if not isinstance(request, dict):
+            raise ValueError("the body must be a JSON object")
+        n = request.get("n", self.n)
+        if not isinstance(n, int) or isinstance(n, bool) or not 1 <= n <= 64:
+            raise ValueError(f"n must be an integer from 1 to 64, got {n!r}")
+        singularities = {}
+        for item in request.get("singularities", []):
+            if not (isinstance(item, list) and len(item) == 2 and isinstance(item[0], int)
+                    and isinstance(item[1], (int, str))):
+                raise ValueError(f"a singularity must be [vertex, index], got {item!r}")
+            singularities[item[0]] = str(item[1])
         result = self.solver.solve(singularities, n=n)
         directions = result.directions if n > 1 else result.field[:, None, :]
         header = {"n": n, "energy": result.energy, "max_residual": result.max_residual,
@@ -112,7 +121,8 @@ class Handler(http.server.BaseHTTPRequestHandler):
         self.wfile.write(body)
 
     def refuse(self, code, reason):
-        self.reply(code, (reason + "\n").encode(), "text/plain; charset=utf-8")
+        """a 4xx with a one-line reason"""
+        self.reply(code, (" ".join(reason.split()) + "\n").encode(), "text/plain; charset=utf-8")
 
     def do_GET(self):
         files = {"/": (os.path.join(HERE, "web", "index.html"), "text/html; charset=utf-8"),
@@ -126,9 +136,15 @@ class Handler(http.server.BaseHTTPRequestHandler):
             self.reply(200, f.read(), kind)
 
     def do_POST(self):
-        length = int(self.headers.get("Content-Length", "0") or 0)
-        if length > MAX_BODY:
-            return self.refuse(413, f"request body of {length} bytes (at most {MAX_BODY})")
+        try:
+            length = int(self.headers.get("Content-Length", "0") or 0)
+        except ValueError:
+            length = -1
+        if length < 0 or length > MAX_BODY:
+            self.close_connection = True  # the body is not read: nothing more can be on this connection
+            return self.refuse(413 if length > 0 else 400,
+                               f"request body of {length} bytes (at most {MAX_BODY})" if length > 0
+                               else "bad Content-Length")
         try:
             request = json.loads(self.rfile.read(length) or b"{}")
         except (json.JSONDecodeError, UnicodeDecodeError) as e:

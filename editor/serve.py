@@ -78,12 +78,24 @@ class Session:
                 self.closed[loop["component"]] = False
         self.initial, _ = self.solver.place_singularities(n=n)
 
+    def place_frame(self, request):
+        if not isinstance(request, dict):
+            raise ValueError("the body must be a JSON object")
+        n = request.get("n", self.n)
+        if not isinstance(n, int) or isinstance(n, bool) or not 1 <= n <= 64:
+            raise ValueError(f"n must be an integer from 1 to 64, got {n!r}")
+        placed, report = self.solver.place_singularities(n=n)
+        return frame({"n": n, "singularities": [[int(v), str(k)] for v, k in sorted(placed.items())]}, [])
+
     def mesh_frame(self):
         header = {"vertices": len(self.V), "faces": len(self.F), "n": self.n, "chi": self.chi.tolist(),
                   "closed": self.closed,
                   "singularities": [[int(v), str(k)] for v, k in sorted(self.initial.items())]}
+        edges = np.sort(np.concatenate([self.F[:, [0, 1]], self.F[:, [1, 2]], self.F[:, [2, 0]]]), axis=1)
+        unique, count = np.unique(edges, axis=0, return_counts=True)
         return frame(header, [("V", self.V.astype("<f4")), ("F", self.F.astype("<u4")),
-                              ("component", self.component.astype("<i4"))])
+                              ("component", self.component.astype("<i4")),
+                              ("boundary", unique[count == 1].astype("<u4"))])
 
     def solve_frame(self, request):
         if not isinstance(request, dict):
@@ -152,6 +164,8 @@ class Handler(http.server.BaseHTTPRequestHandler):
         try:
             if self.path == "/api/solve":
                 return self.reply(200, self.session.solve_frame(request), "application/octet-stream")
+            if self.path == "/api/place":
+                return self.reply(200, self.session.place_frame(request), "application/octet-stream")
         except tc.InvalidInput as e:
             return self.refuse(422, f"{e.code}: {e}".replace("\n", " "))
         except (TypeError, ValueError, KeyError) as e:

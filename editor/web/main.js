@@ -32,7 +32,11 @@ function add([a, b], [c, d]) { return fraction(a * d + c * b, b * d); }
 const state = { n: 4, singularities: new Map() };
 const undoStack = [], redoStack = [];
 function snapshot() { return { n: state.n, singularities: new Map(state.singularities) }; }
-function restore(s) { state.n = s.n; state.singularities = new Map(s.singularities); }
+function restore(s) {
+  state.n = s.n;
+  state.singularities = new Map(s.singularities);
+  document.getElementById("n").value = String(state.n);
+}
 
 // ---- the scene ------------------------------------------------------------------------------------------------
 const view = document.getElementById("view");
@@ -120,10 +124,34 @@ function drawMarkers() {
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
   geometry.setAttribute("color", new THREE.Float32BufferAttribute(colors, 3));
-  markers = new THREE.Points(geometry, new THREE.PointsMaterial({ size: 12, sizeAttenuation: false, vertexColors: true,
-                                                                  depthTest: false }));
-  markers.renderOrder = 1;
+  markers = new THREE.Points(geometry, new THREE.PointsMaterial({ size: 12, sizeAttenuation: false, vertexColors: true }));
   scene.add(markers);
+}
+
+// the boundary loops, as the border edges the server found
+function drawBoundary(edges) {
+  const positions = new Float32Array(edges.length * 3);
+  for (let i = 0; i < edges.length; ++i)
+    for (let j = 0; j < 3; ++j) positions[3 * i + j] = V[3 * edges[i] + j];
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+  scene.add(new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0xd4740a })));
+}
+
+// the automatic placement for n, as one edit
+async function placeFor(n) {
+  const response = await fetch("/api/place", { method: "POST", body: JSON.stringify({ n }) });
+  if (!response.ok) {
+    status.textContent = await response.text();
+    status.className = "error";
+    return;
+  }
+  const { header: h } = parseFrame(await response.arrayBuffer());
+  await edit(() => {
+    state.n = h.n;
+    state.singularities = new Map(h.singularities.map(([v, k]) => [v, parseIndex(k)]));
+  });
+  document.getElementById("n").value = String(state.n);
 }
 
 // per component: the sum of the indices against its Euler characteristic (closed components must balance)
@@ -233,6 +261,9 @@ renderer.domElement.addEventListener("pointerup", e => {
     }
   });
 });
+// another n: the singularities of the old one are not multiples of 1/n in general, so the placement for the new
+document.getElementById("n").onchange = e => placeFor(Number(e.target.value));
+document.getElementById("place").onclick = () => placeFor(state.n);
 document.getElementById("undo").onclick = () => {
   if (!undoStack.length) return;
   redoStack.push(snapshot());
@@ -251,12 +282,13 @@ async function start() {
   header = frame.header;
   V = frame.arrays.V;
   F = frame.arrays.F;
-  window.__editor = { component: frame.arrays.component, solves: 0, state, edit, solve, balance, screenOf,
+  window.__editor = { component: frame.arrays.component, solves: 0, state, edit, solve, balance, screenOf, placeFor,
                       singularities: () => [...state.singularities].map(([v, k]) => [v, indexText(k)]) };
   state.n = header.n;
   document.getElementById("n").value = String(header.n);
   for (const [v, k] of header.singularities) state.singularities.set(v, parseIndex(k));
   buildMesh();
+  drawBoundary(frame.arrays.boundary);
   showBalance();
   await solve();
   window.__editor.ready = true;

@@ -3,7 +3,7 @@
 //   node editor_test.mjs SERVE MESH OUTDIR        (ctest editor_browser; NODE_PATH: the build's npm packages)
 //
 // SERVE: the launcher (trivial_connections-serve). Starts it on MESH, opens the page, and after each step (load,
-// a click adding +1/n, a shift-click adding -1/n elsewhere, two undos, two redos) checks the field the page holds against the
+// a click adding +1/n, a shift-click adding -1/n elsewhere, two undos, two redos, n = 6) checks the field the page holds against the
 // library's answer for the same singularities (check_field.py, beside this file; PYTHONPATH: the module), not
 // pixels; the screenshot of
 // the last step goes to OUTDIR/editor.png, where the page must show the mesh (not the background) at the centre.
@@ -29,16 +29,20 @@ function fail(message) {
 const server = spawn(serve, [mesh, "--port", "0", "--n", "4"], { stdio: ["ignore", "pipe", "inherit"] });
 const address = await new Promise((resolve, reject) => {
   let out = "";
+  const timer = setTimeout(() => reject(new Error("the server did not start in 120 s")), 120000);
   server.stdout.on("data", d => {
     out += d;
     const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
-    if (m) resolve(m[0]);
+    if (m) {
+      clearTimeout(timer);
+      resolve(m[0]);
+    }
   });
   server.on("exit", code => reject(new Error(`the server exited (${code}) before listening`)));
-  setTimeout(() => reject(new Error("the server did not start in 120 s")), 120000);
 });
 
 let step = 0;
+const t0 = Date.now();
 async function checkField(page, what) {
   const state = await page.evaluate(() => ({ n: window.__editor.state.n, singularities: window.__editor.singularities() }));
   const directions = await page.evaluate(() => Array.from(window.__editor.directions));
@@ -48,7 +52,7 @@ async function checkField(page, what) {
   try {
     const out = execFileSync("/usr/bin/python3", [path.join(here, "check_field.py"), mesh, base + ".json", base + ".f32"],
                              { encoding: "utf8" });
-    console.log(`${what}: ${out.trim()}`);
+    console.log(`${((Date.now() - t0) / 1e3).toFixed(1)} s, ${what}: ${out.trim()}`);
   } catch (e) {
     fail(`${what}: the page's field differs from the library's\n${e.stdout || ""}${e.stderr || ""}`);
   }
@@ -114,6 +118,13 @@ try {
   await page.click("#redo");
   await solved(page, solves);
   await checkField(page, "after two redos");
+
+  // another n: the automatic placement for it, solved
+  solves = await page.evaluate(() => window.__editor.solves);
+  await page.selectOption("#n", "6");
+  await solved(page, solves);
+  if (await page.evaluate(() => window.__editor.state.n) !== 6) fail("n did not become 6");
+  await checkField(page, "n = 6 (automatic placement)");
 
   // structure: the mesh covers the centre of the view (the background is #f4f4f4)
   const png = path.join(outdir, "editor.png");

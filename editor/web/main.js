@@ -247,12 +247,33 @@ function screenOf(v) {
   return { x, y, picked: inside && pickVertex(x, y) === v };
 }
 
-let pressed = null;
-renderer.domElement.addEventListener("pointerdown", e => { pressed = [e.clientX, e.clientY]; });
+// a click edits the vertex under it; a press on a singularity drags it to the vertex where it is released (the
+// view does not orbit meanwhile); any other drag orbits
+let pressed = null, dragged = -1;
+renderer.domElement.addEventListener("pointerdown", e => {
+  pressed = [e.clientX, e.clientY];
+  const v = pickVertex(e.clientX, e.clientY);
+  dragged = v >= 0 && state.singularities.has(v) && !e.shiftKey && !e.altKey ? v : -1;
+  controls.enabled = dragged < 0;
+});
 renderer.domElement.addEventListener("pointerup", e => {
-  if (!pressed || Math.hypot(e.clientX - pressed[0], e.clientY - pressed[1]) > 4) return; // a drag orbits
+  controls.enabled = true;
+  const moved = pressed && Math.hypot(e.clientX - pressed[0], e.clientY - pressed[1]) > 4;
+  const from = dragged;
+  pressed = null;
+  dragged = -1;
   const v = pickVertex(e.clientX, e.clientY);
   if (v < 0) return;
+  if (moved) {
+    if (from < 0 || v === from) return; // an orbit, or back where it started
+    edit(() => {
+      const k = state.singularities.get(from);
+      state.singularities.delete(from);
+      const sum = add(state.singularities.get(v) || [0, 1], k);
+      if (sum[0] === 0) state.singularities.delete(v); else state.singularities.set(v, sum);
+    });
+    return;
+  }
   edit(() => {
     if (e.altKey) state.singularities.delete(v);
     else {

@@ -3,7 +3,7 @@
 //   node editor_test.mjs SERVE MESH OUTDIR        (ctest editor_browser; NODE_PATH: the build's npm packages)
 //
 // SERVE: the launcher (trivial_connections-serve). Starts it on MESH, opens the page, and after each step (load,
-// a click adding +1/n, a shift-click adding -1/n elsewhere, two undos, two redos, n = 6) checks the field the page holds against the
+// a click adding +1/n, a shift-click adding -1/n elsewhere, two undos, two redos, a drag, n = 6) checks the field the page holds against the
 // library's answer for the same singularities (check_field.py, beside this file; PYTHONPATH: the module), not
 // pixels; the screenshot of
 // the last step goes to OUTDIR/editor.png, where the page must show the mesh (not the background) at the centre.
@@ -118,6 +118,30 @@ try {
   await page.click("#redo");
   await solved(page, solves);
   await checkField(page, "after two redos");
+
+  // drag the +1/4 at a to a visible vertex c: solved, a is free, c has it
+  const c = await page.evaluate(([u, w]) => {
+    const e = window.__editor, nv = e.component.length;
+    for (let i = 1; i < nv; i += 89) {
+      const v = (i * 6151) % nv;
+      if (v !== u && v !== w && !e.state.singularities.has(v) && e.screenOf(v).picked) return v;
+    }
+    return -1;
+  }, [a, b]);
+  if (c < 0) fail("no vertex to drag to");
+  solves = await page.evaluate(() => window.__editor.solves);
+  p = await at(a);
+  const q = await at(c);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move((p.x + q.x) / 2, (p.y + q.y) / 2, { steps: 4 });
+  await page.mouse.move(q.x, q.y, { steps: 4 });
+  await page.mouse.up();
+  await solved(page, solves);
+  const moved = await page.evaluate(([u, w]) => [window.__editor.state.singularities.has(u),
+                                                 window.__editor.singularities().find(s => s[0] === w)], [a, c]);
+  if (moved[0] || !moved[1] || moved[1][1] !== "1/4") fail(`the drag from ${a} to ${c} gave ${JSON.stringify(moved)}`);
+  await checkField(page, "after a drag");
 
   // another n: the automatic placement for it, solved
   solves = await page.evaluate(() => window.__editor.solves);

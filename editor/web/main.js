@@ -182,10 +182,21 @@ async function solve() {
     window.__editor.lastError = status.textContent;
     return false;
   }
-  const { header: h, arrays } = parseFrame(await response.arrayBuffer());
+  const buffer = await response.arrayBuffer();
+  const received = performance.now();
+  const { header: h, arrays } = parseFrame(buffer);
   drawGlyphs(arrays.directions, h.n);
   drawMarkers();
   draw();
+  const e = window.__editor;
+  if (e.measure) {
+    // the frame on the screen: reading a pixel waits for the GPU to finish drawing it
+    const gl = renderer.getContext();
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+    const now = performance.now();
+    e.latencies.push({ total: now - (e.clickTime ?? started), server: received - started,
+                       solve: 1e3 * (h.timings.solve + h.timings.field), draw: now - received });
+  }
   window.__editor.directions = arrays.directions;
   window.__editor.solves += 1;
   window.__editor.lastError = null;
@@ -257,6 +268,7 @@ renderer.domElement.addEventListener("pointerdown", e => {
   controls.enabled = dragged < 0;
 });
 renderer.domElement.addEventListener("pointerup", e => {
+  window.__editor.clickTime = e.timeStamp; // the latency of an edit is measured from here
   controls.enabled = true;
   const moved = pressed && Math.hypot(e.clientX - pressed[0], e.clientY - pressed[1]) > 4;
   const from = dragged;
@@ -304,6 +316,7 @@ async function start() {
   V = frame.arrays.V;
   F = frame.arrays.F;
   window.__editor = { component: frame.arrays.component, solves: 0, state, edit, solve, balance, screenOf, placeFor,
+                      measure: false, latencies: [],
                       singularities: () => [...state.singularities].map(([v, k]) => [v, indexText(k)]) };
   state.n = header.n;
   document.getElementById("n").value = String(header.n);

@@ -77,7 +77,7 @@ try {
   const col = k => l.map(x => x[k]);
   console.log(`${mesh}: ${faces} faces, n = ${n}; server factored in ${factored.toFixed(2)} s, page opened in ` +
               `${opened.toFixed(2)} s after that; ${l.length} edits`);
-  for (const k of ["total", "server", "solve", "draw"])
+  for (const k of ["total", "server", "solve", "draw", "glyphs", "render"])
     console.log(`  ${k.padEnd(6)} median ${quantile(col(k), 0.5).toFixed(1)} ms, 95th percentile ${quantile(col(k), 0.95).toFixed(1)} ms`);
 } finally {
   await browser.close();

@@ -187,6 +187,7 @@ async function solve() {
   const { header: h, arrays } = parseFrame(buffer);
   drawGlyphs(arrays.directions, h.n);
   drawMarkers();
+  const built = performance.now();
   draw();
   const e = window.__editor;
   if (e.measure) {
@@ -195,7 +196,8 @@ async function solve() {
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
     const now = performance.now();
     e.latencies.push({ total: now - (e.clickTime ?? started), server: received - started,
-                       solve: 1e3 * (h.timings.solve + h.timings.field), draw: now - received });
+                       solve: 1e3 * (h.timings.solve + h.timings.field), draw: now - received,
+                       glyphs: built - received, render: now - built });
   }
   window.__editor.directions = arrays.directions;
   window.__editor.solves += 1;

@@ -110,10 +110,10 @@ class Session:
                 raise ValueError(f"a singularity must be [vertex, index], got {item!r}")
             singularities[item[0]] = str(item[1])
         result = self.solver.solve(singularities, n=n)
-        directions = result.directions if n > 1 else result.field[:, None, :]
         header = {"n": n, "energy": result.energy, "max_residual": result.max_residual,
                   "timings": result.timings}
-        return frame(header, [("directions", directions.astype("<f4"))])
+        # one direction per face: the page turns it by 2 pi / n about the face's normal for the others
+        return frame(header, [("field", result.field.astype("<f4"))])
 
 
 class Handler(http.server.BaseHTTPRequestHandler):

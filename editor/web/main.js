@@ -91,6 +91,30 @@ function buildMesh() {
   glyphLength = 0.35 * total / (F.length / 3);
 }
 
+// the n directions of every face (n per face, 3 numbers each): the field's, turned by 2 pi k / n about the face's
+// unit normal (the field is tangent to the face)
+function nDirections(field, n) {
+  const nf = F.length / 3;
+  const out = new Float32Array(nf * n * 3);
+  for (let f = 0; f < nf; ++f) {
+    const a = 3 * F[3 * f], b = 3 * F[3 * f + 1], c = 3 * F[3 * f + 2];
+    const ux = V[b] - V[a], uy = V[b + 1] - V[a + 1], uz = V[b + 2] - V[a + 2];
+    const wx = V[c] - V[a], wy = V[c + 1] - V[a + 1], wz = V[c + 2] - V[a + 2];
+    let nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+    const length = Math.hypot(nx, ny, nz);
+    nx /= length; ny /= length; nz /= length;
+    const x = field[3 * f], y = field[3 * f + 1], z = field[3 * f + 2];
+    const px = ny * z - nz * y, py = nz * x - nx * z, pz = nx * y - ny * x; // normal x field
+    for (let k = 0; k < n; ++k) {
+      const t = 2 * Math.PI * k / n, cos = Math.cos(t), sin = Math.sin(t), o = 3 * (f * n + k);
+      out[o] = cos * x + sin * px;
+      out[o + 1] = cos * y + sin * py;
+      out[o + 2] = cos * z + sin * pz;
+    }
+  }
+  return out;
+}
+
 // n segments per face from its centroid, along the directions of the solve
 function drawGlyphs(directions, n) {
   const nf = F.length / 3;
@@ -185,7 +209,8 @@ async function solve() {
   const buffer = await response.arrayBuffer();
   const received = performance.now();
   const { header: h, arrays } = parseFrame(buffer);
-  drawGlyphs(arrays.directions, h.n);
+  const directions = nDirections(arrays.field, h.n);
+  drawGlyphs(directions, h.n);
   drawMarkers();
   const built = performance.now();
   draw();
@@ -199,7 +224,7 @@ async function solve() {
                        solve: 1e3 * (h.timings.solve + h.timings.field), draw: now - received,
                        glyphs: built - received, render: now - built });
   }
-  window.__editor.directions = arrays.directions;
+  window.__editor.directions = directions;
   window.__editor.solves += 1;
   window.__editor.lastError = null;
   status.className = "";

@@ -26,7 +26,8 @@ def main(mesh, state_path, directions_path):
         return 1
     error = np.abs(page.reshape(expected.shape) - expected).max()
     print(f"check_field: n = {n}, {len(state['singularities'])} singularities, max |page - library| = {error:.2e}")
-    return 0 if error <= 1e-6 else 1
+    # the page turns the field (float32) about normals it computes in float32 from float32 points
+    return 0 if error <= 1e-5 else 1
 
 
 if __name__ == "__main__":

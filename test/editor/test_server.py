@@ -61,8 +61,8 @@ def test_a_good_solve_gives_n_directions_per_face(server):
     assert frame[:4] == b"TCB1"
     length = int.from_bytes(frame[4:8], "little")
     header = json.loads(frame[8:8 + length])
-    [directions] = header["arrays"]
-    assert directions["shape"] == [8, 3, 3] and header["max_residual"] < 1e-9
+    [field] = header["arrays"]
+    assert field["name"] == "field" and field["shape"] == [8, 3] and header["max_residual"] < 1e-9
 
 
 @pytest.mark.parametrize("body, code", [

@@ -78,13 +78,18 @@ class Session:
                 self.closed[loop["component"]] = False
         self.initial, _ = self.solver.place_singularities(n=n)
 
-    def place_frame(self, request):
+    def symmetry_order(self, request):
+        """n of a request (a JSON object), checked"""
         if not isinstance(request, dict):
             raise ValueError("the body must be a JSON object")
         n = request.get("n", self.n)
         if not isinstance(n, int) or isinstance(n, bool) or not 1 <= n <= 64:
             raise ValueError(f"n must be an integer from 1 to 64, got {n!r}")
-        placed, report = self.solver.place_singularities(n=n)
+        return n
+
+    def place_frame(self, request):
+        n = self.symmetry_order(request)
+        placed, _ = self.solver.place_singularities(n=n)
         return frame({"n": n, "singularities": [[int(v), str(k)] for v, k in sorted(placed.items())]}, [])
 
     def mesh_frame(self):
@@ -98,11 +103,7 @@ class Session:
                               ("boundary", unique[count == 1].astype("<u4"))])
 
     def solve_frame(self, request):
-        if not isinstance(request, dict):
-            raise ValueError("the body must be a JSON object")
-        n = request.get("n", self.n)
-        if not isinstance(n, int) or isinstance(n, bool) or not 1 <= n <= 64:
-            raise ValueError(f"n must be an integer from 1 to 64, got {n!r}")
+        n = self.symmetry_order(request)
         singularities = {}
         for item in request.get("singularities", []):
             if not (isinstance(item, list) and len(item) == 2 and isinstance(item[0], int)

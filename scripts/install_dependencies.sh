@@ -30,6 +30,11 @@ done
 # slower there) and METIS (nested dissection for the simplicial backend on large meshes)
 if [ "$cholmod" = 1 ]; then pkgs+=(libsuitesparse-dev libopenblas0-pthread libmetis-dev); fi
 if [ "$doc" = 1 ]; then pkgs+=(doxygen libjs-mathjax chromium); fi
+# the field editor: node and npm (whichever installed them: a nodejs from elsewhere brings its own npm, which
+# Debian's npm package would conflict with), and Chromium for its browser test
+command -v node >/dev/null 2>&1 || pkgs+=(nodejs)
+command -v npm >/dev/null 2>&1 || pkgs+=(npm)
+command -v chromium >/dev/null 2>&1 || pkgs+=(chromium)
 if [ "$fuzz" = 1 ]; then pkgs+=(clang libclang-rt-14-dev); fi
 
 missing=()

@@ -12,7 +12,8 @@ bash scripts/fetch_cgal_data.sh
 jobs="${JOBS:-2}"
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B build-sanitizers -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DBUILD_TESTING=ON
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DBUILD_TESTING=ON \
+  -DTRIVIAL_CONNECTIONS_WITH_EDITOR=OFF
 cmake --build build-sanitizers -j "$jobs"
 # halt at the first report of either sanitizer, with a stack; leaks are reported at exit (LeakSanitizer)
 export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"

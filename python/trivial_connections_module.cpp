@@ -335,21 +335,25 @@ public:
   virtual const std::vector<std::int64_t>& edge_vertices() const = 0;
 };
 
-// The vertices of `s` in `mesh` (vertex i is the i-th of the arrays or the file); a vertex out of range is
-// the user's error.
+// Vertex v of `mesh` (vertex i is the i-th of the arrays or the file); a vertex out of range is the user's error.
+vertex_descriptor vertex_of(const Mesh& mesh, std::size_t v)
+{
+  if(v >= mesh.number_of_vertices())
+    throw TC::Invalid_input(TC::Error_code::invalid_vertex,
+                            "vertex " + std::to_string(v) + " does not exist (the mesh has " +
+                              std::to_string(mesh.number_of_vertices()) + " vertices)",
+                            v);
+  return vertex_descriptor(Mesh::size_type(v));
+}
+
+// The vertices of `s` in `mesh`, each checked by vertex_of()
 std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> vertex_descriptors(const Mesh& mesh,
                                                                                     const Singularities& s)
 {
   std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
   out.reserve(s.size());
-  for(const auto& [v, k] : s) {
-    if(v >= mesh.number_of_vertices())
-      throw TC::Invalid_input(TC::Error_code::invalid_vertex,
-                              "vertex " + std::to_string(v) + " does not exist (the mesh has " +
-                                std::to_string(mesh.number_of_vertices()) + " vertices)",
-                              v);
-    out.emplace_back(vertex_descriptor(Mesh::size_type(v)), k);
-  }
+  for(const auto& [v, k] : s)
+    out.emplace_back(vertex_of(mesh, v), k);
   return out;
 }
 
@@ -573,7 +577,7 @@ public:
       [directions](face_descriptor f) { return directions ? (*directions)[std::size_t(f)] : CGAL::NULL_VECTOR; });
     std::vector<vertex_descriptor> fixed_vertices;
     for(std::size_t v : fixed)
-      fixed_vertices.push_back(vertex(v));
+      fixed_vertices.push_back(vertex_of(m_mesh, v));
     const Loop_periods none(m_solver->loops().size()); // every integer chosen, as without the parameter
     return TC::refine_singularities(
       *m_solver, descriptors(start), halfedge_x,
@@ -610,15 +614,6 @@ public:
   const std::vector<std::int64_t>& edge_vertices() const override { return m_edge_vertices; }
 
 private:
-  vertex_descriptor vertex(std::size_t v) const
-  {
-    if(v >= m_mesh.number_of_vertices())
-      throw TC::Invalid_input(TC::Error_code::invalid_vertex,
-                              "vertex " + std::to_string(v) + " does not exist (the mesh has " +
-                                std::to_string(m_mesh.number_of_vertices()) + " vertices)",
-                              v);
-    return vertex_descriptor(Mesh::size_type(v));
-  }
   std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> descriptors(const Singularities& s) const
   {
     return vertex_descriptors(m_mesh, s);

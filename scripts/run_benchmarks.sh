@@ -117,10 +117,13 @@ mkdir -p "$RESULTS_DIR" "$TC_BENCH_MESH_CACHE"
 PYTHON=python3
 command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
 
+HAVE_CHOLMOD=0
+if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then HAVE_CHOLMOD=1; fi
+
 if [ "$PYTHON_BINDING" = 1 ]; then
   dir="$ROOT/build-bench"
   extra=()
-  if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then
+  if [ "$HAVE_CHOLMOD" = 1 ]; then
     dir="$ROOT/build-bench-cholmod"
     extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
   fi
@@ -154,8 +157,6 @@ if [ "$PLACEMENT" = 1 ]; then
 fi
 
 # with --floor every backend runs from the CHOLMOD build (when CHOLMOD is installed), whose floor has CHOLMOD too
-HAVE_CHOLMOD=0
-if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then HAVE_CHOLMOD=1; fi
 build_dir() {
   case "$1" in
     ldlt) if [ "$FLOOR" = 1 ] && [ "$HAVE_CHOLMOD" = 1 ]; then echo "$ROOT/build-bench-cholmod"; else echo "$ROOT/build-bench"; fi ;;

@@ -9,11 +9,8 @@
 // to the frame read back from the GPU. Prints the median and 95th percentile, and the split: server (request to
 // response, of which the C++ solve + field), draw (parse, glyphs, upload, draw). The GPU is Chromium's
 // SwiftShader (software) unless TC_CHROMIUM_GL says otherwise.
-import { spawn } from "node:child_process";
-import { createRequire } from "node:module";
+import { launchBrowser, startServer } from "../../test/editor/harness.mjs";
 
-const require = createRequire(import.meta.url);
-const { chromium } = require("playwright-core");
 const args = process.argv.slice(2);
 const nIndex = args.indexOf("--n");
 const n = nIndex >= 0 ? args.splice(nIndex, 2)[1] : "4";
@@ -21,23 +18,11 @@ const [serve, mesh, editsArg] = args;
 const edits = Number(editsArg || 100);
 
 const startedServer = Date.now();
-const server = spawn(serve, [mesh, "--port", "0", "--n", n], { stdio: ["ignore", "pipe", "inherit"] });
-const address = await new Promise((resolve, reject) => {
-  let out = "";
-  server.stdout.on("data", d => {
-    out += d;
-    const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
-    if (m) resolve(m[0]);
-  });
-  server.on("exit", code => reject(new Error(`the server exited (${code})`)));
-});
+const { server, address } = await startServer(serve, mesh, ["--n", n]);
 const factored = (Date.now() - startedServer) / 1e3;
 
 const quantile = (xs, q) => { const s = [...xs].sort((a, b) => a - b); return s[Math.min(s.length - 1, Math.floor(q * s.length))]; };
-const browser = await chromium.launch({
-  executablePath: process.env.TC_CHROMIUM || "/usr/bin/chromium",
-  args: ["--no-sandbox", `--use-gl=${process.env.TC_CHROMIUM_GL || "swiftshader"}`, "--enable-unsafe-swiftshader"],
-});
+const browser = await launchBrowser();
 try {
   const page = await browser.newPage({ viewport: { width: 1200, height: 900 } });
   const t0 = Date.now();

@@ -7,14 +7,12 @@
 // library's answer for the same singularities (check_field.py, beside this file; PYTHONPATH: the module), not
 // pixels; the screenshot of
 // the last step goes to OUTDIR/editor.png, where the page must show the mesh (not the background) at the centre.
-import { spawn, execFileSync } from "node:child_process";
+import { execFileSync } from "node:child_process";
 import { mkdirSync, writeFileSync } from "node:fs";
-import { createRequire } from "node:module";
 import path from "node:path";
 import { fileURLToPath } from "node:url";
+import { launchBrowser, startServer } from "./harness.mjs";
 
-const require = createRequire(import.meta.url);
-const { chromium } = require("playwright-core");
 const [serve, mesh, outdir] = process.argv.slice(2);
 const here = path.dirname(fileURLToPath(import.meta.url));
 mkdirSync(outdir, { recursive: true });
@@ -26,20 +24,7 @@ function fail(message) {
 }
 
 // the server, on a free port: it prints its address once the solver is factored
-const server = spawn(serve, [mesh, "--port", "0", "--n", "4"], { stdio: ["ignore", "pipe", "inherit"] });
-const address = await new Promise((resolve, reject) => {
-  let out = "";
-  const timer = setTimeout(() => reject(new Error("the server did not start in 120 s")), 120000);
-  server.stdout.on("data", d => {
-    out += d;
-    const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
-    if (m) {
-      clearTimeout(timer);
-      resolve(m[0]);
-    }
-  });
-  server.on("exit", code => reject(new Error(`the server exited (${code}) before listening`)));
-});
+const { server, address } = await startServer(serve, mesh, ["--n", "4"]);
 
 let step = 0;
 const t0 = Date.now();
@@ -64,10 +49,7 @@ async function solved(page, before) {
   if (error) fail("the page reports: " + error);
 }
 
-const browser = await chromium.launch({
-  executablePath: process.env.TC_CHROMIUM || "/usr/bin/chromium",
-  args: ["--no-sandbox", "--use-gl=swiftshader", "--enable-unsafe-swiftshader"],
-});
+const browser = await launchBrowser();
 try {
   const page = await browser.newPage({ viewport: { width: 1000, height: 750 } });
   page.on("pageerror", e => fail("page error: " + e.message));

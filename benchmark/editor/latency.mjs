@@ -1,19 +1,23 @@
 // The field editor's latency (issue 22): from the click to the updated field on the screen, in headless Chromium.
 //
 //   NODE_PATH=build/editor-npm/node_modules PYTHONPATH=build/python \
-//     node benchmark/editor/latency.mjs build/trivial_connections-serve MESH [EDITS] [--n N]
+//     node benchmark/editor/latency.mjs build/trivial_connections-serve MESH [EDITS] [--n N] [--zoom Z] [--json FILE]
 //
 // Starts the server on MESH (it factors first), opens the page (timed: navigation to the first field drawn), then
 // drags one singularity EDITS times (default 100) between visible vertices with the mouse; each edit is a solve on
-// the prefactored solver, its transfer (binary), the glyphs' upload and the draw, timed from the pointerup event
-// to the frame read back from the GPU. Prints the median and 95th percentile, and the split: server (request to
-// response, of which the C++ solve + field), draw (parse, glyphs, upload, draw). The GPU is Chromium's
-// SwiftShader (software) unless TC_CHROMIUM_GL says otherwise.
+// the prefactored solver, its transfer (binary), the field's upload (one texel per face) and the draw, timed from
+// the pointerup event to the frame read back from the GPU. Prints the median and 95th percentile, and the split:
+// server (request to response, of which the C++ solve + field), draw (upload: the texture and markers prepared;
+// render: the draw calls, then finish: until the pixel is read back). --zoom Z brings the camera Z times closer
+// first (faces a few pixels wide get no glyph: the whole mesh in view is the cheapest case to draw, a close view
+// the dearest). The GPU is Chromium's SwiftShader (software) unless TC_CHROMIUM_GL says otherwise.
 import { launchBrowser, startServer } from "../../test/editor/harness.mjs";
 
 const args = process.argv.slice(2);
 const nIndex = args.indexOf("--n");
 const n = nIndex >= 0 ? args.splice(nIndex, 2)[1] : "4";
+const zoomIndex = args.indexOf("--zoom");
+const zoom = zoomIndex >= 0 ? Number(args.splice(zoomIndex, 2)[1]) : 1;
 const [serve, mesh, editsArg] = args;
 const edits = Number(editsArg || 100);
 
@@ -29,7 +33,9 @@ try {
   await page.goto(address);
   await page.waitForFunction(() => window.__editor && window.__editor.ready, null, { timeout: 120000 });
   const opened = (Date.now() - t0) / 1e3;
-  const faces = await page.evaluate(() => window.__editor.directions.length / 3 / window.__editor.state.n);
+  const faces = await page.evaluate(() => window.__editor.faces);
+  if (zoom !== 1) await page.evaluate(z => window.__editor.zoom(z), zoom);
+  const glyphFaces = await page.evaluate(() => window.__editor.internals.fieldView.glyphFaces);
   // visible vertices without a singularity, and one singularity to move among them
   const targets = await page.evaluate(() => {
     const e = window.__editor, nv = e.component.length, found = [];
@@ -44,25 +50,43 @@ try {
     for (const [v] of e.state.singularities) if (e.screenOf(v).picked) return v;
     return -1;
   });
-  if (current < 0 || targets.length < 2) throw new Error("no visible singularity or vertices to move it to");
+  if (targets.length < 2) throw new Error("no visible vertices to move a singularity to");
+  if (current < 0) { // none in view: one moved into it first
+    current = targets[0];
+    await page.evaluate(v => window.__editor.edit(() => {
+      const s = window.__editor.state.singularities, [u, k] = s.entries().next().value;
+      s.delete(u);
+      s.set(v, k);
+    }), current);
+  }
   await page.evaluate(() => { window.__editor.measure = true; window.__editor.latencies = []; });
-  for (let i = 0; i < edits; ++i) {
-    const next = targets[i % targets.length] === current ? targets[(i + 1) % targets.length] : targets[i % targets.length];
+  for (let i = 0, t = 0; i < edits; ++i) {
+    // the next target at least 20 pixels away (a shorter move is a click, not a drag) and free
     const p = await page.evaluate(v => window.__editor.screenOf(v), current);
-    const q = await page.evaluate(v => window.__editor.screenOf(v), next);
+    let next = -1, q = null;
+    for (let tries = 0; tries < targets.length && next < 0; ++tries, ++t) {
+      const v = targets[t % targets.length];
+      const s = await page.evaluate(u => window.__editor.state.singularities.has(u) ? null : window.__editor.screenOf(u), v);
+      if (s && s.picked && Math.hypot(s.x - p.x, s.y - p.y) > 20) { next = v; q = s; }
+    }
+    if (next < 0) throw new Error("no vertex to drag the singularity to");
     const before = await page.evaluate(() => window.__editor.solves);
     await page.mouse.move(p.x, p.y);
     await page.mouse.down();
     await page.mouse.move(q.x, q.y, { steps: 2 });
     await page.mouse.up();
-    await page.waitForFunction(b => window.__editor.solves > b || window.__editor.lastError, before);
+    await page.waitForFunction(b => window.__editor.solves > b || window.__editor.lastError || window.__editor.unbalanced,
+                               before, { timeout: 30000 });
+    const [error, unbalanced, moved] = await page.evaluate(v => [window.__editor.lastError, window.__editor.unbalanced,
+                                                               window.__editor.state.singularities.has(v)], next);
+    if (error || unbalanced || !moved) throw new Error(`edit ${i}: the drag to ${next} gave no solve (${error})`);
     current = next;
   }
   const l = await page.evaluate(() => window.__editor.latencies);
   const col = k => l.map(x => x[k]);
-  console.log(`${mesh}: ${faces} faces, n = ${n}; server factored in ${factored.toFixed(2)} s, page opened in ` +
-              `${opened.toFixed(2)} s after that; ${l.length} edits`);
-  for (const k of ["total", "server", "solve", "draw", "glyphs", "render"])
+  console.log(`${mesh}: ${faces} faces, n = ${n}, zoom ${zoom} (${glyphFaces} faces wide enough for a glyph); server ` +
+              `factored in ${factored.toFixed(2)} s, page opened in ${opened.toFixed(2)} s after that; ${l.length} edits`);
+  for (const k of ["total", "server", "solve", "draw", "upload", "render", "calls", "finish"])
     console.log(`  ${k.padEnd(6)} median ${quantile(col(k), 0.5).toFixed(1)} ms, 95th percentile ${quantile(col(k), 0.95).toFixed(1)} ms`);
 } finally {
   await browser.close();

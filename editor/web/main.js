@@ -1,141 +1,91 @@
-// The field editor's page (issue 22, work in progress): the shaded mesh, n directions per face as glyphs,
-// singularities coloured by index; a click edits the singularities and the server solves on its prefactored solver.
+// The field editor's page: the shaded mesh with its field (glyphs or streamlines), singularities
+// coloured by index, pinned directions and boundary loops. Every edit (singularities, pins, strokes, n, boundary
+// alignment, a file loaded) is a solve on the server's prefactored solver; undo and redo go through whole states.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { MeshBVH } from "three-mesh-bvh";
+import { FieldView } from "./field_view.js";
+import { add, indexText, parseFrame, parseIndex, post } from "./protocol.js";
 
-// ---- the server's binary frames (editor/serve.py: frame()) ------------------------------------------------
-const TYPES = { "<f4": Float32Array, "<u4": Uint32Array, "<i4": Int32Array };
-
-export function parseFrame(buffer) {
-  const bytes = new Uint8Array(buffer);
-  if (String.fromCharCode(...bytes.subarray(0, 4)) !== "TCB1") throw new Error("not a TCB1 frame");
-  const length = new DataView(buffer).getUint32(4, true);
-  const header = JSON.parse(new TextDecoder().decode(bytes.subarray(8, 8 + length)));
-  const start = 8 + length;
-  const arrays = {};
-  for (const a of header.arrays) {
-    const Type = TYPES[a.dtype];
-    const count = a.shape.reduce((p, q) => p * q, 1);
-    arrays[a.name] = new Type(buffer, start + a.offset, count);
-  }
-  return { header, arrays };
-}
-
-// ---- indices as exact fractions p/q --------------------------------------------------------------------------
-function gcd(a, b) { return b === 0 ? Math.abs(a) : gcd(b, a % b); }
-function fraction(p, q) { const g = gcd(p, q) || 1; return [p / g * Math.sign(q), Math.abs(q) / g]; }
-function parseIndex(s) { const [p, q] = String(s).split("/").map(Number); return fraction(p, q || 1); }
-function indexText([p, q]) { return q === 1 ? String(p) : `${p}/${q}`; }
-function add([a, b], [c, d]) { return fraction(a * d + c * b, b * d); }
-
-// ---- the state: singularities {vertex: [p, q]}, n; undo/redo of whole states ---------------------------------
-const state = { n: 4, singularities: new Map() };
+// ---- the state: n, singularities {vertex: [p, q]}, pinned directions {face: [x, y, z]}, boundary alignment -----
+const state = { n: 4, singularities: new Map(), constraints: new Map(), alignBoundary: false };
 const undoStack = [], redoStack = [];
-function snapshot() { return { n: state.n, singularities: new Map(state.singularities) }; }
+function snapshot() {
+  return { n: state.n, singularities: new Map(state.singularities), constraints: new Map(state.constraints),
+           alignBoundary: state.alignBoundary };
+}
 function restore(s) {
   state.n = s.n;
   state.singularities = new Map(s.singularities);
-  document.getElementById("n").value = String(state.n);
+  state.constraints = new Map(s.constraints);
+  state.alignBoundary = s.alignBoundary;
+  controlsShow();
+}
+// what every solve-like request carries
+function request() {
+  return { n: state.n, singularities: [...state.singularities].map(([v, k]) => [v, indexText(k)]),
+           constraints: [...state.constraints], align_boundary: state.alignBoundary };
 }
 
 // ---- the scene ------------------------------------------------------------------------------------------------
-const view = document.getElementById("view");
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+const $ = id => document.getElementById(id);
+const view = $("view");
+// no multisampling: the shader smooths its own lines, and a software GL pays for every sample; the drawing buffer
+// is preserved: the field view keeps the mesh's depth and colour in it between edits
+const renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
 renderer.setPixelRatio(window.devicePixelRatio);
 renderer.setSize(view.clientWidth, view.clientHeight);
 view.appendChild(renderer.domElement);
+const BACKGROUND = new THREE.Color(0xf4f4f4);
+// what is drawn over the mesh (markers, pins, boundary loops, streamlines), depth-tested against it, writing no depth
 const scene = new THREE.Scene();
-scene.background = new THREE.Color(0xf4f4f4);
 const camera = new THREE.PerspectiveCamera(40, view.clientWidth / view.clientHeight, 1e-3, 1e3);
 const controls = new OrbitControls(camera, renderer.domElement);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x666666, 2.2));
-const light = new THREE.DirectionalLight(0xffffff, 1.2);
-scene.add(light);
 
-let mesh = null, glyphs = null, markers = null, V = null, F = null, header = null, glyphLength = 1;
-const status = document.getElementById("status");
+let fieldView = null, markers = null, pins = null, streamlines = null, V = null, F = null, header = null;
+let bvh = null, angleDefect = null, display = "glyphs";
+const status = $("status");
 
 function draw() {
-  light.position.copy(camera.position);
+  fieldView.render(camera, BACKGROUND);
+  renderer.autoClear = false;
   renderer.render(scene, camera);
+  renderer.autoClear = true;
 }
-controls.addEventListener("change", draw);
+controls.addEventListener("change", () => {
+  fieldView.stale = true;
+  draw();
+});
 window.addEventListener("resize", () => {
   camera.aspect = view.clientWidth / view.clientHeight;
   camera.updateProjectionMatrix();
   renderer.setSize(view.clientWidth, view.clientHeight);
-  draw();
+  if (fieldView) {
+    fieldView.stale = true;
+    draw();
+  }
 });
 
-function buildMesh() {
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.BufferAttribute(V, 3));
-  geometry.setIndex(new THREE.BufferAttribute(F, 1));
-  geometry.computeVertexNormals();
-  geometry.computeBoundingSphere();
-  mesh = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({
-    color: 0xb8c4d6, roughness: 0.8, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 }));
-  scene.add(mesh);
-  const { center, radius } = geometry.boundingSphere;
+function say(text, error = false) {
+  status.textContent = text;
+  status.className = error ? "error" : "";
+  if (error) window.__editor.lastError = text;
+}
+
+function buildScene() {
+  fieldView = new FieldView(renderer, V, F);
+  const { center, radius } = fieldView.boundingSphere;
   controls.target.copy(center);
   camera.position.copy(center).add(new THREE.Vector3(0, 0, 2.8 * radius));
   camera.near = radius * 1e-3;
   camera.far = radius * 20;
   camera.updateProjectionMatrix();
   controls.update();
-  let total = 0;
-  for (let f = 0; f < F.length / 3; ++f) {
-    const a = F[3 * f], b = F[3 * f + 1];
-    total += Math.hypot(V[3 * a] - V[3 * b], V[3 * a + 1] - V[3 * b + 1], V[3 * a + 2] - V[3 * b + 2]);
-  }
-  glyphLength = 0.35 * total / (F.length / 3);
-}
-
-// the n directions of every face (n per face, 3 numbers each): the field's, turned by 2 pi k / n about the face's
-// unit normal (the field is tangent to the face)
-function nDirections(field, n) {
-  const nf = F.length / 3;
-  const out = new Float32Array(nf * n * 3);
-  for (let f = 0; f < nf; ++f) {
-    const a = 3 * F[3 * f], b = 3 * F[3 * f + 1], c = 3 * F[3 * f + 2];
-    const ux = V[b] - V[a], uy = V[b + 1] - V[a + 1], uz = V[b + 2] - V[a + 2];
-    const wx = V[c] - V[a], wy = V[c + 1] - V[a + 1], wz = V[c + 2] - V[a + 2];
-    let nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
-    const length = Math.hypot(nx, ny, nz);
-    nx /= length; ny /= length; nz /= length;
-    const x = field[3 * f], y = field[3 * f + 1], z = field[3 * f + 2];
-    const px = ny * z - nz * y, py = nz * x - nx * z, pz = nx * y - ny * x; // normal x field
-    for (let k = 0; k < n; ++k) {
-      const t = 2 * Math.PI * k / n, cos = Math.cos(t), sin = Math.sin(t), o = 3 * (f * n + k);
-      out[o] = cos * x + sin * px;
-      out[o + 1] = cos * y + sin * py;
-      out[o + 2] = cos * z + sin * pz;
-    }
-  }
-  return out;
-}
-
-// n segments per face from its centroid, along the directions of the solve
-function drawGlyphs(directions, n) {
-  const nf = F.length / 3;
-  const positions = new Float32Array(nf * n * 6);
-  for (let f = 0; f < nf; ++f) {
-    const a = 3 * F[3 * f], b = 3 * F[3 * f + 1], c = 3 * F[3 * f + 2];
-    const cx = (V[a] + V[b] + V[c]) / 3, cy = (V[a + 1] + V[b + 1] + V[c + 1]) / 3, cz = (V[a + 2] + V[b + 2] + V[c + 2]) / 3;
-    for (let k = 0; k < n; ++k) {
-      const d = 3 * (f * n + k), o = 6 * (f * n + k);
-      positions[o] = cx; positions[o + 1] = cy; positions[o + 2] = cz;
-      positions[o + 3] = cx + glyphLength * directions[d];
-      positions[o + 4] = cy + glyphLength * directions[d + 1];
-      positions[o + 5] = cz + glyphLength * directions[d + 2];
-    }
-  }
-  if (!glyphs) {
-    glyphs = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x1f3a93 }));
-    scene.add(glyphs);
-  }
-  glyphs.geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
-  glyphs.geometry.computeBoundingSphere();
+  // picking: a bounding volume hierarchy over the triangles in input order ("indirect": faces keep their numbers)
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(V, 3));
+  geometry.setIndex(new THREE.BufferAttribute(F, 1));
+  bvh = new MeshBVH(geometry, { indirect: true });
 }
 
 function drawMarkers() {
@@ -148,36 +98,62 @@ function drawMarkers() {
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
   geometry.setAttribute("color", new THREE.Float32BufferAttribute(colors, 3));
-  markers = new THREE.Points(geometry, new THREE.PointsMaterial({ size: 12, sizeAttenuation: false, vertexColors: true }));
+  markers = new THREE.Points(geometry, new THREE.PointsMaterial({ size: 12, sizeAttenuation: false, vertexColors: true, depthWrite: false }));
   scene.add(markers);
 }
 
-// the boundary loops, as the border edges the server found
+// the pinned directions: an arrow from the face's centroid, along the direction projected on the face
+function drawPins() {
+  const positions = [];
+  const length = 4 * fieldView.meanEdge;
+  for (const [f, d] of state.constraints) {
+    const c = centroid(f), t = tangent(f, d);
+    const tip = c.clone().addScaledVector(t, length);
+    const side = new THREE.Vector3().fromArray(fieldView.normals, 3 * f).cross(t).multiplyScalar(0.3 * length);
+    const back = c.clone().addScaledVector(t, 0.65 * length);
+    positions.push(...c.toArray(), ...tip.toArray(), ...tip.toArray(), ...back.clone().add(side).toArray(),
+                   ...tip.toArray(), ...back.sub(side).toArray());
+  }
+  if (pins) scene.remove(pins);
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
+  pins = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0xe0700b, depthTest: false, depthWrite: false }));
+  pins.renderOrder = 1;
+  scene.add(pins);
+}
+
 function drawBoundary(edges) {
   const positions = new Float32Array(edges.length * 3);
   for (let i = 0; i < edges.length; ++i)
     for (let j = 0; j < 3; ++j) positions[3 * i + j] = V[3 * edges[i] + j];
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
-  scene.add(new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0xd4740a })));
+  scene.add(new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0xd4740a, depthWrite: false })));
 }
 
-// the automatic placement for n, as one edit
-async function placeFor(n) {
-  const response = await fetch("/api/place", { method: "POST", body: JSON.stringify({ n }) });
-  if (!response.ok) {
-    status.textContent = await response.text();
-    status.className = "error";
-    return;
-  }
-  const { header: h } = parseFrame(await response.arrayBuffer());
-  await edit(() => {
-    state.n = h.n;
-    state.singularities = new Map(h.singularities.map(([v, k]) => [v, parseIndex(k)]));
-  });
-  document.getElementById("n").value = String(state.n);
+function drawStreamlines(points, offsets) {
+  if (streamlines) { scene.remove(streamlines); streamlines = null; }
+  if (!points) return;
+  const segments = [];
+  for (let i = 0; i + 1 < offsets.length; ++i)
+    for (let k = offsets[i]; k + 1 < offsets[i + 1]; ++k) segments.push(k, k + 1);
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(points, 3));
+  geometry.setIndex(segments);
+  streamlines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0x1f3a93, depthWrite: false }));
+  scene.add(streamlines);
 }
 
+// ---- geometry of faces ------------------------------------------------------------------------------------------
+const point = v => new THREE.Vector3(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
+function centroid(f) { return point(F[3 * f]).add(point(F[3 * f + 1])).add(point(F[3 * f + 2])).divideScalar(3); }
+// d projected on face f's plane, unit (the solver projects constraints the same way)
+function tangent(f, d) {
+  const n = new THREE.Vector3().fromArray(fieldView.normals, 3 * f), t = new THREE.Vector3().fromArray(d);
+  return t.addScaledVector(n, -t.dot(n)).normalize();
+}
+
+// ---- solving and showing ----------------------------------------------------------------------------------------
 // per component: the sum of the indices against its Euler characteristic (closed components must balance)
 function balance() {
   const sums = header.chi.map(() => [0, 1]);
@@ -192,53 +168,63 @@ function balance() {
 function showBalance() {
   const rows = balance().map(b => `component ${b.component}: ${indexText(b.sum)}` +
     (b.closed ? ` of χ = ${b.chi}${b.balanced ? "" : " (unbalanced)"}` : " (bordered)"));
-  document.getElementById("balance").textContent = rows.join("\n");
+  $("balance").textContent = rows.join("\n");
+  $("balance-move").hidden = balance().every(b => b.balanced);
 }
 
 async function solve() {
-  const started = performance.now();
-  const body = JSON.stringify({ n: state.n,
-    singularities: [...state.singularities].map(([v, k]) => [v, indexText(k)]) });
-  const response = await fetch("/api/solve", { method: "POST", body });
-  if (!response.ok) {
-    status.textContent = await response.text();
-    status.className = "error";
-    window.__editor.lastError = status.textContent;
+  const e = window.__editor, started = performance.now();
+  let frame;
+  try {
+    frame = await post("/api/solve", request());
+  } catch (error) {
+    say(error.message, true);
     return false;
   }
-  const buffer = await response.arrayBuffer();
   const received = performance.now();
-  const { header: h, arrays } = parseFrame(buffer);
-  const directions = nDirections(arrays.field, h.n);
-  drawGlyphs(directions, h.n);
+  const { header: h, arrays } = frame;
+  fieldView.setField(arrays.field, h.n);
   drawMarkers();
+  drawPins();
   const built = performance.now();
   draw();
-  const e = window.__editor;
   if (e.measure) {
     // the frame on the screen: reading a pixel waits for the GPU to finish drawing it
+    const called = performance.now();
     const gl = renderer.getContext();
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
     const now = performance.now();
     e.latencies.push({ total: now - (e.clickTime ?? started), server: received - started,
                        solve: 1e3 * (h.timings.solve + h.timings.field), draw: now - received,
-                       glyphs: built - received, render: now - built });
+                       upload: built - received, render: now - built, calls: called - built, finish: now - called });
   }
-  window.__editor.directions = directions;
-  window.__editor.solves += 1;
-  window.__editor.lastError = null;
-  status.className = "";
-  status.textContent = `energy ${h.energy.toPrecision(6)}, residual ${h.max_residual.toExponential(1)}, ` +
-    `${(performance.now() - started).toFixed(1)} ms (solve ${(1e3 * h.timings.solve).toFixed(1)} ms)`;
+  e.solves += 1;
+  e.lastError = null;
+  say(`energy ${h.energy.toPrecision(6)}, residual ${h.max_residual.toExponential(1)}, ` +
+      `${(performance.now() - started).toFixed(1)} ms (solve ${(1e3 * h.timings.solve).toFixed(1)} ms)`);
+  if (display === "streamlines") traceStreamlines();
   return true;
+}
+
+async function traceStreamlines() {
+  try {
+    const { arrays } = await post("/api/streamlines", request());
+    drawStreamlines(arrays.points, arrays.offsets);
+    window.__editor.streamlineCount = arrays.offsets.length - 1;
+    draw();
+  } catch (error) {
+    say(error.message, true);
+  }
 }
 
 // shows the current state: solved when every closed component balances, else the markers and the reason
 async function show() {
   showBalance();
+  drawPins();
   if (!balance().every(b => b.balanced)) {
-    status.textContent = "unbalanced: the indices of a closed component must sum to its Euler characteristic";
-    status.className = "error";
+    say("unbalanced: the indices of a closed component must sum to its Euler characteristic " +
+        "(edit on, or complete with the balancing move)", true);
+    window.__editor.lastError = null; // a state the editor shows, not a refusal
     window.__editor.unbalanced = true;
     drawMarkers();
     draw();
@@ -248,66 +234,172 @@ async function show() {
   return solve();
 }
 
-async function edit(change) {
-  const before = snapshot();
-  change();
-  if (await show()) {
-    undoStack.push(before);
-    redoStack.length = 0;
-  } else {
-    restore(before); // refused by the server: the reason stays shown
-    showBalance();
-  }
+// edits run one after the other, each on the state the previous one left
+let queue = Promise.resolve();
+function edit(change) {
+  queue = queue.then(async () => {
+    const before = snapshot();
+    if (change() === false) return;
+    if (await show()) {
+      undoStack.push(before);
+      redoStack.length = 0;
+    } else {
+      restore(before); // refused by the server: the reason stays shown
+      showBalance();
+      drawMarkers();
+      drawPins();
+      draw();
+    }
+  });
+  return queue;
 }
 
-// the vertex of the clicked face nearest to the click
+function travel(from, to) {
+  queue = queue.then(async () => {
+    if (!from.length) return;
+    to.push(snapshot());
+    restore(from.pop());
+    await show();
+  });
+}
+
+// the automatic placement for n, as one edit (constraints and alignment kept)
+async function placeFor(n) {
+  let h;
+  try {
+    ({ header: h } = await post("/api/place", { n }));
+  } catch (error) {
+    say(error.message, true);
+    controlsShow();
+    return;
+  }
+  await edit(() => {
+    state.n = h.n;
+    state.singularities = new Map(h.singularities.map(([v, k]) => [v, parseIndex(k)]));
+  });
+  controlsShow();
+}
+
+// completes every unbalanced closed component with singularities of +-1/n at its vertices whose angle defect is
+// most like them (largest K_v for positive ones, most negative for negative ones: where the Levi-Civita holonomy
+// already turns the most that way), two rings apart, so that its indices sum to its Euler characteristic
+function balancingMove() {
+  const neighbours = adjacency();
+  return edit(() => {
+    let changed = false;
+    for (const b of balance()) {
+      if (b.balanced) continue;
+      const deficit = add([b.chi, 1], [-b.sum[0], b.sum[1]]); // chi - sum
+      const count = deficit[0] * state.n / deficit[1];
+      if (!Number.isInteger(count)) return false;
+      const sign = Math.sign(count);
+      const candidates = [];
+      for (let v = 0; v < V.length / 3; ++v)
+        if (window.__editor.component[v] === b.component && !state.singularities.has(v)) candidates.push(v);
+      candidates.sort((u, w) => sign * (angleDefect[w] - angleDefect[u]) || u - w);
+      const blocked = new Set();
+      let placed = 0;
+      for (const v of candidates) {
+        if (placed === Math.abs(count)) break;
+        if (blocked.has(v)) continue;
+        state.singularities.set(v, [sign, state.n]);
+        ++placed;
+        for (const u of neighbours[v]) { blocked.add(u); for (const w of neighbours[u]) blocked.add(w); }
+      }
+      for (const v of candidates) { // a small component: the rest anywhere
+        if (placed === Math.abs(count)) break;
+        if (!state.singularities.has(v)) { state.singularities.set(v, [sign, state.n]); ++placed; }
+      }
+      changed = changed || placed > 0;
+    }
+    return changed;
+  });
+}
+
+let neighbourLists = null;
+function adjacency() {
+  if (neighbourLists) return neighbourLists;
+  neighbourLists = Array.from({ length: V.length / 3 }, () => []);
+  for (let f = 0; f < F.length / 3; ++f)
+    for (let k = 0; k < 3; ++k) neighbourLists[F[3 * f + k]].push(F[3 * f + (k + 1) % 3]);
+  return neighbourLists;
+}
+
+// ---- picking ------------------------------------------------------------------------------------------------------
 const raycaster = new THREE.Raycaster();
-function pickVertex(clientX, clientY) {
+function rayAt(clientX, clientY) {
   const r = renderer.domElement.getBoundingClientRect();
-  const p = new THREE.Vector2(((clientX - r.left) / r.width) * 2 - 1, -((clientY - r.top) / r.height) * 2 + 1);
-  raycaster.setFromCamera(p, camera);
-  const hit = raycaster.intersectObject(mesh)[0];
-  if (!hit) return -1;
-  let best = -1, distance = Infinity;
-  for (const v of [hit.face.a, hit.face.b, hit.face.c]) {
-    const d = hit.point.distanceTo(new THREE.Vector3(V[3 * v], V[3 * v + 1], V[3 * v + 2]));
-    if (d < distance) { distance = d; best = v; }
-  }
-  return best;
+  raycaster.setFromCamera(new THREE.Vector2(((clientX - r.left) / r.width) * 2 - 1,
+                                            -((clientY - r.top) / r.height) * 2 + 1), camera);
+  return raycaster.ray;
 }
+// the face under the pointer, the point hit and the face's vertex nearest to it
+function pick(clientX, clientY) {
+  const hit = bvh.raycastFirst(rayAt(clientX, clientY), THREE.DoubleSide);
+  if (!hit) return null;
+  const f = hit.faceIndex;
+  let vertex = -1, distance = Infinity;
+  for (let k = 0; k < 3; ++k) {
+    const v = F[3 * f + k], d = hit.point.distanceTo(point(v));
+    if (d < distance) { distance = d; vertex = v; }
+  }
+  return { face: f, point: hit.point.clone(), vertex };
+}
+const pickVertex = (x, y) => pick(x, y)?.vertex ?? -1;
 
+// where a point is on the screen, and whether it is in the view
+function screenOfPoint(p) {
+  const q = p.clone().project(camera), r = renderer.domElement.getBoundingClientRect();
+  return { x: r.left + (q.x + 1) / 2 * r.width, y: r.top + (1 - q.y) / 2 * r.height,
+           inside: Math.abs(q.x) < 0.95 && Math.abs(q.y) < 0.95 && q.z < 1 };
+}
 // where vertex v is on the screen, and whether a click there picks it (for tests: window.__editor.screenOf)
 function screenOf(v) {
-  const p = new THREE.Vector3(V[3 * v], V[3 * v + 1], V[3 * v + 2]).project(camera);
-  const r = renderer.domElement.getBoundingClientRect();
-  const x = r.left + (p.x + 1) / 2 * r.width, y = r.top + (1 - p.y) / 2 * r.height;
-  const inside = Math.abs(p.x) < 0.95 && Math.abs(p.y) < 0.95;
-  return { x, y, picked: inside && pickVertex(x, y) === v };
+  const s = screenOfPoint(point(v));
+  return { x: s.x, y: s.y, picked: s.inside && pickVertex(s.x, s.y) === v };
+}
+// where face f's centroid is, and whether a press there picks f
+function screenOfFace(f) {
+  const s = screenOfPoint(centroid(f));
+  return { x: s.x, y: s.y, picked: s.inside && pick(s.x, s.y)?.face === f };
 }
 
-// a click edits the vertex under it; a press on a singularity drags it to the vertex where it is released (the
-// view does not orbit meanwhile); any other drag orbits
-let pressed = null, dragged = -1;
+// ---- the pointer ----------------------------------------------------------------------------------------------
+// tool "singularities": a click edits the vertex under it (+1/n, shift -1/n, alt removes); a press on a
+// singularity drags it to the vertex where it is released. Tool "pin": a drag from a face pins the direction of
+// the drag there (alt-click removes a pin). Tool "stroke": the faces a stroke crosses get its direction. A press
+// off the mesh, or any other drag, orbits.
+let press = null;
 renderer.domElement.addEventListener("pointerdown", e => {
-  pressed = [e.clientX, e.clientY];
-  const v = pickVertex(e.clientX, e.clientY);
-  dragged = v >= 0 && state.singularities.has(v) && !e.shiftKey && !e.altKey ? v : -1;
-  controls.enabled = dragged < 0;
+  const hit = pick(e.clientX, e.clientY);
+  const tool = $("tool").value;
+  press = { x: e.clientX, y: e.clientY, hit, tool, dragged: -1, stroke: hit ? [hit] : [] };
+  if (tool === "singularities")
+    press.dragged = hit && state.singularities.has(hit.vertex) && !e.shiftKey && !e.altKey ? hit.vertex : -1;
+  controls.enabled = tool === "singularities" ? press.dragged < 0 : !hit;
+});
+renderer.domElement.addEventListener("pointermove", e => {
+  if (!press || press.tool !== "stroke" || !press.hit) return;
+  const last = press.stroke[press.stroke.length - 1];
+  const hit = pick(e.clientX, e.clientY);
+  if (hit && hit.face !== last.face) press.stroke.push(hit);
 });
 renderer.domElement.addEventListener("pointerup", e => {
   window.__editor.clickTime = e.timeStamp; // the latency of an edit is measured from here
   controls.enabled = true;
-  const moved = pressed && Math.hypot(e.clientX - pressed[0], e.clientY - pressed[1]) > 4;
-  const from = dragged;
-  pressed = null;
-  dragged = -1;
+  const p = press;
+  press = null;
+  if (!p || !p.hit) return;
+  const moved = Math.hypot(e.clientX - p.x, e.clientY - p.y) > 4;
+  if (p.tool === "pin") return pinDrag(p, e, moved);
+  if (p.tool === "stroke") return moved ? pinStroke(p.stroke) : undefined;
   const v = pickVertex(e.clientX, e.clientY);
   if (v < 0) return;
   if (moved) {
-    if (from < 0 || v === from) return; // an orbit, or back where it started
+    if (p.dragged < 0 || v === p.dragged) return; // an orbit, or back where it started
     edit(() => {
-      const k = state.singularities.get(from);
-      state.singularities.delete(from);
+      const k = state.singularities.get(p.dragged);
+      state.singularities.delete(p.dragged);
       const sum = add(state.singularities.get(v) || [0, 1], k);
       if (sum[0] === 0) state.singularities.delete(v); else state.singularities.set(v, sum);
     });
@@ -321,34 +413,124 @@ renderer.domElement.addEventListener("pointerup", e => {
     }
   });
 });
+
+// the drag's end on the plane of the face where it started: the direction from the press to there
+function pinDrag(p, e, moved) {
+  const f = p.hit.face;
+  if (!moved) return e.altKey && state.constraints.has(f) ? edit(() => { state.constraints.delete(f); }) : undefined;
+  const normal = new THREE.Vector3().fromArray(fieldView.normals, 3 * f);
+  const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, p.hit.point);
+  const end = rayAt(e.clientX, e.clientY).intersectPlane(plane, new THREE.Vector3());
+  if (!end) return;
+  const d = end.sub(p.hit.point);
+  if (d.lengthSq() === 0) return;
+  edit(() => { state.constraints.set(f, tangent(f, d.toArray()).toArray()); });
+}
+
+// each face the stroke crossed gets the direction from its hit to the next one
+function pinStroke(stroke) {
+  const pinned = [];
+  for (let i = 0; i + 1 < stroke.length; ++i) {
+    const f = stroke[i].face, d = stroke[i + 1].point.clone().sub(stroke[i].point);
+    const t = tangent(f, d.toArray());
+    if (Number.isFinite(t.x) && t.lengthSq() > 0.5) pinned.push([f, t.toArray()]);
+  }
+  if (pinned.length) edit(() => { for (const [f, d] of pinned) state.constraints.set(f, d); });
+}
+
+// ---- the panel ------------------------------------------------------------------------------------------------
+function controlsShow() {
+  $("n").value = String(state.n);
+  $("align").checked = state.alignBoundary;
+}
 // another n: the singularities of the old one are not multiples of 1/n in general, so the placement for the new
-document.getElementById("n").onchange = e => placeFor(Number(e.target.value));
-document.getElementById("place").onclick = () => placeFor(state.n);
-document.getElementById("undo").onclick = () => {
-  if (!undoStack.length) return;
-  redoStack.push(snapshot());
-  restore(undoStack.pop());
-  show();
+$("n").onchange = e => placeFor(Number(e.target.value));
+$("place").onclick = () => placeFor(state.n);
+$("undo").onclick = () => travel(undoStack, redoStack);
+$("redo").onclick = () => travel(redoStack, undoStack);
+$("balance-move").onclick = () => balancingMove();
+$("clear-pins").onclick = () => edit(() => {
+  if (!state.constraints.size) return false;
+  state.constraints.clear();
+});
+$("align").onchange = e => edit(() => { state.alignBoundary = e.target.checked; });
+$("display").onchange = e => {
+  display = e.target.value;
+  fieldView.style = display;
+  if (display === "streamlines") traceStreamlines(); else { drawStreamlines(null); draw(); }
 };
-document.getElementById("redo").onclick = () => {
-  if (!redoStack.length) return;
-  undoStack.push(snapshot());
-  restore(redoStack.pop());
-  show();
+// the name's extension follows the kind of file
+const EXTENSIONS = { singularities: ".sing", constraints: ".dirs", field: ".field.txt", vtk: ".vtk", ply: ".ply",
+                     streamlines: ".streamlines.vtk", png: ".png" };
+$("kind").onchange = e => {
+  const path = $("path").value, old = Object.values(EXTENSIONS).sort((a, b) => b.length - a.length)
+    .find(x => path.endsWith(x));
+  $("path").value = (old ? path.slice(0, -old.length) : path) + EXTENSIONS[e.target.value];
 };
+$("save").onclick = async () => {
+  const kind = $("kind").value, path = $("path").value;
+  if (kind === "png") return savePng(path);
+  try {
+    const { header: h } = await post("/api/save", { ...request(), kind, path });
+    say(`saved ${h.saved} (${h.bytes} bytes)`);
+    window.__editor.saved = h.saved;
+  } catch (error) {
+    say(error.message, true);
+  }
+};
+$("load").onclick = async () => {
+  const kind = $("kind").value, path = $("path").value;
+  let h;
+  try {
+    ({ header: h } = await post("/api/load", { kind, path }));
+  } catch (error) {
+    return say(error.message, true);
+  }
+  if (kind === "singularities")
+    edit(() => { state.singularities = new Map(h.singularities.map(([v, k]) => [v, parseIndex(k)])); });
+  else if (kind === "constraints")
+    edit(() => { state.constraints = new Map(h.constraints.map(([f, d]) => [f, d])); });
+  else say(`only singularities and constraints are loaded, not ${kind}`, true);
+};
+
+// a PNG of the view, downloaded by the browser under the name given
+function savePng(path) {
+  draw();
+  renderer.domElement.toBlob(blob => {
+    const a = document.createElement("a");
+    a.href = URL.createObjectURL(blob);
+    a.download = (path.split("/").pop() || "field").replace(/\.png$/i, "") + ".png";
+    a.click();
+    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+    say(`PNG of the view: ${a.download}`);
+  }, "image/png");
+}
 
 async function start() {
   const frame = parseFrame(await (await fetch("/api/mesh")).arrayBuffer());
   header = frame.header;
   V = frame.arrays.V;
   F = frame.arrays.F;
-  window.__editor = { component: frame.arrays.component, solves: 0, state, edit, solve, balance, screenOf, placeFor,
-                      measure: false, latencies: [],
-                      singularities: () => [...state.singularities].map(([v, k]) => [v, indexText(k)]) };
+  angleDefect = frame.arrays.angle_defect;
+  window.__editor = {
+    component: frame.arrays.component, solves: 0, state, edit, solve, balance, balancingMove, screenOf, screenOfFace,
+    placeFor, measure: false, latencies: [], faces: F.length / 3, idle: () => queue,
+    get directions() { return fieldView.directions(); },
+    singularities: () => [...state.singularities].map(([v, k]) => [v, indexText(k)]),
+    constraints: () => [...state.constraints],
+    request,
+    // the camera brought `factor` times closer to the target (factor < 1: farther)
+    zoom: factor => {
+      camera.position.sub(controls.target).divideScalar(factor).add(controls.target);
+      controls.update();
+    },
+    internals: { renderer, scene, camera, draw, get fieldView() { return fieldView; } }, // for measurements
+  };
   state.n = header.n;
-  document.getElementById("n").value = String(header.n);
   for (const [v, k] of header.singularities) state.singularities.set(v, parseIndex(k));
-  buildMesh();
+  controlsShow();
+  $("align").disabled = header.closed.every(c => c);
+  buildScene();
   drawBoundary(frame.arrays.boundary);
   showBalance();
   await solve();

@@ -1,21 +1,25 @@
-// The field editor in headless Chromium (issue 22, work in progress), driven by playwright-core:
+// The field editor in headless Chromium, driven by playwright-core:
 //
-//   node editor_test.mjs SERVE MESH OUTDIR        (ctest editor_browser; NODE_PATH: the build's npm packages)
+//   node editor_test.mjs SERVE MESH BORDERED_MESH OUTDIR     (ctest editor_browser; NODE_PATH: the build's npm packages)
 //
-// SERVE: the launcher (trivial_connections-serve). Starts it on MESH, opens the page, and after each step (load,
-// a click adding +1/n, a shift-click adding -1/n elsewhere, two undos, two redos, a drag, n = 6) checks the field the page holds against the
-// library's answer for the same singularities (check_field.py, beside this file; PYTHONPATH: the module), not
-// pixels; the screenshot of
-// the last step goes to OUTDIR/editor.png, where the page must show the mesh (not the background) at the centre.
+// SERVE: the launcher (trivial_connections-serve). On MESH (closed): load, a click adding +1/n, a shift-click adding
+// -1/n elsewhere, two undos, two redos, a drag, a pinned direction, a stroke, an undo, an unbalancing click completed
+// by the balancing move, save and load of singularities and constraints, n = 6, streamlines, a PNG. After each step
+// the field the page holds is checked against the library's answer for the same request (check_field.py, beside
+// this file; PYTHONPATH: the module), not pixels. The screenshot of the last step goes to OUTDIR/editor.png; its
+// structure is checked: the mesh at the centre, and each visible singularity's marker, in its colour, at the pixel
+// where the camera projects its vertex. On BORDERED_MESH: boundary alignment on, then a pin.
 import { execFileSync } from "node:child_process";
-import { mkdirSync, writeFileSync } from "node:fs";
+import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import path from "node:path";
 import { fileURLToPath } from "node:url";
 import { launchBrowser, startServer } from "./harness.mjs";
 
-const [serve, mesh, outdir] = process.argv.slice(2);
+const [serve, mesh, bordered, outdir] = process.argv.slice(2);
 const here = path.dirname(fileURLToPath(import.meta.url));
-mkdirSync(outdir, { recursive: true });
+const files = path.join(outdir, "files"); // the server's folder
+rmSync(files, { recursive: true, force: true });
+mkdirSync(files, { recursive: true });
 
 function fail(message) {
   console.error("editor_test: " + message);
@@ -23,19 +27,17 @@ function fail(message) {
   throw new Error(message);
 }
 
-// the server, on a free port: it prints its address once the solver is factored
-const { server, address } = await startServer(serve, mesh, ["--n", "4"]);
-
 let step = 0;
 const t0 = Date.now();
-async function checkField(page, what) {
-  const state = await page.evaluate(() => ({ n: window.__editor.state.n, singularities: window.__editor.singularities() }));
+async function checkField(page, meshPath, what) {
+  await page.evaluate(() => window.__editor.idle());
+  const request = await page.evaluate(() => window.__editor.request());
   const directions = await page.evaluate(() => Array.from(window.__editor.directions));
   const base = path.join(outdir, `step${++step}`);
-  writeFileSync(base + ".json", JSON.stringify(state));
+  writeFileSync(base + ".json", JSON.stringify(request));
   writeFileSync(base + ".f32", Buffer.from(new Float32Array(directions).buffer));
   try {
-    const out = execFileSync("/usr/bin/python3", [path.join(here, "check_field.py"), mesh, base + ".json", base + ".f32"],
+    const out = execFileSync("/usr/bin/python3", [path.join(here, "check_field.py"), meshPath, base + ".json", base + ".f32"],
                              { encoding: "utf8" });
     console.log(`${((Date.now() - t0) / 1e3).toFixed(1)} s, ${what}: ${out.trim()}`);
   } catch (e) {
@@ -43,108 +45,254 @@ async function checkField(page, what) {
   }
 }
 
+const solves = page => page.evaluate(() => window.__editor.solves);
 async function solved(page, before) {
   await page.waitForFunction(n => window.__editor.solves > n || window.__editor.lastError, before, { timeout: 30000 });
   const error = await page.evaluate(() => window.__editor.lastError);
   if (error) fail("the page reports: " + error);
 }
 
-const browser = await launchBrowser();
-try {
-  const page = await browser.newPage({ viewport: { width: 1000, height: 750 } });
+// visible vertices (faces) a click there picks, without a singularity (pin), spread over the numbering
+const visibleVertices = (page, count, stride) => page.evaluate(([count, stride]) => {
+  const e = window.__editor, nv = e.component.length, found = [];
+  for (let i = 1; i < nv && found.length < count; i += 97) {
+    const v = (i * stride) % nv;
+    if (!e.state.singularities.has(v) && e.screenOf(v).picked) found.push(v);
+  }
+  return found;
+}, [count, stride]);
+const visibleFaces = (page, count) => page.evaluate(count => {
+  const e = window.__editor, found = [];
+  for (let i = 1; i < e.faces && found.length < count; i += 37) {
+    const f = (i * 7907) % e.faces;
+    if (!e.state.constraints.has(f) && e.screenOfFace(f).picked) found.push(f);
+  }
+  return found;
+}, count);
+
+async function drag(page, p, q, steps = 4) {
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move((p.x + q.x) / 2, (p.y + q.y) / 2, { steps });
+  await page.mouse.move(q.x, q.y, { steps });
+  await page.mouse.up();
+}
+
+async function open(browser, address) {
+  const page = await browser.newPage({ viewport: { width: 1000, height: 750 }, acceptDownloads: true });
   page.on("pageerror", e => fail("page error: " + e.message));
   await page.goto(address);
   await page.waitForFunction(() => window.__editor && window.__editor.ready, null, { timeout: 60000 });
-  await checkField(page, "load (automatic placement)");
+  return page;
+}
 
-  // two visible vertices without a singularity, far apart in index
-  const [a, b] = await page.evaluate(() => {
-    const e = window.__editor, found = [];
-    const nv = e.component.length;
-    for (let i = 0; i < nv && found.length < 2; i += 97) {
-      const v = (i * 7919) % nv;
-      if (!e.state.singularities.has(v) && e.screenOf(v).picked) found.push(v);
+async function closedMesh(browser) {
+  const { server, address } = await startServer(serve, mesh, ["--n", "4", "--folder", files]);
+  try {
+    const page = await open(browser, address);
+    await checkField(page, mesh, "load (automatic placement)");
+    const at = v => page.evaluate(u => window.__editor.screenOf(u), v);
+    const atFace = f => page.evaluate(g => window.__editor.screenOfFace(g), f);
+
+    const [a, b] = await visibleVertices(page, 2, 7919);
+    if (b === undefined) fail("no two visible vertices to click");
+    let before = await solves(page);
+    let p = await at(a);
+    await page.mouse.click(p.x, p.y); // +1/4: unbalanced, not solved
+    await page.waitForFunction(v => window.__editor.state.singularities.has(v), a);
+    p = await at(b);
+    await page.keyboard.down("Shift");
+    await page.mouse.click(p.x, p.y); // -1/4 elsewhere: balanced again, solved
+    await page.keyboard.up("Shift");
+    await solved(page, before);
+    const added = await page.evaluate(([u, v]) => [window.__editor.singularities().find(s => s[0] === u),
+                                                   window.__editor.singularities().find(s => s[0] === v)], [a, b]);
+    if (!added[0] || added[0][1] !== "1/4" || !added[1] || added[1][1] !== "-1/4")
+      fail(`the clicks gave ${JSON.stringify(added)}, expected +1/4 at ${a} and -1/4 at ${b}`);
+    await checkField(page, mesh, "after +1/4 and -1/4");
+
+    // undo twice: the unbalanced state between the clicks (shown, not solved), then the start (solved)
+    await page.click("#undo");
+    await page.waitForFunction(v => !window.__editor.state.singularities.has(v) && window.__editor.unbalanced, b);
+    before = await solves(page);
+    await page.click("#undo");
+    await solved(page, before);
+    if (await page.evaluate(v => window.__editor.state.singularities.has(v), a)) fail("undo kept the +1/4");
+    await checkField(page, mesh, "after two undos");
+
+    await page.click("#redo");
+    await page.waitForFunction(() => window.__editor.unbalanced);
+    before = await solves(page);
+    await page.click("#redo");
+    await solved(page, before);
+    await checkField(page, mesh, "after two redos");
+
+    // drag the +1/4 at a to a visible vertex c: solved, a is free, c has it
+    const c = (await visibleVertices(page, 8, 6151)).find(v => v !== a && v !== b);
+    if (c === undefined) fail("no vertex to drag to");
+    before = await solves(page);
+    await drag(page, await at(a), await at(c));
+    await solved(page, before);
+    const moved = await page.evaluate(([u, w]) => [window.__editor.state.singularities.has(u),
+                                                   window.__editor.singularities().find(s => s[0] === w)], [a, c]);
+    if (moved[0] || !moved[1] || moved[1][1] !== "1/4") fail(`the drag from ${a} to ${c} gave ${JSON.stringify(moved)}`);
+    await checkField(page, mesh, "after a drag");
+
+    // pin: a drag from a visible face, 40 pixels to the right
+    const faces = await visibleFaces(page, 6);
+    if (faces.length < 3) fail("no visible faces to pin");
+    await page.selectOption("#tool", "pin");
+    before = await solves(page);
+    p = await atFace(faces[0]);
+    await drag(page, p, { x: p.x + 40, y: p.y + 10 });
+    await solved(page, before);
+    if (!(await page.evaluate(f => window.__editor.state.constraints.has(f), faces[0]))) fail("the drag pinned nothing");
+    await checkField(page, mesh, "a pinned direction");
+
+    // a stroke from one visible face to another: the faces crossed follow it
+    await page.selectOption("#tool", "stroke");
+    before = await solves(page);
+    await drag(page, await atFace(faces[1]), await atFace(faces[2]), 12);
+    await solved(page, before);
+    const pinned = await page.evaluate(() => window.__editor.state.constraints.size);
+    if (pinned < 2) fail(`the stroke pinned nothing (${pinned} pins)`);
+    await checkField(page, mesh, `a stroke (${pinned} pins)`);
+    before = await solves(page);
+    await page.click("#undo");
+    await solved(page, before);
+    if (await page.evaluate(() => window.__editor.state.constraints.size) !== 1) fail("undo did not remove the stroke");
+    await checkField(page, mesh, "the stroke undone");
+
+    // an unbalancing click, completed by the balancing move
+    await page.selectOption("#tool", "singularities");
+    const [d] = (await visibleVertices(page, 12, 104729)).filter(v => v !== a && v !== b && v !== c);
+    p = await at(d);
+    await page.mouse.click(p.x, p.y);
+    await page.waitForFunction(() => window.__editor.unbalanced);
+    if (await page.isHidden("#balance-move")) fail("the balancing move is not offered on an unbalanced state");
+    before = await solves(page);
+    await page.click("#balance-move");
+    await solved(page, before);
+    if (await page.evaluate(() => window.__editor.balance().some(x => !x.balanced))) fail("still unbalanced");
+    await checkField(page, mesh, "the balancing move");
+
+    // save singularities and pins in the server's folder, change things, load them back
+    const saved = await page.evaluate(() => window.__editor.request());
+    for (const [kind, name] of [["singularities", "design.sing"], ["constraints", "design.dirs"],
+                                ["field", "design.field.txt"], ["vtk", "design.vtk"]]) {
+      await page.selectOption("#kind", kind);
+      await page.fill("#path", name);
+      await page.click("#save");
+      await page.waitForFunction(x => window.__editor.saved === x || window.__editor.lastError, name);
+      if (!existsSync(path.join(files, name))) fail(`save ${kind}: no ${name} in the server's folder`);
     }
-    return found;
-  });
-  if (b === undefined) fail("no two visible vertices to click");
-  const at = v => page.evaluate(u => window.__editor.screenOf(u), v);
-
-  let solves = await page.evaluate(() => window.__editor.solves);
-  let p = await at(a);
-  await page.mouse.click(p.x, p.y); // +1/4: unbalanced, not solved
-  await page.waitForFunction(v => window.__editor.state.singularities.has(v), a);
-  p = await at(b);
-  await page.keyboard.down("Shift");
-  await page.mouse.click(p.x, p.y); // -1/4 elsewhere: balanced again, solved
-  await page.keyboard.up("Shift");
-  await solved(page, solves);
-  const added = await page.evaluate(([u, v]) => [window.__editor.singularities().find(s => s[0] === u),
-                                                 window.__editor.singularities().find(s => s[0] === v)], [a, b]);
-  if (!added[0] || added[0][1] !== "1/4" || !added[1] || added[1][1] !== "-1/4")
-    fail(`the clicks gave ${JSON.stringify(added)}, expected +1/4 at ${a} and -1/4 at ${b}`);
-  await checkField(page, "after +1/4 and -1/4");
-
-  // undo twice: the unbalanced state between the clicks (shown, not solved), then the start (solved)
-  await page.click("#undo");
-  await page.waitForFunction(v => !window.__editor.state.singularities.has(v) && window.__editor.unbalanced, b);
-  solves = await page.evaluate(() => window.__editor.solves);
-  await page.click("#undo");
-  await solved(page, solves);
-  if (await page.evaluate(v => window.__editor.state.singularities.has(v), a)) fail("undo kept the +1/4");
-  await checkField(page, "after two undos");
-
-  await page.click("#redo");
-  await page.waitForFunction(() => window.__editor.unbalanced);
-  solves = await page.evaluate(() => window.__editor.solves);
-  await page.click("#redo");
-  await solved(page, solves);
-  await checkField(page, "after two redos");
-
-  // drag the +1/4 at a to a visible vertex c: solved, a is free, c has it
-  const c = await page.evaluate(([u, w]) => {
-    const e = window.__editor, nv = e.component.length;
-    for (let i = 1; i < nv; i += 89) {
-      const v = (i * 6151) % nv;
-      if (v !== u && v !== w && !e.state.singularities.has(v) && e.screenOf(v).picked) return v;
+    await page.selectOption("#kind", "singularities");
+    await page.fill("#path", "../outside.sing");
+    await page.click("#save");
+    await page.waitForFunction(() => window.__editor.lastError);
+    if (existsSync(path.join(outdir, "outside.sing"))) fail("a path outside the folder was written");
+    console.log(`refused: ${await page.evaluate(() => window.__editor.lastError)}`);
+    await page.evaluate(() => { window.__editor.lastError = null; });
+    before = await solves(page);
+    await page.click("#place"); // another state
+    await solved(page, before);
+    for (const [kind, name] of [["singularities", "design.sing"], ["constraints", "design.dirs"]]) {
+      before = await solves(page);
+      await page.selectOption("#kind", kind);
+      await page.fill("#path", name);
+      await page.click("#load");
+      await solved(page, before);
     }
-    return -1;
-  }, [a, b]);
-  if (c < 0) fail("no vertex to drag to");
-  solves = await page.evaluate(() => window.__editor.solves);
-  p = await at(a);
-  const q = await at(c);
-  await page.mouse.move(p.x, p.y);
-  await page.mouse.down();
-  await page.mouse.move((p.x + q.x) / 2, (p.y + q.y) / 2, { steps: 4 });
-  await page.mouse.move(q.x, q.y, { steps: 4 });
-  await page.mouse.up();
-  await solved(page, solves);
-  const moved = await page.evaluate(([u, w]) => [window.__editor.state.singularities.has(u),
-                                                 window.__editor.singularities().find(s => s[0] === w)], [a, c]);
-  if (moved[0] || !moved[1] || moved[1][1] !== "1/4") fail(`the drag from ${a} to ${c} gave ${JSON.stringify(moved)}`);
-  await checkField(page, "after a drag");
+    const loaded = await page.evaluate(() => window.__editor.request());
+    const same = (x, y) => JSON.stringify([...x].sort()) === JSON.stringify([...y].sort());
+    if (!same(loaded.singularities, saved.singularities) || loaded.constraints.length !== saved.constraints.length)
+      fail(`loaded ${JSON.stringify(loaded)}, saved ${JSON.stringify(saved)}`);
+    await checkField(page, mesh, "saved and loaded back");
 
-  // another n: the automatic placement for it, solved
-  solves = await page.evaluate(() => window.__editor.solves);
-  await page.selectOption("#n", "6");
-  await solved(page, solves);
-  if (await page.evaluate(() => window.__editor.state.n) !== 6) fail("n did not become 6");
-  await checkField(page, "n = 6 (automatic placement)");
+    // another n: the automatic placement for it, the pin kept
+    before = await solves(page);
+    await page.selectOption("#n", "6");
+    await solved(page, before);
+    if (await page.evaluate(() => window.__editor.state.n) !== 6) fail("n did not become 6");
+    await checkField(page, mesh, "n = 6 (automatic placement)");
 
-  // structure: the mesh covers the centre of the view (the background is #f4f4f4)
-  const png = path.join(outdir, "editor.png");
-  await page.screenshot({ path: png });
-  const centre = await page.evaluate(() => {
-    const c = document.querySelector("#view canvas");
-    const gl = c.getContext("webgl2") || c.getContext("webgl");
-    const pixel = new Uint8Array(4);
-    gl.readPixels(c.width >> 1, c.height >> 1, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
-    return Array.from(pixel);
+    await page.selectOption("#display", "streamlines");
+    await page.waitForFunction(() => window.__editor.streamlineCount > 0, null, { timeout: 30000 });
+    await page.selectOption("#display", "glyphs");
+
+    // a PNG of the view, downloaded
+    await page.selectOption("#kind", "png");
+    const [download] = await Promise.all([page.waitForEvent("download"), page.click("#save")]);
+    const pngPath = path.join(outdir, "download.png");
+    await download.saveAs(pngPath);
+    const png = readFileSync(pngPath);
+    if (png.subarray(1, 4).toString() !== "PNG" || png.readUInt32BE(16) !== 1000 || png.readUInt32BE(20) !== 750)
+      fail("the PNG export is not a 1000 x 750 PNG");
+
+    await structure(page);
+  } finally {
+    server.kill();
+  }
+}
+
+// the screenshot: the mesh covers the centre (the background is #f4f4f4), and the marker of every singularity a
+// click would pick (its vertex in front) is where the camera projects it, red for positive, blue for negative
+async function structure(page) {
+  const shot = path.join(outdir, "editor.png");
+  await page.screenshot({ path: shot });
+  const found = await page.evaluate(() => {
+    const e = window.__editor, c = document.querySelector("#view canvas");
+    const gl = c.getContext("webgl2"), rect = c.getBoundingClientRect();
+    const pixel = (x, y) => {
+      const p = new Uint8Array(4);
+      gl.readPixels(Math.round(x - rect.left), Math.round(rect.bottom - y - 1), 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, p);
+      return Array.from(p);
+    };
+    const markers = [];
+    for (const [v, [sign]] of e.state.singularities) {
+      const s = e.screenOf(v);
+      if (s.picked) markers.push({ v, sign, rgb: pixel(s.x, s.y) });
+    }
+    return { centre: pixel(rect.left + rect.width / 2, rect.top + rect.height / 2), markers };
   });
-  if (centre[0] === 244 && centre[1] === 244 && centre[2] === 244) fail("the centre of the view is background");
-  console.log(`editor_test: passed (screenshot ${png})`);
+  const [r, g, b] = found.centre;
+  if (r === 244 && g === 244 && b === 244) fail("the centre of the view is background");
+  if (!found.markers.length) fail("no singularity is visible");
+  for (const m of found.markers) {
+    const [r, g, b] = m.rgb;
+    const ok = m.sign > 0 ? r > 150 && g < 90 && b < 90 : b > 150 && r < 90;
+    if (!ok) fail(`the marker of vertex ${m.v} (${m.sign > 0 ? "+" : "-"}) is not at its projection: ${m.rgb}`);
+  }
+  console.log(`structure: the mesh at the centre, ${found.markers.length} visible markers where the projection says`);
+  console.log(`editor_test: screenshot ${shot}`);
+}
+
+async function borderedMesh(browser) {
+  const { server, address } = await startServer(serve, bordered, ["--n", "4"]);
+  try {
+    const page = await open(browser, address);
+    await checkField(page, bordered, "bordered mesh: load");
+    let before = await solves(page);
+    await page.check("#align");
+    await solved(page, before);
+    await checkField(page, bordered, "bordered mesh: aligned with the boundary");
+    const [f] = await visibleFaces(page, 1);
+    await page.selectOption("#tool", "pin");
+    before = await solves(page);
+    const p = await page.evaluate(g => window.__editor.screenOfFace(g), f);
+    await drag(page, p, { x: p.x - 10, y: p.y + 40 });
+    await solved(page, before);
+    await checkField(page, bordered, "bordered mesh: aligned, and a pin");
+  } finally {
+    server.kill();
+  }
+}
+
+const browser = await launchBrowser();
+try {
+  await closedMesh(browser);
+  await borderedMesh(browser);
+  console.log("editor_test: passed");
 } finally {
   await browser.close();
-  server.kill();
 }

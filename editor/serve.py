@@ -1,41 +1,136 @@
 #!/usr/bin/python3
 """The field editor's server (issue 22, work in progress): one mesh, its prefactored solver, a page.
 
-    PYTHONPATH=build/python python3 editor/serve.py MESH [--n N] [--port P] [--bundle DIR]
+    PYTHONPATH=build/python python3 editor/serve.py MESH [--n N] [--port P] [--bundle DIR] [--folder DIR]
 
 Binds 127.0.0.1 only. Serves its page (editor/web/index.html and the bundle the build made, DIR/editor.js) and
 the mesh it was given; every edit the page sends is a solve on the solver factored once at start. Arrays travel
-as binary (see `frame`), never as JSON numbers.
+as binary (see `frame`), never as JSON numbers. The only files it reads or writes for the page are in --folder
+(default: the current directory at start).
+
+API. Requests are JSON objects; replies are frames (`frame`: a JSON header, then arrays), or, when refused, a
+text/plain line giving the reason: 400 malformed request, 403 a path outside the folder, 404 unknown URL or
+missing file, 413 body too large, 422 refused by the library ("code: message", e.g. "poincare_hopf_violated: ...").
+  GET  /api/mesh         header {vertices, faces, n, chi, closed (per component), singularities (placed at start)};
+                         arrays V <f4 (V, 3), F <u4 (F, 3), component <i4 (V,) (-1: no face), boundary <u4 (b, 2)
+                         (boundary edges), angle_defect <f4 (V,) (2 pi minus the corner angles at the vertex)
+  POST /api/place        {n?, align_boundary?}: automatic placement -> header {n, singularities}
+  POST /api/solve        {SOLVE} -> header {n, energy, max_residual, timings, constraints}; array field <f4 (F, 3):
+                         one direction per face (the page turns it by 2 pi / n for the others). constraints: the
+                         solve's report on the paths joining the request's constrained faces (to each other or to
+                         the aligned boundary): [{component, from_face, to_face, length, period, residual}]
+  POST /api/streamlines  {SOLVE, seeds?} -> header {n, energy, lines, seeds, maximum_faces_per_ray, timings};
+                         arrays points <f4 (k, 3), offsets <u4 (lines + 1,): line i is points[offsets[i]:offsets[i+1]].
+                         seeds: the number of seed faces asked for (1 to 100000, default min(faces, 3000)), spread
+                         over the mesh the same way every time; header seeds: the number used. The rays are cut (to
+                         maximum_faces_per_ray faces, at least 8), then seeds left out, so that all of them cross
+                         at most RAY_STEPS faces: about half a second at most on 100k faces
+  POST /api/save         {kind, path, SOLVE, seeds?}: solves, then writes (completely or not at all) `path` in the
+                         folder -> header {saved: the path relative to the folder, bytes}. kind: "singularities",
+                         "constraints" (lines "f x y z"), "field" (the program's field file, path ending in .txt),
+                         "vtk" / "ply" (mesh and field for a viewer, path ending in .vtk / .ply), "streamlines" (VTK
+                         lines, as /api/streamlines)
+  POST /api/load         {kind: "singularities" | "constraints", path} -> header {singularities: [[v, "p/q"]]} or
+                         {constraints: [[f, [x, y, z]]]}, in file order, checked by the library's readers against the
+                         mesh (vertex and face numbers in range, no repeat)
+SOLVE: n (1 to 64, default --n); singularities [[vertex, "p/q" or integer]] (default []); constraints
+[[face, [x, y, z]]] (default []: at most 100000, faces in range and each once, directions three finite numbers, not
+all zero; the field points along the direction projected onto the face); align_boundary (default false: true follows
+the boundary, with a second solver made on first use; on a mesh without boundary it is the same solve).
+Paths (save, load): a non-empty relative path; with symbolic links resolved it must lie in the folder (403
+otherwise); to save, its directory must exist (404) and it must not be a directory (400); to load, it must be a
+regular file (404 if missing, 400 otherwise, 413 above 64 MB). Nothing is written when a request is refused.
+Constraints and alignment: each solver (plain, aligned) keeps the constrained faces of its last request; a request
+with another set of faces calls set_constraints() first (whose cost grows with the set: ~1.5 s for 1000 faces
+spread over 89k), under a lock held until its solve is done, so concurrent requests each get their own answer.
 """
 import argparse
+import collections
 import http.server
 import json
+import math
 import os
 import struct
 import sys
 import threading
+import time
+import traceback
 
 import numpy as np
 import trivial_connections as tc
 
-MAX_BODY = 1 << 20  # bytes of a request body
+MAX_BODY = 1 << 20  # bytes of a request body (2000 constraints fit)
+MAX_CONSTRAINTS = 2000  # each pinned face adds a link to the dense block of the integers: 1000 cost ~1.5 s
+MAX_SEEDS = 100000
+DEFAULT_SEEDS = 3000
+RAY_STEPS = 500_000  # faces crossed by all the rays of a streamline request together, at most (~0.5 s at worst)
+MAX_LOAD = 64 << 20  # bytes of a file to load
+# save kinds: the ending their path must have ("" for any)
+SAVE_KINDS = {"singularities": "", "constraints": "", "field": ".txt", "vtk": ".vtk", "ply": ".ply",
+              "streamlines": ""}
 HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+class Refusal(Exception):
+    """a request refused with an HTTP status and a one-line reason"""
+
+    def __init__(self, status, reason):
+        super().__init__(reason)
+        self.status = status
+
+
+def shown(value, limit=80):
+    """repr(value), cut to `limit` characters for a message"""
+    r = repr(value)
+    return r if len(r) <= limit else r[:limit - 3] + "..."
+
+
+def json_safe(value):
+    """value with numpy scalars as Python numbers and non-finite floats as None (JSON.parse has no NaN)"""
+    if isinstance(value, dict):
+        return {str(k): json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_safe(v) for v in value]
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
 def frame(header, arrays):
     """b"TCB1", the JSON header's length (uint32, little endian), the header, then each array (little endian, each
-    at a multiple of 8 bytes); the header lists them: {"arrays": [{"name", "dtype", "shape", "offset"}]}"""
-    entries, blobs, offset = [], [], 0
-    for name, a in arrays:
-        a = np.ascontiguousarray(a)
-        entries.append({"name": name, "dtype": a.dtype.str, "shape": list(a.shape), "offset": offset})
-        raw = a.tobytes()
-        raw += b"\0" * (-len(raw) % 8)
-        blobs.append(raw)
-        offset += len(raw)
+    at a multiple of 8 bytes); the header lists them: {"arrays": [{"name", "dtype", "shape", "offset"}]}.
+    `arrays`: pairs (name, array), or triples (name, array, dtype) to convert it to dtype as it is copied in.
+    Returns one preallocated bytearray: each array is copied once, straight into place."""
+    entries, sources, offset = [], [], 0
+    for name, a, *dtype in arrays:
+        a = np.asarray(a)
+        dt = np.dtype(dtype[0]) if dtype else a.dtype
+        entries.append({"name": name, "dtype": dt.str, "shape": list(a.shape), "offset": offset})
+        sources.append((a, dt, offset))
+        offset += -(-a.size * dt.itemsize // 8) * 8
     head = json.dumps(dict(header, arrays=entries)).encode()
     head += b" " * (-(8 + len(head)) % 8)
-    return b"TCB1" + struct.pack("<I", len(head)) + head + b"".join(blobs)
+    start = 8 + len(head)
+    out = bytearray(start + offset)  # zeros: the padding
+    out[:4] = b"TCB1"
+    struct.pack_into("<I", out, 4, len(head))
+    out[8:start] = head
+    for a, dt, at in sources:
+        if a.size:
+            np.copyto(np.frombuffer(out, dt, a.size, start + at).reshape(a.shape), a, casting="unsafe")
+    return out
+
+
+def angle_defects(V, F):
+    """per vertex, 2 pi minus the sum of its corner angles (2 pi for a vertex of no face); vectorised"""
+    P = V[F]
+    angles = np.empty(F.shape)
+    for k in range(3):
+        a, b = P[:, (k + 1) % 3] - P[:, k], P[:, (k + 2) % 3] - P[:, k]
+        angles[:, k] = np.arctan2(np.linalg.norm(np.cross(a, b), axis=1), np.einsum("ij,ij->i", a, b))
+    return 2 * np.pi - np.bincount(F.ravel(), weights=angles.ravel(), minlength=len(V))
 
 
 def components_of(V, F):
@@ -66,17 +161,41 @@ def components_of(V, F):
     return component, chi
 
 
+Problem = collections.namedtuple("Problem", "n singularities faces directions align_boundary")
+Problem.__doc__ = """a solve request, checked: n, {vertex: "p/q"}, the constrained faces (int64 (k,)) and their
+directions (float64 (k, 3)) in request order, align_boundary"""
+
+
+class Solver_state:
+    """a solver and the constrained faces it has (sorted; None: unknown after a failure); its lock is held from
+    set_constraints() to the end of the solve, so that each request gets the answer of its own constraints"""
+
+    def __init__(self, solver):
+        self.solver = solver
+        self.faces = ()
+        self.lock = threading.Lock()
+
+
 class Session:
-    def __init__(self, path, n):
+    def __init__(self, path, n, folder=None):
+        self.path = path
         self.solver = tc.Solver.from_file(path)
         self.V, self.F = self.solver.vertices, self.solver.faces
         self.n = n
+        self.folder = os.path.realpath(os.getcwd() if folder is None else folder)
         self.component, self.chi = components_of(self.V, self.F)
         self.closed = [True] * len(self.chi)
         for loop in self.solver.loops:
             if loop["kind"] == "boundary":
                 self.closed[loop["component"]] = False
+        self.has_boundary = not all(self.closed)
         self.initial, _ = self.solver.place_singularities(n=n)
+        self.plain = Solver_state(self.solver)
+        self.aligned = None  # the solver with align_boundary=True, made on first use (on a mesh with boundary)
+        self.aligned_lock = threading.Lock()
+        self.seeds = {}  # number of seeds asked -> the seed faces
+        self.seeds_lock = threading.Lock()
+        self.mesh_bytes = None
 
     def symmetry_order(self, request):
         """n of a request (a JSON object), checked"""
@@ -87,54 +206,255 @@ class Session:
             raise ValueError(f"n must be an integer from 1 to 64, got {n!r}")
         return n
 
+    def align_boundary(self, request):
+        align = request.get("align_boundary", False)
+        if not isinstance(align, bool):
+            raise ValueError(f"align_boundary must be true or false, got {shown(align)}")
+        return align
+
+    def constraints(self, items):
+        """the constrained faces (int64 (k,)) and their directions (float64 (k, 3)) of a request's list
+        [[face, [x, y, z]]], checked: 400 for a malformed list, 422 for values the solver cannot take"""
+        if not isinstance(items, list):
+            raise ValueError(f"constraints must be a list of [face, [x, y, z]], got {shown(items)}")
+        if len(items) > MAX_CONSTRAINTS:
+            raise ValueError(f"at most {MAX_CONSTRAINTS} constraints, got {len(items)}")
+        nf = len(self.F)
+        faces = np.empty(len(items), np.int64)
+        directions = np.empty((len(items), 3))
+        for i, item in enumerate(items):
+            if not (isinstance(item, list) and len(item) == 2 and type(item[0]) is int
+                    and isinstance(item[1], list) and len(item[1]) == 3
+                    and all(type(c) in (int, float) for c in item[1])):
+                raise ValueError(f"a constraint must be [face, [x, y, z]], got {shown(item)}")
+            if not 0 <= item[0] < nf:
+                raise Refusal(422, f"invalid_constraint: face {item[0]} does not exist (the mesh has {nf} faces)")
+            faces[i] = item[0]
+            try:
+                directions[i] = item[1]
+            except OverflowError:
+                directions[i] = math.inf
+        bad = np.flatnonzero(~np.isfinite(directions).all(axis=1))
+        if bad.size:
+            raise Refusal(422, f"invalid_constraint: face {faces[bad[0]]}: the direction is not three finite numbers")
+        bad = np.flatnonzero((directions == 0).all(axis=1))
+        if bad.size:
+            raise Refusal(422, f"invalid_constraint: face {faces[bad[0]]}: the direction is the zero vector")
+        ordered = np.sort(faces)
+        twice = np.flatnonzero(ordered[1:] == ordered[:-1])
+        if twice.size:
+            raise Refusal(422, f"invalid_constraint: face {ordered[twice[0]]} is constrained twice")
+        return faces, directions
+
+    def problem(self, request):
+        """the fields common to the solve-like requests, checked"""
+        n = self.symmetry_order(request)
+        singularities = {}
+        items = request.get("singularities", [])
+        if not isinstance(items, list):
+            raise ValueError(f"singularities must be a list of [vertex, index], got {shown(items)}")
+        for item in items:
+            if not (isinstance(item, list) and len(item) == 2 and isinstance(item[0], int)
+                    and isinstance(item[1], (int, str))):
+                raise ValueError(f"a singularity must be [vertex, index], got {shown(item)}")
+            singularities[item[0]] = str(item[1])
+        faces, directions = self.constraints(request.get("constraints", []))
+        return Problem(n, singularities, faces, directions, self.align_boundary(request))
+
+    def state(self, align_boundary):
+        """the solver state for a request: the aligned solver (made now if it is the first use) when asked for on a
+        mesh with boundary; otherwise the plain one (with no boundary, alignment changes nothing)"""
+        if not align_boundary or not self.has_boundary:
+            return self.plain
+        with self.aligned_lock:
+            if self.aligned is None:
+                self.aligned = Solver_state(tc.Solver.from_file(self.path, align_boundary=True))
+            return self.aligned
+
+    def solve(self, p):
+        """the Result of a Problem, and the solver that gave it"""
+        state = self.state(p.align_boundary)
+        key = tuple(np.sort(p.faces).tolist())
+        directions = None
+        if key:
+            directions = np.zeros((len(self.F), 3))
+            directions[p.faces] = p.directions
+        with state.lock:
+            if state.faces != key:
+                before, state.faces = state.faces, None
+                try:
+                    state.solver.set_constraints(constrained_faces=list(key))
+                except tc.InvalidInput as e:
+                    # a refusal leaves the solver as it was; a solver failure leaves it without constrained faces
+                    state.faces = () if e.code == "solver_failure" else before
+                    raise
+                state.faces = key
+            # the page turns the field itself: not the n directions per face (3 n numbers each)
+            result = state.solver.solve(p.singularities, n=p.n, directions=directions, all_directions=False)
+            return result, state.solver
+
     def place_frame(self, request):
         n = self.symmetry_order(request)
-        placed, _ = self.solver.place_singularities(n=n)
+        placed, _ = self.solver.place_singularities(n=n, align_boundary=self.align_boundary(request))
         return frame({"n": n, "singularities": [[int(v), str(k)] for v, k in sorted(placed.items())]}, [])
 
     def mesh_frame(self):
+        if self.mesh_bytes is not None:
+            return self.mesh_bytes
         header = {"vertices": len(self.V), "faces": len(self.F), "n": self.n, "chi": self.chi.tolist(),
                   "closed": self.closed,
                   "singularities": [[int(v), str(k)] for v, k in sorted(self.initial.items())]}
         edges = np.sort(np.concatenate([self.F[:, [0, 1]], self.F[:, [1, 2]], self.F[:, [2, 0]]]), axis=1)
         unique, count = np.unique(edges, axis=0, return_counts=True)
-        return frame(header, [("V", self.V.astype("<f4")), ("F", self.F.astype("<u4")),
-                              ("component", self.component.astype("<i4")),
-                              ("boundary", unique[count == 1].astype("<u4"))])
+        self.mesh_bytes = bytes(frame(header, [("V", self.V, "<f4"), ("F", self.F, "<u4"),
+                                               ("component", self.component, "<i4"),
+                                               ("boundary", unique[count == 1], "<u4"),
+                                               ("angle_defect", angle_defects(self.V, self.F), "<f4")]))
+        return self.mesh_bytes
 
     def solve_frame(self, request):
-        n = self.symmetry_order(request)
-        singularities = {}
-        for item in request.get("singularities", []):
-            if not (isinstance(item, list) and len(item) == 2 and isinstance(item[0], int)
-                    and isinstance(item[1], (int, str))):
-                raise ValueError(f"a singularity must be [vertex, index], got {item!r}")
-            singularities[item[0]] = str(item[1])
-        result = self.solver.solve(singularities, n=n)
-        header = {"n": n, "energy": result.energy, "max_residual": result.max_residual,
-                  "timings": result.timings}
+        p = self.problem(request)
+        result, _ = self.solve(p)
+        # the report's paths that join the request's constrained faces (to each other, or to the aligned boundary);
+        # not the many that only link boundary faces to one another
+        pinned = set(p.faces.tolist())
+        report = [c for c in result.constraints if c["from_face"] in pinned or c["to_face"] in pinned]
+        header = {"n": p.n, "energy": result.energy, "max_residual": result.max_residual,
+                  "timings": result.timings, "constraints": json_safe(report)}
         # one direction per face: the page turns it by 2 pi / n about the face's normal for the others
-        return frame(header, [("field", result.field.astype("<f4"))])
+        return frame(header, [("field", result.field, "<f4")])
+
+    def seed_count(self, request):
+        seeds = request.get("seeds", min(len(self.F), DEFAULT_SEEDS))
+        if not isinstance(seeds, int) or isinstance(seeds, bool) or not 1 <= seeds <= MAX_SEEDS:
+            raise ValueError(f"seeds must be an integer from 1 to {MAX_SEEDS}, got {shown(seeds)}")
+        return min(seeds, len(self.F))
+
+    def seed_faces(self, count):
+        """`count` faces spread over the mesh (fewer if they cannot be kept apart), the same for every request:
+        the library's spread_guided_faces() over faces taken in a fixed random order (kept in that order)"""
+        with self.seeds_lock:
+            if count not in self.seeds:
+                if len(self.seeds) >= 8:
+                    self.seeds.clear()
+                guide = np.zeros((len(self.F), 3))
+                guide[:, 0] = np.random.default_rng(22).uniform(1, 2, len(self.F))
+                self.seeds[count] = self.solver.spread_guided_faces(guide, count)
+            return self.seeds[count]
+
+    def streamlines(self, p, result, solver, count):
+        """the streamlines of a solve from up to `count` seed faces, the number of seeds used and the limit of faces
+        per ray. A ray crosses about 4 times the seeds' spacing (in faces); all the rays together cross at most
+        RAY_STEPS faces: the rays are shortened to 8 faces, then seeds are left out (the seeds come in an order whose
+        every beginning is spread over the mesh)"""
+        seeds = self.seed_faces(count)
+        rays = p.n if p.n % 2 == 0 else 2 * p.n  # per seed: both ways along n/2 lines, or along n lines
+        per_ray = min(400, max(8, round(4 * math.sqrt(len(self.F) / max(1, len(seeds))))))
+        per_ray = max(8, min(per_ray, RAY_STEPS // max(1, len(seeds) * rays)))
+        seeds = seeds[:max(1, RAY_STEPS // (rays * per_ray))]
+        lines = solver.trace_streamlines(result, p.singularities, seed_faces=seeds, maximum_faces_per_ray=per_ray)
+        return lines, len(seeds), per_ray
+
+    def streamlines_frame(self, request):
+        p = self.problem(request)
+        count = self.seed_count(request)
+        result, solver = self.solve(p)
+        start = time.perf_counter()
+        lines, seeds, per_ray = self.streamlines(p, result, solver, count)
+        offsets = np.zeros(len(lines) + 1, np.int64)
+        np.cumsum([len(line) for line in lines], out=offsets[1:])
+        points = np.concatenate(lines) if lines else np.zeros((0, 3))
+        header = {"n": p.n, "energy": result.energy, "lines": len(lines), "seeds": seeds,
+                  "maximum_faces_per_ray": per_ray,
+                  "timings": dict(result.timings, streamlines=time.perf_counter() - start)}
+        return frame(header, [("points", points, "<f4"), ("offsets", offsets, "<u4")])
+
+    def user_path(self, path, saving):
+        """the real path of a file of the folder named by a request (relative to the folder), checked"""
+        if not isinstance(path, str) or not path:
+            raise Refusal(400, f"path must be a non-empty string (relative to the folder), got {shown(path)}")
+        if "\0" in path:
+            raise Refusal(400, f"path {shown(path)} contains a NUL character")
+        if os.path.isabs(path):
+            raise Refusal(400, f"path {shown(path)} must be relative to the folder")
+        real = os.path.realpath(os.path.join(self.folder, path))
+        if os.path.commonpath([self.folder, real]) != self.folder:
+            raise Refusal(403, f"path {shown(path)} is outside the folder")
+        if saving:
+            if os.path.isdir(real):
+                raise Refusal(400, f"path {shown(path)} is a directory")
+            if not os.path.isdir(os.path.dirname(real)):
+                raise Refusal(404, f"path {shown(path)}: its directory does not exist")
+        else:
+            if not os.path.lexists(real):
+                raise Refusal(404, f"no file {shown(path)} in the folder")
+            if not os.path.isfile(real):
+                raise Refusal(400, f"path {shown(path)} is not a regular file")
+            if os.path.getsize(real) > MAX_LOAD:
+                raise Refusal(413, f"file {shown(path)} is larger than {MAX_LOAD} bytes")
+        return real
+
+    def save_frame(self, request):
+        """solves (and traces), checks everything, then writes the file completely or not at all"""
+        if not isinstance(request, dict):
+            raise ValueError("the body must be a JSON object")
+        kind = request.get("kind")
+        if kind not in SAVE_KINDS:
+            raise ValueError(f"kind must be one of {', '.join(SAVE_KINDS)}, got {shown(kind)}")
+        target = self.user_path(request.get("path"), saving=True)
+        if not target.endswith(SAVE_KINDS[kind]):
+            raise ValueError(f"a {kind} file must end in {SAVE_KINDS[kind]}, got {shown(request['path'])}")
+        p = self.problem(request)
+        count = self.seed_count(request) if kind == "streamlines" else 0
+        result, solver = self.solve(p)
+        if kind == "singularities":
+            tc.write_singularities(target, p.singularities)
+        elif kind == "constraints":
+            tc.write_face_directions(target, p.faces, p.directions)
+        elif kind == "streamlines":
+            tc.write_streamlines(target, self.streamlines(p, result, solver, count)[0])
+        else:
+            solver.write_field(target, result, p.singularities)
+        return frame({"saved": os.path.relpath(target, self.folder), "bytes": os.path.getsize(target)}, [])
+
+    def load_frame(self, request):
+        if not isinstance(request, dict):
+            raise ValueError("the body must be a JSON object")
+        kind = request.get("kind")
+        if kind not in ("singularities", "constraints"):
+            raise ValueError(f"kind must be singularities or constraints, got {shown(kind)}")
+        real = self.user_path(request.get("path"), saving=False)
+        if kind == "singularities":
+            s = tc.read_singularities(real, len(self.V))
+            return frame({"singularities": [[int(v), str(k)] for v, k in s.items()]}, [])
+        faces, directions = tc.read_face_directions(real, len(self.F))
+        if len(faces) > MAX_CONSTRAINTS:
+            raise Refusal(422, f"invalid_constraint: {len(faces)} constraints in {shown(request['path'])}, at most "
+                               f"{MAX_CONSTRAINTS}")
+        return frame({"constraints": [[f, d] for f, d in zip(faces.tolist(), directions.tolist())]}, [])
 
 
 class Handler(http.server.BaseHTTPRequestHandler):
     session = None
     bundle = None
     protocol_version = "HTTP/1.1"
+    disable_nagle_algorithm = True  # no 40 ms wait for the client's delayed ACK between packets of a reply
 
     def log_message(self, *args):
         pass
 
     def reply(self, code, body, kind):
-        self.send_response(code)
-        self.send_header("Content-Type", kind)
-        self.send_header("Content-Length", str(len(body)))
-        self.send_header("Cache-Control", "no-store")
-        self.end_headers()
-        self.wfile.write(body)
+        """the status line, the headers and the body in one write"""
+        head = (f"{self.protocol_version} {code} {self.responses.get(code, ('',))[0]}\r\n"
+                f"Content-Type: {kind}\r\nContent-Length: {len(body)}\r\nCache-Control: no-store\r\n"
+                + ("Connection: close\r\n" if self.close_connection else "") + "\r\n")
+        self.wfile.write(head.encode("latin-1") + body)
 
     def refuse(self, code, reason):
-        """a 4xx with a one-line reason"""
+        """a 4xx (or 500) with a one-line reason; the folder's own path is left out of it"""
+        folder = self.session.folder if self.session is not None else None
+        if folder and folder != os.sep:
+            reason = reason.replace(folder + os.sep, "")
         self.reply(code, (" ".join(reason.split()) + "\n").encode(), "text/plain; charset=utf-8")
 
     def do_GET(self):
@@ -162,16 +482,23 @@ class Handler(http.server.BaseHTTPRequestHandler):
             request = json.loads(self.rfile.read(length) or b"{}")
         except (json.JSONDecodeError, UnicodeDecodeError) as e:
             return self.refuse(400, f"malformed JSON: {e}")
+        routes = {"/api/solve": self.session.solve_frame, "/api/place": self.session.place_frame,
+                  "/api/streamlines": self.session.streamlines_frame, "/api/save": self.session.save_frame,
+                  "/api/load": self.session.load_frame}
+        if self.path not in routes:
+            return self.refuse(404, f"not found: {self.path}")
         try:
-            if self.path == "/api/solve":
-                return self.reply(200, self.session.solve_frame(request), "application/octet-stream")
-            if self.path == "/api/place":
-                return self.reply(200, self.session.place_frame(request), "application/octet-stream")
+            body = routes[self.path](request)
+        except Refusal as e:
+            return self.refuse(e.status, str(e))
         except tc.InvalidInput as e:
-            return self.refuse(422, f"{e.code}: {e}".replace("\n", " "))
-        except (TypeError, ValueError, KeyError) as e:
-            return self.refuse(400, f"bad request: {e}".replace("\n", " "))
-        return self.refuse(404, f"not found: {self.path}")
+            return self.refuse(422, f"{e.code}: {e}")
+        except (TypeError, ValueError, KeyError, OverflowError) as e:
+            return self.refuse(400, f"bad request: {e}")
+        except Exception as e:  # noqa: BLE001 (a reply rather than a dropped connection; the trace on stderr)
+            traceback.print_exc()
+            return self.refuse(500, f"internal error: {type(e).__name__}: {e}")
+        return self.reply(200, body, "application/octet-stream")
 
 
 def main():
@@ -180,11 +507,15 @@ def main():
     ap.add_argument("--n", type=int, default=4)
     ap.add_argument("--port", type=int, default=8000)
     ap.add_argument("--bundle", default=os.path.join(HERE, "..", "build", "editor"))
+    ap.add_argument("--folder", default=os.getcwd(),
+                    help="the only folder whose files the page may save and load (default: the current directory)")
     a = ap.parse_args()
-    Handler.session = Session(a.mesh, a.n)
+    if not os.path.isdir(a.folder):
+        ap.error(f"--folder {a.folder}: not a directory")
+    Handler.session = Session(a.mesh, a.n, a.folder)
     Handler.bundle = a.bundle
     server = http.server.ThreadingHTTPServer(("127.0.0.1", a.port), Handler)
-    print(f"http://127.0.0.1:{server.server_address[1]}/", flush=True)
+    print(f"http://127.0.0.1:{server.server_address[1]}/ (files in {Handler.session.folder})", flush=True)
     try:
         server.serve_forever()
     except KeyboardInterrupt:

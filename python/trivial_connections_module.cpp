@@ -17,6 +17,8 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <CGAL/Trivial_connections/IO/atomic_file.h>
+#include <CGAL/Trivial_connections/IO/face_directions.h>
+#include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
 #include <CGAL/Trivial_connections/IO/viewer_files.h>
@@ -30,10 +32,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <future>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -281,6 +285,57 @@ std::vector<std::pair<std::size_t, TC::Singularity_index>> singularities_of(cons
   return out;
 }
 
+// A face number of a file of face directions: an integer (not a bool), not negative
+std::size_t face_number(const py::handle& f)
+{
+  if(py::isinstance<py::bool_>(f) || !PyIndex_Check(f.ptr()))
+    throw py::type_error("a face must be an integer, got " + std::string(py::repr(f)));
+  const std::int64_t i = int64_of(f, TC::Error_code::invalid_constraint, "face");
+  if(i < 0)
+    throw TC::Invalid_input(TC::Error_code::invalid_constraint, "face " + std::to_string(i) + " does not exist (negative)");
+  return std::size_t(i);
+}
+
+// Three numbers (a sequence or a (3,) array) as a direction
+std::array<double, 3> direction_of(const py::handle& h)
+{
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(h);
+  if(!a || a.ndim() != 1 || a.shape(0) != 3)
+    throw py::value_error("a direction must be three numbers, got " + std::string(py::repr(h)));
+  return {{a.data()[0], a.data()[1], a.data()[2]}};
+}
+
+// {face: (3,) vector}, or faces (a sequence of k integers) and directions (a (k, 3) array), in their order
+std::vector<TC::Face_direction> face_directions_of(const py::object& faces, const py::object& directions)
+{
+  std::vector<TC::Face_direction> out;
+  if(py::isinstance<py::dict>(faces)) {
+    if(!directions.is_none())
+      throw py::type_error("give the faces and their directions as one dict {face: vector}, or as faces and "
+                           "directions, not both");
+    for(const auto& item : py::reinterpret_borrow<py::dict>(faces))
+      out.push_back({face_number(item.first), direction_of(item.second)});
+    return out;
+  }
+  if(directions.is_none())
+    throw py::type_error("directions missing: give faces and directions, or one dict {face: vector}");
+  if(py::isinstance<py::str>(faces) || py::isinstance<py::bytes>(faces))
+    throw py::type_error("faces must be a sequence of integers, got " + std::string(py::repr(faces)));
+  for(const py::handle f : py::iter(faces))
+    out.push_back({face_number(f), {{0, 0, 0}}});
+  const py::array a = as_array(directions, "directions");
+  if(out.empty() && a.size() == 0) // no face: [] or a (0, 3) array
+    return out;
+  check_rows_of_three(a, "directions", "fiu", "real numbers");
+  if(std::size_t(a.shape(0)) != out.size())
+    throw py::value_error("directions must have one row per face (" + std::to_string(out.size()) + "), got " +
+                          std::to_string(a.shape(0)));
+  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  for(std::size_t i = 0; i < out.size(); ++i)
+    out[i].direction = {{d.data()[3 * i], d.data()[3 * i + 1], d.data()[3 * i + 2]}};
+  return out;
+}
+
 // ---- numpy out: arrays that own the vectors they show ---------------------------------------------------
 
 template <class T>
@@ -311,9 +366,10 @@ class Solver_interface
 {
 public:
   virtual ~Solver_interface() = default;
+  // all_directions: also the n directions per face (Solve_output::directions), for n > 1
   virtual Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities,
                              int n, const std::vector<Kernel::Vector_3>* directions,
-                             const Loop_periods* loop_periods) = 0;
+                             const Loop_periods* loop_periods, bool all_directions) = 0;
   virtual std::size_t number_of_loops() const = 0;
   virtual std::vector<double> weights() const = 0; // w_e per interior edge, in edges() order
   // per loop of the solver: a boundary loop?, its component, the halfedges it crosses
@@ -471,7 +527,8 @@ public:
   }
 
   Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities, int n,
-                     const std::vector<Kernel::Vector_3>* directions, const Loop_periods* loop_periods) override
+                     const std::vector<Kernel::Vector_3>* directions, const Loop_periods* loop_periods,
+                     bool all_directions) override
   {
     const auto s = vertex_descriptors(m_mesh, singularities);
     Solve_output out;
@@ -495,8 +552,15 @@ public:
     out.field_seconds = seconds_since(start);
     start = Clock::now();
 
-    if(n > 1) { // the n directions: the field turned by 2 pi j / n about the face's normal
-      out.directions.reserve(3 * std::size_t(n) * m_mesh.number_of_faces());
+    if(n > 1 && all_directions) { // the n directions: the field turned by 2 pi j / n about the face's normal
+      std::vector<double> cosine(static_cast<std::size_t>(n)), sine(static_cast<std::size_t>(n));
+      for(int j = 0; j < n; ++j) { // once, not per face (the trigonometry was most of this loop's time)
+        const double t = 2 * CGAL_PI * j / n;
+        cosine[std::size_t(j)] = std::cos(t);
+        sine[std::size_t(j)] = std::sin(t);
+      }
+      out.directions.resize(3 * std::size_t(n) * m_mesh.number_of_faces());
+      double* d = out.directions.data();
       for(auto f : m_mesh.faces()) {
         const auto h = m_mesh.halfedge(f);
         const auto& a = m_mesh.point(m_mesh.source(h));
@@ -506,12 +570,10 @@ public:
         normal = normal / std::sqrt(CGAL::to_double(normal.squared_length()));
         const Kernel::Vector_3 u = get(face_field, f);
         const Kernel::Vector_3 w = CGAL::cross_product(normal, u);
-        for(int j = 0; j < n; ++j) {
-          const double t = 2 * CGAL_PI * j / n;
-          const Kernel::Vector_3 d = std::cos(t) * u + std::sin(t) * w;
-          out.directions.push_back(CGAL::to_double(d.x()));
-          out.directions.push_back(CGAL::to_double(d.y()));
-          out.directions.push_back(CGAL::to_double(d.z()));
+        for(std::size_t j = 0; j < std::size_t(n); ++j, d += 3) { // cos(t) u + sin(t) w, as before, in place
+          d[0] = cosine[j] * CGAL::to_double(u.x()) + sine[j] * CGAL::to_double(w.x());
+          d[1] = cosine[j] * CGAL::to_double(u.y()) + sine[j] * CGAL::to_double(w.y());
+          d[2] = cosine[j] * CGAL::to_double(u.z()) + sine[j] * CGAL::to_double(w.z());
         }
       }
     }
@@ -708,11 +770,13 @@ public:
     m_mesh = std::move(mesh.mesh);
   }
 
-  Result solve(const py::object& singularities, int n, const py::object& directions, const py::object& loop_periods)
+  Result solve(const py::object& singularities, int n, const py::object& directions, const py::object& loop_periods,
+               bool all_directions)
   {
     const auto s = singularities_of(singularities);
     const Optional_inputs in = optional_inputs(directions, loop_periods);
-    Solve_output out = reading([&] { return m_solver->solve(s, n, in.directions_or_null(), in.periods_or_null()); });
+    Solve_output out = reading(
+      [&] { return m_solver->solve(s, n, in.directions_or_null(), in.periods_or_null(), all_directions); });
     return result_of(std::move(out), n);
   }
 
@@ -860,8 +924,8 @@ public:
     return out;
   }
 
-  // the mesh with the field of `result` and the singularities, as a VTK (.vtk) or PLY (.ply) file, written
-  // completely or not at all
+  // the field of `result` as a field file (.txt), or the mesh with it and the singularities as a VTK (.vtk) or PLY
+  // (.ply) file, written completely or not at all
   void write_field(const std::string& path, const Result& result, const py::object& singularities) const
   {
     const Singularities s = singularities_of(singularities);
@@ -869,13 +933,16 @@ public:
     const std::vector<Kernel::Vector_3> field = field_of(result);
     const int n = result.n.cast<int>();
     const std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : std::string();
-    if(extension != ".vtk" && extension != ".ply")
-      throw py::value_error("write_field: the file name must end in .vtk or .ply, got \"" + path + "\"");
+    if(extension != ".txt" && extension != ".vtk" && extension != ".ply")
+      throw py::value_error("write_field: the file name must end in .txt (field file), .vtk or .ply, got \"" +
+                            path + "\"");
     py::gil_scoped_release unlocked;
     auto field_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
       [&field](face_descriptor f) { return field[std::size_t(f)]; });
     TC::write_file_atomically(path, [&](std::ostream& os) {
-      if(extension == ".vtk")
+      if(extension == ".txt")
+        TC::write_field(os, *m_mesh, field_map);
+      else if(extension == ".vtk")
         TC::write_field_vtk(os, *m_mesh, field_map, singular, TC::parameters::symmetry_order(n));
       else
         TC::write_field_ply(os, *m_mesh, field_map, singular, TC::parameters::symmetry_order(n));
@@ -1067,7 +1134,9 @@ private:
     r.connection = owning_array(std::move(out.connection), {ne});
     r.edges = edges();
     r.field = owning_array(std::move(out.field), {nf, 3});
-    r.directions = n > 1 ? py::object(owning_array(std::move(out.directions), {nf, py::ssize_t(n), 3})) : py::none();
+    r.directions = n > 1 && !out.directions.empty()
+                     ? py::object(owning_array(std::move(out.directions), {nf, py::ssize_t(n), 3}))
+                     : py::none();
     r.n = py::int_(n);
     r.energy = py::float_(report.energy);
     r.guidance_energy = py::float_(report.guidance_energy);
@@ -1229,6 +1298,46 @@ constructor on it, with default options. Returns the seconds of each: {"soup_to_
     "not at all.");
 
   m.def(
+    "read_face_directions",
+    [](const std::string& path, const py::object& number_of_faces) {
+      const std::size_t count =
+        number_of_faces.is_none() ? TC::unchecked_vertex_count : number_of_faces.cast<std::size_t>();
+      std::vector<std::int64_t> faces;
+      std::vector<double> xyz;
+      {
+        py::gil_scoped_release unlocked;
+        const std::vector<TC::Face_direction> d = TC::read_face_directions(path, count);
+        faces.reserve(d.size());
+        xyz.reserve(3 * d.size());
+        for(const TC::Face_direction& e : d) {
+          if(e.face > std::size_t((std::numeric_limits<std::int64_t>::max)()))
+            throw TC::Invalid_input(TC::Error_code::invalid_constraint,
+                                    path + ": face " + std::to_string(e.face) + " is too large", e.face);
+          faces.push_back(std::int64_t(e.face));
+          xyz.insert(xyz.end(), e.direction.begin(), e.direction.end());
+        }
+      }
+      const py::ssize_t k = py::ssize_t(faces.size());
+      return py::make_tuple(owning_array(std::move(faces), {k}), owning_array(std::move(xyz), {k, 3}));
+    },
+    py::arg("path"), py::arg("number_of_faces") = py::none(),
+    "Reads a face direction file (constraints or guides: lines \"f x y z\"; # comments): (faces, directions), a "
+    "(k,) int64 and a (k, 3) float64 array in file order. Raises InvalidInput (parse_error, invalid_constraint: a "
+    "face out of range, listed twice or with a zero vector; io_error) with the file and line.");
+  m.def(
+    "write_face_directions",
+    [](const std::string& path, const py::object& faces, const py::object& directions) {
+      const std::vector<TC::Face_direction> d = face_directions_of(faces, directions);
+      py::gil_scoped_release unlocked;
+      TC::write_file_atomically(path, [&](std::ostream& os) { TC::write_face_directions(os, d); });
+    },
+    py::arg("path"), py::arg("faces"), py::arg("directions") = py::none(),
+    "Writes faces and their directions (faces: k integers and directions: a (k, 3) array, or one dict {face: "
+    "vector}) in the format read_face_directions() reads, in their order, numbers that read back exactly; "
+    "completely or not at all. Raises InvalidInput (invalid_constraint) for a negative face, a face listed twice, a "
+    "zero or non-finite direction, and io_error.");
+
+  m.def(
     "write_streamlines",
     [](const std::string& path, const py::list& lines) {
       std::vector<TC::Streamline<Mesh>> s;
@@ -1253,7 +1362,8 @@ constructor on it, with default options. Returns the seconds of each: {"soup_to_
                   "(e,) float64: x of each interior edge, for the halfedge from edges[i, 0] to edges[i, 1]")
     .def_readonly("edges", &Result::edges, "(e, 2) int64: the interior edges (i < j), in the mesh's edge order")
     .def_readonly("field", &Result::field, "(m, 3) float64: a unit tangent vector per face (one of the n directions)")
-    .def_readonly("directions", &Result::directions, "(m, n, 3) float64 for n > 1: the n directions per face; else None")
+    .def_readonly("directions", &Result::directions, "(m, n, 3) float64 for n > 1: the n directions per face; else None (and with "
+                  "solve(all_directions=False))")
     .def_readonly("n", &Result::n, "n of the n-direction field")
     .def_readonly("energy", &Result::energy, "sum over interior edges of w_e x_e^2")
     .def_readonly("guidance_energy", &Result::guidance_energy, "mu sum_g d_g^2 over the guided faces")
@@ -1321,7 +1431,7 @@ Raises InvalidInput for a mesh the package refuses (code and where say why).)")
       "A solver for the mesh of an OFF, OBJ, PLY, STL or GOCAD file (the package's validating reader; "
       "triangulate=True splits polygons). Options as Solver().")
     .def("solve", &Python_solver::solve, py::arg("singularities"), py::arg("n") = 1, py::arg("directions") = py::none(),
-         py::arg("loop_periods") = py::none(),
+         py::arg("loop_periods") = py::none(), py::kw_only(), py::arg("all_directions") = true,
          R"(The trivial connection with exactly these singularities, and its field.
 
 singularities: {vertex: index} or a sequence of (vertex, index) pairs (e.g. a (k, 2) integer array); an index
@@ -1329,6 +1439,8 @@ is an int, a fractions.Fraction or a string "p/q", a multiple of 1/n. On every c
 must sum to its Euler characteristic (Poincare-Hopf). n: 1 vectors, 2 lines, 4 crosses, ...
 directions: for constrained or guided faces, an (m, 3) array (one row per face; the other rows are not read)
 or {face: (3,) vector}. loop_periods: one int (or None: chosen by the solver) per loop.
+all_directions: False leaves Result.directions None (Result.field alone), which saves 3 n numbers per face and
+their time (most of a solve's for large n).
 Returns a Result. Releases the GIL: solves from several threads run concurrently.)")
     .def("set_constraints", &Python_solver::set_constraints, py::arg("constrained_faces") = py::none(),
          py::arg("guided_faces") = py::none(),
@@ -1360,8 +1472,10 @@ give way. align_boundary, loop_periods: as for the solver and solve().)")
          "(k, 3) polylines on the surface; a ray stops at the boundary, at a face with a singular vertex, when it "
          "closes, or after maximum_faces_per_ray faces (0: n times the number of faces).")
     .def("write_field", &Python_solver::write_field, py::arg("path"), py::arg("result"), py::arg("singularities"),
-         "Writes the mesh, result's field (its n directions) and the singularities as a legacy VTK (.vtk) or PLY "
-         "(.ply) file for ParaView, MeshLab or Blender; completely or not at all.")
+         "Writes result's field, by the file name's ending: .txt the program's field file (one line \"x y z\" per "
+         "face, in face order, numbers that read back exactly; the singularities are checked but not written); .vtk "
+         "or .ply the mesh, the field (its n directions) and the singularities as a legacy VTK or PLY file for "
+         "ParaView, MeshLab or Blender. Completely or not at all.")
     .def_property_readonly("loops", &Python_solver::loops,
                            "The loops whose integers loop_periods gives, in that order: dicts with kind (\"boundary\" "
                            "or \"generator\": the 2g homology generators of each component), component and "

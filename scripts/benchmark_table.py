@@ -4,6 +4,7 @@
     python3 scripts/benchmark_table.py --out benchmark/RESULTS.md RESULT.json [RESULT.json ...]
     python3 scripts/benchmark_table.py --section placement --out benchmark/RESULTS.md placement-*.json
     python3 scripts/benchmark_table.py --section python --out benchmark/RESULTS.md python-binding.json
+    python3 scripts/benchmark_table.py --section editor --out benchmark/RESULTS.md editor-latency.json
 
 Standard library only. A benchmark is named BACKEND/MESH (BACKEND/program/MESH: the main program as a whole
 process); with repetitions, every counter is the median of
@@ -13,7 +14,9 @@ of faces (least squares of log t over the meshes), and a header with the machine
 BACKEND/placement/MESH (trivial_connections_placement_benchmark) makes the section "Automatic placement";
 with --section placement, only that section of --out is written (replaced in place, or inserted before the
 scaling slopes), the rest of the file kept as it is. A JSON file of benchmark/python/binding_overhead.py (key
-"python_binding") makes the section "The Python binding" (--section python: that section only).
+"python_binding") makes the section "The Python binding" (--section python: that section only); one with the key
+"editor_latency" (benchmark/editor/latency.mjs, gathered by run_benchmarks.sh --editor) the section "The field
+editor" (--section editor).
 """
 
 import argparse
@@ -355,9 +358,10 @@ def python_table(bindings, lines, command):
     lines.append("")
 
 
-def load_python_bindings(paths):
-    """the contents of the JSON files of benchmark/python/binding_overhead.py among `paths`, and the other paths"""
-    bindings, others = [], []
+def load_side_results(paths):
+    """the contents of the JSON files of benchmark/python/binding_overhead.py and of the editor's latency among
+    `paths`, and the other paths"""
+    bindings, editors, others = [], [], []
     for path in paths:
         try:
             with open(path) as f:
@@ -367,9 +371,50 @@ def load_python_bindings(paths):
             continue
         if isinstance(data, dict) and "python_binding" in data:
             bindings.append(data)
+        elif isinstance(data, dict) and "editor_latency" in data:
+            editors.append(data)
         else:
             others.append(path)
-    return bindings, others
+    return bindings, editors, others
+
+
+EDITOR_TITLE = "### The field editor"
+
+
+def editor_table(editors, lines, command):
+    """the section "The field editor" from the newest JSON file of the editor's latency runs"""
+    if not editors:
+        return
+    data = max(editors, key=lambda d: d.get("date", ""))
+    runs = data["editor_latency"]
+    lines.append(EDITOR_TITLE)
+    lines.append("")
+    gl = sorted({r.get("gl", "?") for r in runs})
+    browser = sorted({r.get("browser", "?") for r in runs})
+    lines.append(f"Measured {data.get('date', '')[:10]}" + (f", commit {data['commit']}" if data.get("commit") else "")
+                 + f", by `{command}` (`benchmark/editor/latency.mjs`): the editor in headless Chromium "
+                 f"{', '.join(browser)}, GL {', '.join(gl)}, 1200 x 900 pixels, n = 4. Each run drags one singularity "
+                 "to another vertex 100 times with the mouse; an edit is timed from the pointer's release to the frame "
+                 "read back from the GL: the server's solve on the prefactored solver, the transfer (binary float32), "
+                 "the field's upload (one angle per face) and the draw. **server**: request to response, of which "
+                 "**C++** is the library's solve and field; **draw**: after the response, until the pixel is read "
+                 "back. Zoom 1 shows the whole mesh (faces a few pixels wide, no glyph: the kept view is copied back); "
+                 "zoom 6 brings the camera six times closer (every face in view has its glyph, drawn by the fragment "
+                 "shader). Target (issue 22): median ≤ 50 ms, 95th percentile ≤ 100 ms at 100k faces; the page opens "
+                 "in under 3 s after the server has factored. This machine has no GPU: SwiftShader draws on the same "
+                 "two cores as the server.")
+    lines.append("")
+    lines.append("| mesh | faces | zoom | faces with glyphs | median | 95th percentile | server (median) "
+                 "| C++ solve + field | draw (median) | page opens | edits |")
+    lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    ms = lambda x: f"{x:.0f} ms" if x >= 10 else f"{x:.1f} ms"
+    for r in runs:
+        st = r["stats"]
+        lines.append(f"| {os.path.basename(r['mesh'])} | {fmt_faces(r['faces'])} | {r['zoom']:g} | "
+                     f"{fmt_faces(r['glyphFaces'])} | {ms(st['total']['median'])} | {ms(st['total']['p95'])} "
+                     f"| {ms(st['server']['median'])} | {ms(st['solve']['median'])} | {ms(st['draw']['median'])} "
+                     f"| {r['opened']:.2f} s | {r['edits']} |")
+    lines.append("")
 
 
 def replace_section(path, title, section):
@@ -619,11 +664,21 @@ def main():
     ap.add_argument("json", nargs="+", help="Google Benchmark JSON outputs")
     ap.add_argument("--out", default="benchmark/RESULTS.md")
     ap.add_argument("--command", default="bash scripts/run_benchmarks.sh", help="how the numbers were made")
-    ap.add_argument("--section", choices=["placement", "floor", "python"],
+    ap.add_argument("--section", choices=["placement", "floor", "python", "editor"],
                     help="write only this section of --out (replaced in place, the rest of the file kept)")
     args = ap.parse_args()
 
-    bindings, benchmark_files = load_python_bindings([p for p in args.json if os.path.exists(p)])
+    bindings, editors, benchmark_files = load_side_results([p for p in args.json if os.path.exists(p)])
+    if args.section == "editor":
+        section = []
+        editor_table(editors, section, args.command + " --editor")
+        if not section:
+            sys.exit("benchmark_table: no editor latency results in " + " ".join(args.json))
+        if not os.path.exists(args.out):
+            sys.exit(f"benchmark_table: {args.out} missing (run the suite first)")
+        replace_section(args.out, EDITOR_TITLE, section)
+        print(f"benchmark_table: wrote the section {EDITOR_TITLE[4:]!r} of {args.out}")
+        return
     if args.section == "python":
         section = []
         python_table(bindings, section, args.command + " --python")
@@ -708,6 +763,7 @@ def main():
     controls_table(results, lines)
     placement_table(results, lines, args.command + " --placement")
     python_table(bindings, lines, args.command + " --python")
+    editor_table(editors, lines, args.command + " --editor")
     lines.append("### Scaling: log–log slopes")
     lines.append("")
     lines.append("Least-squares slope of log(time) (or log(peak memory)) against log(faces), over all meshes of "

@@ -7,6 +7,7 @@
 #   bash scripts/run_benchmarks.sh --placement [--sizes ...] [--backends ...] [--repetitions N] [--no-build]
 #                                  [--table-only] [--out FILE]
 #   bash scripts/run_benchmarks.sh --python [--repetitions N] [--no-build] [--out FILE]
+#   bash scripts/run_benchmarks.sh --editor [--repetitions EDITS] [--no-build] [--out FILE]
 #
 #   --sizes        small (default, a few minutes): CGAL meshes 5k-90k faces and a 300k subdivision;
 #                  large: ~1.2M faces (genus 0, 11, 133); huge: ~5M faces; all; or a comma list.
@@ -32,6 +33,12 @@
 #                  (5k-89k faces; 9 repetitions unless --repetitions, about 1 min) into
 #                  build-bench/benchmark-results/python-binding.json, and its table as the section "The Python
 #                  binding" of FILE (replaced in place). The suite also writes that section, from the same file.
+#   --editor       instead of the suite: the field editor's latency in headless Chromium (same build as --python,
+#                  with the editor), benchmark/editor/latency.mjs on refined_elephant (89k faces) and on
+#                  fandisk_large with every face split in four (127k faces, benchmark/editor/split_faces.py,
+#                  cached), each with the whole mesh in view and six times closer; 100 edits each unless
+#                  --repetitions, about 4 min. Into build-bench/benchmark-results/editor-latency.json and the section
+#                  "The field editor" of FILE (replaced in place). The suite also writes that section.
 #
 # JSON results go to build-bench/benchmark-results/BACKEND-SIZE.json and accumulate across runs: the table is
 # made from all of them (the newest result of each mesh wins), so the large meshes can be run separately.
@@ -51,6 +58,7 @@ INTEGERS=0
 PLACEMENT=0
 FLOOR=0
 PYTHON_BINDING=0
+EDITOR=0
 REPETITIONS_GIVEN=0
 
 while [ $# -gt 0 ]; do
@@ -65,7 +73,8 @@ while [ $# -gt 0 ]; do
     --placement) PLACEMENT=1; shift ;;
     --floor) FLOOR=1; shift ;;
     --python) PYTHON_BINDING=1; shift ;;
-    -h|--help) sed -n '2,39p' "$0"; exit 0 ;;
+    --editor) EDITOR=1; shift ;;
+    -h|--help) sed -n '2,46p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -119,6 +128,49 @@ command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
 
 HAVE_CHOLMOD=0
 if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then HAVE_CHOLMOD=1; fi
+
+if [ "$EDITOR" = 1 ]; then
+  dir="$ROOT/build-bench"
+  extra=()
+  if [ "$HAVE_CHOLMOD" = 1 ]; then
+    dir="$ROOT/build-bench-cholmod"
+    extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
+  fi
+  if [ "$BUILD" = 1 ]; then
+    cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON \
+          -DTRIVIAL_CONNECTIONS_WITH_PYTHON=ON -DTRIVIAL_CONNECTIONS_WITH_EDITOR=ON "${extra[@]}" >/dev/null
+    cmake --build "$dir" -j "$JOBS" --target trivial_connections_python trivial_connections_editor
+  fi
+  [ -x "$dir/trivial_connections-serve" ] || { echo "run_benchmarks.sh: no editor in $dir (node, npm and npm's registry are needed)" >&2; exit 1; }
+  [ -f "$OUT" ] || { echo "run_benchmarks.sh: $OUT missing (run the suite first)" >&2; exit 1; }
+  data="$ROOT/.cgal-data/data/meshes"
+  [ -f "$data/refined_elephant.off" ] || { echo "run_benchmarks.sh: CGAL's meshes are missing: run bash scripts/fetch_cgal_data.sh" >&2; exit 1; }
+  cache="${TC_BENCH_MESH_CACHE:-$ROOT/build-bench/benchmark-meshes}"
+  mkdir -p "$cache" "$RESULTS_DIR/editor"
+  [ -f "$cache/fandisk_large_split.off" ] || /usr/bin/python3 "$ROOT/benchmark/editor/split_faces.py" "$data/fandisk_large.off" "$cache/fandisk_large_split.off"
+  edits=100
+  [ "$REPETITIONS_GIVEN" = 1 ] && edits="$REPETITIONS"
+  runs=()
+  for mesh in "$data/refined_elephant.off" "$cache/fandisk_large_split.off"; do
+    for zoom in 1 6; do
+      json="$RESULTS_DIR/editor/$(basename "$mesh" .off)-zoom$zoom.json"
+      NODE_PATH="$dir/editor-npm/node_modules" node "$ROOT/benchmark/editor/latency.mjs" "$dir/trivial_connections-serve" \
+        "$mesh" "$edits" --zoom "$zoom" --json "$json"
+      runs+=("$json")
+    done
+  done
+  COMMIT="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  if ! git -C "$ROOT" diff --quiet HEAD -- include python editor 2>/dev/null; then COMMIT="$COMMIT+modified"; fi
+  /usr/bin/python3 - "$COMMIT" "$RESULTS_DIR/editor-latency.json" "${runs[@]}" <<'PY'
+import datetime, json, sys
+commit, out, runs = sys.argv[1], sys.argv[2], sys.argv[3:]
+with open(out, "w") as f:
+    json.dump({"editor_latency": [json.load(open(r)) for r in runs], "commit": commit,
+               "date": datetime.datetime.now().isoformat(timespec="seconds")}, f, indent=1)
+PY
+  /usr/bin/python3 "$ROOT/scripts/benchmark_table.py" --section editor --out "$OUT" "$RESULTS_DIR/editor-latency.json"
+  exit 0
+fi
 
 if [ "$PYTHON_BINDING" = 1 ]; then
   dir="$ROOT/build-bench"

@@ -11,6 +11,7 @@
 // render: the draw calls, then finish: until the pixel is read back). --zoom Z brings the camera Z times closer
 // first (faces a few pixels wide get no glyph: the whole mesh in view is the cheapest case to draw, a close view
 // the dearest). The GPU is Chromium's SwiftShader (software) unless TC_CHROMIUM_GL says otherwise.
+import { writeFileSync } from "node:fs";
 import { launchBrowser, startServer } from "../../test/editor/harness.mjs";
 
 const args = process.argv.slice(2);
@@ -18,6 +19,8 @@ const nIndex = args.indexOf("--n");
 const n = nIndex >= 0 ? args.splice(nIndex, 2)[1] : "4";
 const zoomIndex = args.indexOf("--zoom");
 const zoom = zoomIndex >= 0 ? Number(args.splice(zoomIndex, 2)[1]) : 1;
+const jsonIndex = args.indexOf("--json");
+const jsonPath = jsonIndex >= 0 ? args.splice(jsonIndex, 2)[1] : null;
 const [serve, mesh, editsArg] = args;
 const edits = Number(editsArg || 100);
 
@@ -86,8 +89,19 @@ try {
   const col = k => l.map(x => x[k]);
   console.log(`${mesh}: ${faces} faces, n = ${n}, zoom ${zoom} (${glyphFaces} faces wide enough for a glyph); server ` +
               `factored in ${factored.toFixed(2)} s, page opened in ${opened.toFixed(2)} s after that; ${l.length} edits`);
-  for (const k of ["total", "server", "solve", "draw", "upload", "render", "calls", "finish"])
-    console.log(`  ${k.padEnd(6)} median ${quantile(col(k), 0.5).toFixed(1)} ms, 95th percentile ${quantile(col(k), 0.95).toFixed(1)} ms`);
+  const stats = {};
+  for (const k of ["total", "server", "solve", "draw", "upload", "render", "calls", "finish"]) {
+    stats[k] = { median: quantile(col(k), 0.5), p95: quantile(col(k), 0.95) };
+    console.log(`  ${k.padEnd(6)} median ${stats[k].median.toFixed(1)} ms, 95th percentile ${stats[k].p95.toFixed(1)} ms`);
+  }
+  const gl = await page.evaluate(() => {
+    const g = window.__editor.internals.renderer.getContext(), i = g.getExtension("WEBGL_debug_renderer_info");
+    return i ? g.getParameter(i.UNMASKED_RENDERER_WEBGL) : g.getParameter(g.RENDERER);
+  });
+  if (jsonPath)
+    writeFileSync(jsonPath, JSON.stringify({ mesh, faces, n: Number(n), zoom, glyphFaces, factored, opened,
+                                             edits: l.length, gl, browser: browser.version(), stats,
+                                             date: new Date().toISOString() }, null, 1));
 } finally {
   await browser.close();
   server.kill();

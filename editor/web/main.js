@@ -47,6 +47,7 @@ let bvh = null, angleDefect = null, display = "glyphs";
 const status = $("status");
 
 function draw() {
+  if (fieldView.stale) drawMarkers(); // the camera moved: other vertices are in sight
   fieldView.render(camera, BACKGROUND);
   renderer.autoClear = false;
   renderer.render(scene, camera);
@@ -73,6 +74,11 @@ function say(text, error = false) {
 }
 
 function buildScene() {
+  // picking: a bounding volume hierarchy over the triangles in input order ("indirect": faces keep their numbers)
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(V, 3));
+  geometry.setIndex(new THREE.BufferAttribute(F, 1));
+  bvh = new MeshBVH(geometry, { indirect: true });
   fieldView = new FieldView(renderer, V, F);
   const { center, radius } = fieldView.boundingSphere;
   controls.target.copy(center);
@@ -81,16 +87,15 @@ function buildScene() {
   camera.far = radius * 20;
   camera.updateProjectionMatrix();
   controls.update();
-  // picking: a bounding volume hierarchy over the triangles in input order ("indirect": faces keep their numbers)
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.BufferAttribute(V, 3));
-  geometry.setIndex(new THREE.BufferAttribute(F, 1));
-  bvh = new MeshBVH(geometry, { indirect: true });
 }
 
+// the singularities whose vertex the camera sees (a marker is a square of 12 pixels: one behind the surface would
+// show beside the silhouette), red for positive indices, blue for negative ones
 function drawMarkers() {
   const positions = [], colors = [];
+  camera.updateMatrixWorld();
   for (const [v, [p]] of state.singularities) {
+    if (!seen(v)) continue;
     positions.push(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
     colors.push(...(p > 0 ? [0.85, 0.1, 0.1] : [0.1, 0.45, 0.9]));
   }
@@ -267,7 +272,7 @@ function travel(from, to) {
 async function placeFor(n) {
   let h;
   try {
-    ({ header: h } = await post("/api/place", { n }));
+    ({ header: h } = await post("/api/place", { n, align_boundary: state.alignBoundary }));
   } catch (error) {
     say(error.message, true);
     controlsShow();
@@ -346,6 +351,13 @@ function pick(clientX, clientY) {
   return { face: f, point: hit.point.clone(), vertex };
 }
 const pickVertex = (x, y) => pick(x, y)?.vertex ?? -1;
+
+// whether the camera sees vertex v: nothing of the mesh is hit before it (within a fifth of an edge)
+function seen(v) {
+  const p = point(v), origin = camera.position, distance = p.distanceTo(origin);
+  const hit = bvh.raycastFirst(new THREE.Ray(origin.clone(), p.sub(origin).normalize()), THREE.DoubleSide);
+  return !hit || hit.distance >= distance - 0.2 * fieldView.meanEdge;
+}
 
 // where a point is on the screen, and whether it is in the view
 function screenOfPoint(p) {

@@ -17,6 +17,7 @@
 
 #include <CGAL/Trivial_connections/IO/atomic_file.h>
 #include <CGAL/Trivial_connections/IO/connection_file.h>
+#include <CGAL/Trivial_connections/IO/face_directions.h>
 #include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
@@ -569,6 +570,65 @@ TEST(IoFieldFile, ReaderReportsMalformedLines)
   expect_error([&] { TC::read_field(bad, "f.txt"); }, TC::Error_code::parse_error, {"f.txt:3:", "2 fields"});
   std::istringstream nan("1 2 x\n");
   expect_error([&] { TC::read_field(nan, "f.txt"); }, TC::Error_code::parse_error, {"f.txt:1:"});
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Face direction (constraint) files
+
+// The coordinates' bits, so that -0. differs from 0. and every last bit counts
+std::array<std::uint64_t, 3> bits_of(const std::array<double, 3>& d)
+{
+  std::array<std::uint64_t, 3> b;
+  for(std::size_t c = 0; c < 3; ++c)
+    std::memcpy(&b[c], &d[c], sizeof(double));
+  return b;
+}
+
+TEST(IoFaceDirections, WriteThenReadRoundTripsBitForBit)
+{
+  std::vector<TC::Face_direction> d;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  for(std::size_t f : {std::size_t(12), std::size_t(0), std::size_t(3), std::size_t(4000000000)}) // file order kept
+    d.push_back({f, {{uniform(random), uniform(random) * 1e-300, uniform(random) * 1e300}}});
+  d.push_back({5, {{-0., 5e-324, 1. / 3.}}});                      // a negative zero and the smallest subnormal
+  d.push_back({6, {{0.1, -2.2250738585072014e-308, 1.7976931348623157e308}}});
+  std::ostringstream os;
+  TC::write_face_directions(os, d);
+  EXPECT_EQ(os.str().rfind("# ", 0), 0u); // the header line
+  std::istringstream is(os.str());
+  const std::vector<TC::Face_direction> back = TC::read_face_directions(is, "d.txt", 4000000001u);
+  ASSERT_EQ(back.size(), d.size());
+  for(std::size_t i = 0; i < d.size(); ++i) {
+    EXPECT_EQ(back[i].face, d[i].face);
+    EXPECT_EQ(bits_of(back[i].direction), bits_of(d[i].direction)) << "entry " << i;
+  }
+  // the same through a file written atomically
+  Temp_dir dir;
+  const std::string path = dir.file("d.txt");
+  TC::write_file_atomically(path, [&](std::ostream& out) { TC::write_face_directions(out, d); });
+  EXPECT_EQ(slurp(path), os.str());
+  EXPECT_EQ(TC::read_face_directions(path).size(), d.size());
+  // an empty range: the header only, read back as no constraint
+  std::ostringstream empty;
+  TC::write_face_directions(empty, std::vector<TC::Face_direction>());
+  std::istringstream empty_in(empty.str());
+  EXPECT_TRUE(TC::read_face_directions(empty_in, "e.txt").empty());
+}
+
+TEST(IoFaceDirections, WriterRefusesWhatTheReaderWouldRefuseAndWritesNothing)
+{
+  const TC::Error_code ic = TC::Error_code::invalid_constraint;
+  const auto refused = [&](const std::vector<TC::Face_direction>& d, const std::vector<std::string>& parts) {
+    std::ostringstream os;
+    const TC::Invalid_input e = expect_error([&] { TC::write_face_directions(os, d); }, ic, parts);
+    EXPECT_TRUE(os.str().empty());
+    return e.where();
+  };
+  EXPECT_EQ(refused({{1, {{1, 0, 0}}}, {2, {{0, -0., 0}}}}, {"face 2", "zero vector"}), 2u);
+  EXPECT_EQ(refused({{3, {{1, std::nan(""), 0}}}}, {"face 3", "not finite"}), 3u);
+  EXPECT_EQ(refused({{4, {{HUGE_VAL, 0, 0}}}}, {"face 4", "not finite"}), 4u);
+  EXPECT_EQ(refused({{7, {{1, 0, 0}}}, {8, {{1, 0, 0}}}, {7, {{0, 1, 0}}}}, {"face 7", "twice", "entries 0 and 2"}), 7u);
 }
 
 // ---------------------------------------------------------------------------------------------------

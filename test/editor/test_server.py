@@ -1,8 +1,12 @@
-"""The field editor's server on bad requests (issue 22): a 4xx with a one-line reason, the session keeps
-working, nothing written. Runs editor/serve.py in this process on a generated mesh (PYTHONPATH: the module)."""
+"""The field editor's server (issue 22): its answers (constraints, boundary alignment, streamlines, files saved
+and loaded in its folder, the mesh's angle defects) checked against the module, and bad requests: a 4xx with a
+one-line reason, the session keeps working, nothing written. Runs editor/serve.py in this process on generated
+meshes (PYTHONPATH: the module)."""
+import fractions
 import http.client
 import importlib.util
 import json
+import math
 import os
 import threading
 
@@ -13,6 +17,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 spec = importlib.util.spec_from_file_location("serve", os.path.join(HERE, "..", "..", "editor", "serve.py"))
 serve = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(serve)
+tc = serve.tc
 
 
 def octahedron_file(folder):
@@ -26,15 +31,46 @@ def octahedron_file(folder):
     return path
 
 
+def disk_file(folder, n=6):
+    """a bumpy square disk of 2 n^2 triangles (one boundary loop)"""
+    x, y = np.meshgrid(np.linspace(-1, 1, n + 1), np.linspace(-1, 1, n + 1), indexing="ij")
+    V = np.stack([x, y, 0.3 * np.exp(-2 * (x**2 + y**2)) + 0.1 * x * y], -1).reshape(-1, 3)
+    idx = lambda i, j: i * (n + 1) + j
+    F = [t for i in range(n) for j in range(n)
+         for t in [(idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)), (idx(i, j), idx(i + 1, j + 1), idx(i, j + 1))]]
+    path = os.path.join(folder, "disk.off")
+    with open(path, "w") as f:
+        f.write(f"OFF\n{len(V)} {len(F)} 0\n")
+        f.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in V)
+        f.writelines(f"3 {a} {b} {c}\n" for a, b, c in F)
+    return path
+
+
+def start(mesh, folder):
+    """the server on `mesh`, its files in `folder`, on a free port (a Handler class of its own)"""
+    handler = type("Handler", (serve.Handler,), {"session": serve.Session(mesh, 4, folder), "bundle": folder})
+    httpd = serve.http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=httpd.serve_forever, daemon=True).start()
+    return httpd
+
+
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
     folder = tmp_path_factory.mktemp("editor")
-    serve.Handler.session = serve.Session(octahedron_file(str(folder)), 4)
-    serve.Handler.bundle = str(folder)
-    httpd = serve.http.server.ThreadingHTTPServer(("127.0.0.1", 0), serve.Handler)
-    thread = threading.Thread(target=httpd.serve_forever, daemon=True)
-    thread.start()
+    httpd = start(octahedron_file(str(folder)), str(folder))
     yield httpd.server_address[1], folder
+    httpd.shutdown()
+
+
+@pytest.fixture(scope="module")
+def disk(tmp_path_factory):
+    """the server on a bordered mesh, with a folder of files and a folder outside it"""
+    meshes = tmp_path_factory.mktemp("meshes")
+    folder = tmp_path_factory.mktemp("files")
+    outside = tmp_path_factory.mktemp("outside")
+    mesh = disk_file(str(meshes))
+    httpd = start(mesh, str(folder))
+    yield httpd.server_address[1], mesh, folder, outside
     httpd.shutdown()
 
 
@@ -49,6 +85,31 @@ def request(port, method, path, body=None, headers=None):
 
 def solve(port, singularities, n=4):
     return request(port, "POST", "/api/solve", json.dumps({"n": n, "singularities": singularities}))
+
+
+def post(port, path, body):
+    return request(port, "POST", path, json.dumps(body))
+
+
+def parse(data):
+    """a frame: its header and {name: array}"""
+    assert data[:4] == b"TCB1"
+    length = int.from_bytes(data[4:8], "little")
+    assert (8 + length) % 8 == 0
+    header = json.loads(data[8:8 + length])
+    arrays = {}
+    for a in header["arrays"]:
+        assert a["offset"] % 8 == 0
+        count = int(np.prod(a["shape"]))
+        arrays[a["name"]] = np.frombuffer(data, a["dtype"], count, 8 + length + a["offset"]).reshape(a["shape"])
+    return header, arrays
+
+
+def answer(port, path, body):
+    """the header and arrays of a request that must succeed"""
+    status, data = post(port, path, body)
+    assert status == 200, data
+    return parse(data)
 
 
 def test_a_good_solve_gives_n_directions_per_face(server):
@@ -115,3 +176,359 @@ def test_two_clients_get_consistent_answers(server):
     for t in threads:
         t.join()
     assert len(answers) == 10 and len(set(answers)) == 1
+
+
+# ---- the mesh frame ----------------------------------------------------------------------------------------
+
+
+def corner_angle_sums(V, F):
+    """per vertex, the sum of its corner angles, one corner at a time (acos, not the server's arctan2)"""
+    total = np.zeros(len(V))
+    for face in F:
+        for k in range(3):
+            a, b, c = V[face[k]], V[face[(k + 1) % 3]], V[face[(k + 2) % 3]]
+            u, w = b - a, c - a
+            total[face[k]] += math.acos(max(-1.0, min(1.0, u @ w / (np.linalg.norm(u) * np.linalg.norm(w)))))
+    return total
+
+
+def test_the_mesh_frame_has_the_angle_defects(server, disk):
+    port, _ = server
+    status, data = request(port, "GET", "/api/mesh")
+    header, arrays = parse(data)
+    K = arrays["angle_defect"]
+    assert K.dtype == np.dtype("<f4") and K.shape == (6,)
+    assert np.allclose(K, 2 * np.pi / 3, atol=1e-6)  # four corners of 60 degrees
+    assert abs(K.sum() - 2 * np.pi * 2) < 1e-5  # Gauss-Bonnet: 2 pi chi
+    port, mesh, _, _ = disk
+    header, arrays = parse(request(port, "GET", "/api/mesh")[1])
+    V, F = arrays["V"].astype(float), arrays["F"].astype(int)
+    expected = 2 * np.pi - corner_angle_sums(V, F)
+    assert arrays["angle_defect"].shape == (len(V),)
+    assert np.allclose(arrays["angle_defect"], expected, atol=1e-5)
+    assert header["closed"] == [False]
+
+
+# ---- constraints -------------------------------------------------------------------------------------------
+
+
+def mesh_of(port):
+    _, arrays = parse(request(port, "GET", "/api/mesh")[1])
+    return arrays["V"].astype(float), arrays["F"].astype(int)
+
+
+def unit(v):
+    return v / np.linalg.norm(v)
+
+
+def face_normal(V, F, f):
+    a, b, c = V[F[f]]
+    return unit(np.cross(b - a, c - a))
+
+
+def turn_to(field, target, N, n):
+    """the angle from the target to the field about N, modulo 2 pi / n, in (-pi / n, pi / n]"""
+    angle = math.atan2(np.cross(target, field) @ N, target @ field)
+    period = 2 * np.pi / n
+    return (angle + period / 2) % period - period / 2
+
+
+@pytest.mark.parametrize("n", [1, 4])
+def test_a_pinned_face_points_along_its_direction_projected(server, n):
+    port, _ = server
+    V, F = mesh_of(port)
+    pins = {2: [0.3, -1.0, 2.0], 5: [-1.0, 0.2, 0.1]}  # not tangent: projected onto the face
+    header, arrays = answer(port, "/api/solve", {"n": n, "singularities": [[0, 1], [1, 1]],
+                                                 "constraints": [[f, d] for f, d in pins.items()]})
+    field = arrays["field"].astype(float)
+    for f, d in pins.items():
+        N = face_normal(V, F, f)
+        target = unit(np.array(d) - (np.array(d) @ N) * N)
+        if n == 1:
+            assert np.allclose(field[f], target, atol=2e-6)
+        else:
+            assert abs(turn_to(unit(field[f]), target, N, n)) < 2e-6
+    assert isinstance(header["constraints"], list) and len(header["constraints"]) == 1  # one path joins the two
+    json.dumps(header["constraints"], allow_nan=False)
+
+
+def test_constraint_sets_switch_and_each_request_gets_its_own(server):
+    port, _ = server
+    base = {"n": 4, "singularities": [[2, 1], [3, 1]]}
+    bodies = [dict(base, constraints=[[1, [1, 0, 0]]]), dict(base, constraints=[[6, [0, 1, 0]], [0, [0, 0, 1]]]),
+              dict(base)]
+    field = lambda body: parse(post(port, "/api/solve", body)[1])[1]["field"]
+    expected = [field(b) for b in bodies]
+    assert min(np.abs(expected[i] - expected[j]).max() for i, j in [(0, 1), (1, 2), (0, 2)]) > 1e-2
+    again = [field(b) for b in reversed(bodies)]
+    # the same answers (to rounding: the constrained faces' links in the factor are updated as the sets change)
+    assert all(np.allclose(a, e, atol=1e-6) for a, e in zip(again[::-1], expected))
+    # two tabs, each with its own constraints, at the same time
+    wrong = []
+
+    def tab(k):
+        for _ in range(25):
+            try:
+                if not np.allclose(field(bodies[k]), expected[k], atol=1e-6):
+                    wrong.append(k)
+            except Exception as e:  # e.g. a refusal: the solver had another tab's constraints
+                wrong.append((k, repr(e)))
+
+    threads = [threading.Thread(target=tab, args=(k,)) for k in range(3)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert wrong == []
+
+
+@pytest.mark.parametrize("constraints, code", [
+    ({"2": [1, 0, 0]}, 400),                  # not a list
+    ([2, [1, 0, 0]], 400),                    # not a list of pairs
+    ([[2]], 400),
+    ([[2, [1, 0]]], 400),                     # two numbers
+    ([["2", [1, 0, 0]]], 400),                # the face a string
+    ([[True, [1, 0, 0]]], 400),
+    ([[2, [1, "0", 0]]], 400),
+    ([[8, [1, 0, 0]]], 422),                  # no face 8
+    ([[-1, [1, 0, 0]]], 422),
+    ([[2, [0, 0, 0.0]]], 422),                # zero
+    ([[2, [float("inf"), 0, 0]]], 422),       # Infinity (Python's json writes and reads it)
+    ([[2, [float("nan"), 0, 0]]], 422),
+    ([[2, [10**400, 0, 0]]], 422),            # too large for a float
+    ([[2, [1, 0, 0]], [2, [0, 1, 0]]], 422),  # face 2 twice
+    ([[0, [1, 1, 1]]], 422),                  # normal to face 0 (the library refuses it)
+    ([[0, [1, 0, 0]]] * (serve.MAX_CONSTRAINTS + 1), 400),
+])
+def test_bad_constraints_are_refused(server, constraints, code):
+    port, folder = server
+    before = sorted(os.listdir(folder))
+    status, data = post(port, "/api/solve", {"n": 4, "singularities": [[0, 1], [1, 1]], "constraints": constraints})
+    assert status == code, data
+    assert data.endswith(b"\n") and data.count(b"\n") == 1
+    if code == 422:
+        assert data.startswith(b"invalid_constraint:")
+    assert solve(port, [[0, 1], [1, 1]])[0] == 200
+    assert sorted(os.listdir(folder)) == before
+
+
+@pytest.mark.parametrize("body", [{"align_boundary": "yes"}, {"align_boundary": 1}, {"seeds": 0}])
+def test_bad_options_are_refused(server, body):
+    port, _ = server
+    status, data = post(port, "/api/streamlines", dict({"n": 4, "singularities": [[0, 1], [1, 1]]}, **body))
+    assert status == 400 and data.count(b"\n") == 1
+    assert solve(port, [[0, 1], [1, 1]])[0] == 200
+
+
+# ---- boundary alignment ------------------------------------------------------------------------------------
+
+
+def test_align_boundary_follows_the_boundary_and_is_the_modules_answer(disk):
+    port, mesh, _, _ = disk
+    V, F = mesh_of(port)
+    body = {"n": 4, "singularities": []}
+    plain = answer(port, "/api/solve", body)[1]["field"]
+    aligned = answer(port, "/api/solve", dict(body, align_boundary=True))[1]["field"]
+    assert np.abs(plain - aligned).max() > 1e-2
+    direct = tc.Solver.from_file(mesh, align_boundary=True).solve({}, n=4).field
+    assert np.allclose(aligned, direct, atol=1e-6)
+    assert np.array_equal(answer(port, "/api/solve", body)[1]["field"], plain)  # the plain solver is untouched
+    # on every face with a border edge, the cross is along that edge
+    edges = {}
+    for f, t in enumerate(F):
+        for a, b in zip(t, np.roll(t, -1)):
+            edges.setdefault((min(a, b), max(a, b)), []).append((f, a, b))
+    checked = 0
+    for (a, b), sides in edges.items():
+        if len(sides) == 1 and sum(len(edges[(min(p, q), max(p, q))]) == 1
+                                   for p, q in zip(F[sides[0][0]], np.roll(F[sides[0][0]], -1))) == 1:
+            f, p, q = sides[0]
+            assert abs(turn_to(unit(aligned[f].astype(float)), unit(V[q] - V[p]), face_normal(V, F, f), 4)) < 1e-5
+            checked += 1
+    assert checked >= 10
+    # with constraints inside, on its own constraint state
+    pinned = dict(body, align_boundary=True, constraints=[[30, [1, 0.5, 0]]])
+    field = answer(port, "/api/solve", pinned)[1]["field"]
+    N = face_normal(V, F, 30)
+    assert abs(turn_to(unit(field[30].astype(float)), unit(np.array([1, 0.5, 0]) - (N @ [1, 0.5, 0]) * N), N, 4)) < 2e-6
+    assert np.array_equal(answer(port, "/api/solve", body)[1]["field"], plain)
+    # a constraint on an aligned boundary face is the library's refusal
+    status, data = post(port, "/api/solve", dict(pinned, constraints=[[0, [1, 0, 0]]]))
+    assert status == 422 and data.startswith(b"invalid_constraint:")
+    # back to no constraint: the same field (to rounding: the factor's links were updated twice)
+    assert np.allclose(answer(port, "/api/solve", dict(body, align_boundary=True))[1]["field"], aligned, atol=1e-6)
+
+
+def test_align_boundary_on_a_closed_mesh_is_the_plain_solve(server):
+    port, _ = server
+    body = {"n": 4, "singularities": [[0, 1], [1, 1]]}
+    assert (answer(port, "/api/solve", dict(body, align_boundary=True))[1]["field"].tobytes()
+            == answer(port, "/api/solve", body)[1]["field"].tobytes())
+
+
+# ---- streamlines -------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("n, seeds", [(4, None), (1, 10), (3, 5000)])
+def test_streamlines_frame_is_well_formed(disk, n, seeds):
+    port, _, _, _ = disk
+    V, F = mesh_of(port)
+    body = {"n": n, "singularities": [], "align_boundary": True}
+    if seeds is not None:
+        body["seeds"] = seeds
+    header, arrays = answer(port, "/api/streamlines", body)
+    points, offsets = arrays["points"], arrays["offsets"]
+    assert points.dtype == np.dtype("<f4") and points.ndim == 2 and points.shape[1] == 3
+    assert offsets.dtype == np.dtype("<u4") and offsets.shape == (header["lines"] + 1,)
+    assert header["lines"] > 0 and offsets[0] == 0 and offsets[-1] == len(points)
+    assert np.all(np.diff(offsets.astype(int)) >= 2)  # every line has two points or more
+    assert np.all(points >= V.min(0) - 1e-5) and np.all(points <= V.max(0) + 1e-5)
+    assert 1 <= header["seeds"] <= min(len(F), seeds or serve.DEFAULT_SEEDS)
+    assert header["maximum_faces_per_ray"] >= 2
+    again = answer(port, "/api/streamlines", body)[1]
+    assert again["points"].tobytes() == points.tobytes()  # the same seeds every time
+
+
+# ---- files: save and load ----------------------------------------------------------------------------------
+
+
+def tree(*folders):
+    """every path under the folders (and the folders' parents' entries): to see that nothing was written"""
+    out = set()
+    for folder in folders:
+        for root, dirs, files in os.walk(folder):
+            out.update(os.path.join(root, name) for name in dirs + files)
+        out.update(os.path.join(os.path.dirname(folder), name) for name in os.listdir(os.path.dirname(folder)))
+    return out
+
+
+SING = [[8, "1/4"], [24, -1], [38, "3/4"]]  # interior vertices of the disk
+PINS = [[40, [0.1, 0.7, 0.2]], [7, [1.0, -0.25, 1 / 3]]]
+
+
+def test_save_every_kind_and_read_it_back(disk):
+    port, mesh, folder, _ = disk
+    os.makedirs(os.path.join(folder, "sub"), exist_ok=True)
+    body = {"n": 4, "singularities": SING, "constraints": PINS}
+    saved = {}
+    for kind, name in [("singularities", "s.sing"), ("constraints", "sub/c.dir"), ("field", "f.txt"),
+                       ("vtk", "f.vtk"), ("ply", "f.ply"), ("streamlines", "lines.vtk")]:
+        header, arrays = answer(port, "/api/save", dict(body, kind=kind, path=name))
+        assert header["saved"] == name and arrays == {}
+        assert header["bytes"] == os.path.getsize(os.path.join(folder, name)) > 0
+        saved[kind] = os.path.join(folder, name)
+    solver = tc.Solver.from_file(mesh)
+    assert tc.read_singularities(saved["singularities"], solver.number_of_vertices) == {
+        v: fractions.Fraction(k) for v, k in SING}
+    faces, directions = tc.read_face_directions(saved["constraints"], solver.number_of_faces)
+    assert faces.tolist() == [f for f, _ in PINS] and directions.tolist() == [d for _, d in PINS]
+    solver.set_constraints(constrained_faces=[f for f, _ in PINS])
+    result = solver.solve(dict(SING), n=4, directions={f: d for f, d in PINS})
+    with open(saved["field"]) as f:
+        field = np.array([[float(x) for x in line.split()] for line in f if not line.startswith("#")])
+    assert field.shape == result.field.shape and np.abs(field - result.field).max() < 1e-12
+    with open(saved["vtk"]) as f:
+        assert f.readline().startswith("# vtk DataFile")
+    with open(saved["ply"], "rb") as f:
+        assert f.readline().strip() == b"ply"
+    with open(saved["streamlines"]) as f:
+        assert "LINES" in f.read()
+    assert not [name for name in os.listdir(folder) if name.startswith(".")]  # no temporary file left
+    # saving again replaces the file
+    header, _ = answer(port, "/api/save", dict(body, singularities=[], kind="singularities", path="s.sing"))
+    assert tc.read_singularities(saved["singularities"]) == {}
+
+
+def test_load_round_trip(disk):
+    port, _, folder, _ = disk
+    body = {"n": 4, "singularities": SING, "constraints": PINS}
+    answer(port, "/api/save", dict(body, kind="singularities", path="round.sing"))
+    answer(port, "/api/save", dict(body, kind="constraints", path="round.dir"))
+    header, _ = answer(port, "/api/load", {"kind": "singularities", "path": "round.sing"})
+    assert header["singularities"] == [[v, str(fractions.Fraction(k))] for v, k in SING]
+    header, _ = answer(port, "/api/load", {"kind": "constraints", "path": "round.dir"})
+    assert header["constraints"] == PINS  # the same floats
+    # what was loaded solves as it was saved
+    assert (answer(port, "/api/solve", dict(body, **header))[1]["field"].tobytes()
+            == answer(port, "/api/solve", body)[1]["field"].tobytes())
+
+
+def refusals(folder, outside):
+    """(endpoint, body, status, part of the reason) for paths and files the server must refuse"""
+    with open(os.path.join(outside, "secret.sing"), "w") as f:
+        f.write("3 1\n")
+    for name, target in [("out", outside), ("secret.sing", os.path.join(outside, "secret.sing")),
+                         ("new.sing", os.path.join(outside, "new.sing"))]:
+        if not os.path.lexists(os.path.join(folder, name)):
+            os.symlink(target, os.path.join(folder, name))
+    os.makedirs(os.path.join(folder, "adir"), exist_ok=True)
+    with open(os.path.join(folder, "bad.sing"), "w") as f:
+        f.write("# two lines\n3 1/4\n10\n")
+    with open(os.path.join(folder, "far.dir"), "w") as f:
+        f.write("0 1 0 0\n72 1 0 0\n")
+    save = {"n": 4, "singularities": SING, "kind": "singularities"}
+    cases = []
+    for path, status in [("../x.sing", 403), ("adir/../../x.sing", 403), (os.path.join(outside, "x.sing"), 400),
+                         (os.path.join(folder, "x.sing"), 400), ("out/x.sing", 403), ("new.sing", 403),
+                         ("secret.sing", 403), ("adir", 400), (".", 400), ("nodir/x.sing", 404), ("", 400),
+                         (5, 400), (None, 400), ("x\0.sing", 400)]:
+        cases.append(("/api/save", dict(save, path=path), status, ""))
+    cases += [
+        ("/api/save", dict(save, kind="pdf", path="x.pdf"), 400, "kind"),
+        ("/api/save", dict(save, kind="field", path="x.vtk"), 400, ".txt"),
+        ("/api/save", dict(save, kind="vtk", path="x.ply"), 400, ".vtk"),
+        ("/api/save", dict(save, path="x.sing", singularities=[[999, 1]]), 422, "invalid_vertex"),
+        ("/api/save", dict(save, path="x.sing", constraints=[[0, [0, 0, 0]]]), 422, "invalid_constraint"),
+        ("/api/save", dict(save, path="x.sing", align_boundary=True, constraints=[[0, [1, 0, 0]]]), 422,
+         "invalid_constraint"),  # on the aligned boundary
+        ("/api/save", dict(save, kind="streamlines", path="x.vtk", seeds=-1), 400, "seeds"),
+        ("/api/save", dict(save, path="x.sing", n="4"), 400, "n must be"),
+    ]
+    for path, status in [("../x.sing", 403), ("secret.sing", 403), ("out/secret.sing", 403),
+                         (os.path.join(outside, "secret.sing"), 400), ("missing.sing", 404), ("adir", 400),
+                         ("", 400), ([], 400)]:
+        cases.append(("/api/load", {"kind": "singularities", "path": path}, status, ""))
+    cases += [
+        ("/api/load", {"kind": "field", "path": "bad.sing"}, 400, "kind"),
+        ("/api/load", {"kind": "singularities", "path": "bad.sing"}, 422, "parse_error: bad.sing:3:"),
+        ("/api/load", {"kind": "constraints", "path": "bad.sing"}, 422, "parse_error: bad.sing:2:"),
+        ("/api/load", {"kind": "constraints", "path": "far.dir"}, 422, "invalid_constraint: far.dir:2: face 72"),
+    ]
+    return cases
+
+
+def test_refusals_write_nothing_and_the_session_keeps_working(disk):
+    port, _, folder, outside = disk
+    folder, outside = str(folder), str(outside)
+    cases = refusals(folder, outside)
+    before = tree(folder, outside)
+    for endpoint, body, status, part in cases:
+        code, data = post(port, endpoint, body)
+        assert code == status, (endpoint, body, data)
+        reason = data.decode()
+        assert reason.endswith("\n") and reason.count("\n") == 1 and len(reason) > 10, reason
+        assert part in reason, (reason, part)
+        assert folder not in reason  # paths as the page named them
+        assert answer(port, "/api/solve", {"n": 4, "singularities": SING})[0]["max_residual"] < 1e-9
+        assert tree(folder, outside) == before, (endpoint, body)
+    with open(os.path.join(outside, "secret.sing")) as f:
+        assert f.read() == "3 1\n"
+
+
+def test_one_connection_many_requests(server):
+    """keep-alive: replies of every kind, refusals included, on one connection, each whole"""
+    port, _ = server
+    assert serve.Handler.disable_nagle_algorithm
+    c = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+    for body, status in [({"n": 4, "singularities": [[0, 1], [1, 1]]}, 200), ({"n": 0}, 400),
+                         ({"n": 4, "singularities": [[0, 1]]}, 422), ({"n": 4, "singularities": [[0, 1], [1, 1]]}, 200)]:
+        c.request("POST", "/api/solve", json.dumps(body))
+        r = c.getresponse()
+        data = r.read()
+        assert r.status == status and int(r.getheader("Content-Length")) == len(data)
+        if status == 200:
+            assert parse(data)[1]["field"].shape == (8, 3)
+    c.request("GET", "/api/mesh")
+    r = c.getresponse()
+    assert r.status == 200 and parse(r.read())[0]["faces"] == 8
+    c.close()

@@ -501,8 +501,20 @@ def test_files(tmp_path):
     for name in ["f.vtk", "f.ply"]:
         solver.write_field(str(tmp_path / name), result, s)
         assert (tmp_path / name).stat().st_size > 1000
-    with pytest.raises(ValueError):
-        solver.write_field(str(tmp_path / "f.txt"), result, s)
+    # the program's field file: one line "x y z" per face, numbers that read back exactly
+    solver.write_field(str(tmp_path / "f.txt"), result, s)
+    lines = [l for l in (tmp_path / "f.txt").read_text().splitlines() if not l.startswith("#")]
+    assert np.array_equal(np.array([[float(x) for x in l.split()] for l in lines]), result.field)
+    # the field alone: no n directions per face, the same field
+    alone = solver.solve(s, n=2, all_directions=False)
+    assert alone.directions is None and result.directions.shape == (len(F), 2, 3)
+    assert np.array_equal(alone.field, result.field) and alone.energy == result.energy
+    with pytest.raises(ValueError, match=r"\.txt.*\.vtk.*\.ply"):
+        solver.write_field(str(tmp_path / "f.obj"), result, s)
+    assert not (tmp_path / "f.obj").exists()
+    with pytest.raises(tc.InvalidInput) as error:  # the singularities are checked, even for a field file
+        solver.write_field(str(tmp_path / "g.txt"), result, {len(V): 1})
+    assert error.value.code == "invalid_vertex" and not (tmp_path / "g.txt").exists()
     with pytest.raises(tc.InvalidInput) as error:
         tc.write_singularities(str(tmp_path / "missing" / "s.sing"), s)
     assert error.value.code == "io_error" and not (tmp_path / "missing").exists()
@@ -592,3 +604,58 @@ def test_constraints_and_guidance():
     with pytest.raises(tc.InvalidInput) as error:
         tc.Solver(V, F, constrained_faces=[len(F)])
     assert error.value.code == "invalid_constraint"
+
+
+def test_face_direction_files(tmp_path):
+    rng = np.random.default_rng(5)
+    faces = np.array([40, 2, 17, 0, 311])  # file order kept, not sorted
+    directions = rng.normal(size=(5, 3)) * np.array([1e-300, 1, 1e300])
+    directions[3] = [-0.0, 5e-324, 1 / 3]
+    path = str(tmp_path / "c.dir")
+    tc.write_face_directions(path, faces, directions)
+    f, d = tc.read_face_directions(path, 320)
+    assert f.dtype == np.int64 and f.shape == (5,) and d.dtype == np.float64 and d.shape == (5, 3)
+    assert np.array_equal(f, faces) and d.tobytes() == directions.tobytes()  # bit for bit, -0.0 included
+    # a dict {face: vector}, in its order; lists of numbers as well as arrays
+    tc.write_face_directions(path, {7: [1, 0, 0], 3: np.array([0.5, 0.25, -2.0])})
+    f, d = tc.read_face_directions(path)
+    assert f.tolist() == [7, 3] and d.tolist() == [[1, 0, 0], [0.5, 0.25, -2.0]]
+    tc.write_face_directions(path, [], np.zeros((0, 3)))
+    f, d = tc.read_face_directions(path)
+    assert f.shape == (0,) and d.shape == (0, 3)
+
+    # errors of the reader: missing file, bad line, face out of range, a face twice
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.read_face_directions(str(tmp_path / "none.dir"))
+    assert error.value.code == "io_error" and "none.dir" in str(error.value)
+    (tmp_path / "bad.dir").write_text("# pinned\n3 1 0 0\n4 1 0\n")
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.read_face_directions(str(tmp_path / "bad.dir"))
+    assert error.value.code == "parse_error" and "bad.dir:3:" in str(error.value)
+    (tmp_path / "far.dir").write_text("3 1 0 0\n320 0 1 0\n")
+    assert tc.read_face_directions(str(tmp_path / "far.dir"))[0].tolist() == [3, 320]
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.read_face_directions(str(tmp_path / "far.dir"), number_of_faces=320)
+    assert error.value.code == "invalid_constraint" and error.value.where == 320 and "far.dir:2:" in str(error.value)
+    (tmp_path / "twice.dir").write_text("3 1 0 0\n3 0 1 0\n")
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.read_face_directions(str(tmp_path / "twice.dir"))
+    assert error.value.code == "invalid_constraint" and error.value.where == 3
+
+    # errors of the writer: nothing written, an existing file left as it was
+    before = (tmp_path / "c.dir").read_bytes()
+    for args, kind in [(([1, 1], [[1, 0, 0], [0, 1, 0]]), tc.InvalidInput),    # a face twice
+                       (([1, 2], [[1, 0, 0], [0, 0, 0]]), tc.InvalidInput),    # a zero vector
+                       (([1], [[np.nan, 0, 0]]), tc.InvalidInput),             # not finite
+                       (([-1], [[1, 0, 0]]), tc.InvalidInput),                 # negative face
+                       (([1, 2], [[1, 0, 0]]), ValueError),                    # one row per face
+                       (([1.5], [[1, 0, 0]]), TypeError),                      # not an integer
+                       (({1: [1, 0]},), ValueError),                           # not three numbers
+                       (([1],), TypeError)]:                                   # directions missing
+        with pytest.raises(kind):
+            tc.write_face_directions(str(tmp_path / "c.dir"), *args)
+        assert (tmp_path / "c.dir").read_bytes() == before
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.write_face_directions(str(tmp_path / "missing" / "c.dir"), [1], [[1, 0, 0]])
+    assert error.value.code == "io_error"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.dir", "c.dir", "far.dir", "twice.dir"]

@@ -6,6 +6,7 @@
 #ifndef CGAL_TRIVIAL_CONNECTIONS_IO_FACE_DIRECTIONS_H
 #define CGAL_TRIVIAL_CONNECTIONS_IO_FACE_DIRECTIONS_H
 
+#include <CGAL/Trivial_connections/IO/connection_file.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
 #include <CGAL/Trivial_connections/exceptions.h>
 
@@ -15,6 +16,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <istream>
+#include <ostream>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -112,6 +114,57 @@ inline std::vector<Face_direction> read_face_directions(const std::string& path,
 {
   std::ifstream is = internal::io::open_input_file(path, "direction file");
   return read_face_directions(is, path, number_of_faces);
+}
+
+/*!
+\ingroup PkgTrivialConnectionsIO
+Writes a directional constraint file in the format read by `read_face_directions()`: a `#` header line, then one
+line `f x y z` per element of `directions`, in the order of the range. Numbers are written with the shortest
+representation that reads back exactly (`std::to_chars`), so `read_face_directions()` gives back the same faces, in
+the same order, and the same bits of every coordinate.
+
+The elements are checked before anything is written: nothing is written for a range that
+`read_face_directions()` would not read back.
+\tparam FaceDirectionRange a range of `Face_direction` (or of any type with a member `face` convertible to
+        `std::size_t` and a member `direction` whose elements 0, 1 and 2 convert to `double`)
+\param os the output stream
+\param directions the faces and their directions, written in the order of the range
+\throws Invalid_input `invalid_constraint` (`where()` is the face) for a direction that is the zero vector or has a
+        coordinate that is not finite, and for a face listed twice
+*/
+template <class FaceDirectionRange>
+void write_face_directions(std::ostream& os, const FaceDirectionRange& directions)
+{
+  std::unordered_map<std::size_t, std::size_t> entry_of_face;
+  std::size_t entry = 0;
+  for(const auto& d : directions) {
+    const std::size_t face = std::size_t(d.face);
+    const double x = double(d.direction[0]), y = double(d.direction[1]), z = double(d.direction[2]);
+    if(!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+      throw Invalid_input(Error_code::invalid_constraint,
+                          "face " + std::to_string(face) + ": the direction has a coordinate that is not finite", face);
+    if(x == 0 && y == 0 && z == 0)
+      throw Invalid_input(Error_code::invalid_constraint,
+                          "face " + std::to_string(face) + ": the direction is the zero vector", face);
+    const auto inserted = entry_of_face.emplace(face, entry);
+    if(!inserted.second)
+      throw Invalid_input(Error_code::invalid_constraint,
+                          "face " + std::to_string(face) + " is listed twice (entries " +
+                            std::to_string(inserted.first->second) + " and " + std::to_string(entry) + ")",
+                          face);
+    ++entry;
+  }
+  os << "# face directions: one line 'f x y z' per face (0-based face index, a direction, projected onto the face)\n";
+  internal::io::Number_writer out(os);
+  for(const auto& d : directions) {
+    out.index(std::size_t(d.face));
+    for(std::size_t c = 0; c < 3; ++c) {
+      out.character(' ');
+      out.number(double(d.direction[c]));
+    }
+    out.character('\n');
+  }
+  out.flush();
 }
 
 } // namespace Trivial_connections

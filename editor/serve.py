@@ -15,8 +15,9 @@ missing file, 413 body too large, 422 refused by the library ("code: message", e
                          arrays V <f4 (V, 3), F <u4 (F, 3), component <i4 (V,) (-1: no face), boundary <u4 (b, 2)
                          (boundary edges), angle_defect <f4 (V,) (2 pi minus the corner angles at the vertex)
   POST /api/place        {n?, align_boundary?}: automatic placement -> header {n, singularities}
-  POST /api/solve        {SOLVE} -> header {n, energy, max_residual, timings, constraints}; array field <f4 (F, 3):
-                         one direction per face (the page turns it by 2 pi / n for the others). constraints: the
+  POST /api/solve        {SOLVE} -> header {n, energy, max_residual, timings, constraints}; array angle <f4 (F,):
+                         one direction per face, as its angle counter-clockwise from the face's first edge (F[f, 0]
+                         to F[f, 1]) about its normal (the page turns it by 2 pi / n for the others). constraints: the
                          solve's report on the paths joining the request's constrained faces (to each other or to
                          the aligned boundary): [{component, from_face, to_face, length, period, residual}]
   POST /api/streamlines  {SOLVE, seeds?} -> header {n, energy, lines, seeds, maximum_faces_per_ray, timings};
@@ -184,6 +185,11 @@ class Session:
         self.n = n
         self.folder = os.path.realpath(os.getcwd() if folder is None else folder)
         self.component, self.chi = components_of(self.V, self.F)
+        # each face's frame: e1 along its first edge F[f, 0] -> F[f, 1], e2 = normal x e1 (counter-clockwise)
+        a, b, c = (self.V[self.F[:, k]] for k in range(3))
+        self.e1 = (b - a) / np.linalg.norm(b - a, axis=1)[:, None]
+        normal = np.cross(b - a, c - a)
+        self.e2 = np.cross(normal / np.linalg.norm(normal, axis=1)[:, None], self.e1)
         self.closed = [True] * len(self.chi)
         for loop in self.solver.loops:
             if loop["kind"] == "boundary":
@@ -321,8 +327,10 @@ class Session:
         report = [c for c in result.constraints if c["from_face"] in pinned or c["to_face"] in pinned]
         header = {"n": p.n, "energy": result.energy, "max_residual": result.max_residual,
                   "timings": result.timings, "constraints": json_safe(report)}
-        # one direction per face: the page turns it by 2 pi / n about the face's normal for the others
-        return frame(header, [("field", result.field, "<f4")])
+        # one direction per face, as its angle in the face's frame (a third of the bytes of a vector: the transfer
+        # into the browser is dearer than the solve); the page turns it by 2 pi / n for the others
+        angle = np.arctan2(np.einsum("ij,ij->i", result.field, self.e2), np.einsum("ij,ij->i", result.field, self.e1))
+        return frame(header, [("angle", angle, "<f4")])
 
     def seed_count(self, request):
         seeds = request.get("seeds", min(len(self.F), DEFAULT_SEEDS))

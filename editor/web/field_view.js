@@ -6,7 +6,7 @@
 // screen (this erases the previous glyphs and markers), then the listed faces are drawn again with their glyphs:
 // the n directions of the face as rays from its incentre, inside its incircle (a glyph never leaves its face;
 // for n = 1 the ray tapers towards its tip), the field's angle in the face's frame read from a float texture.
-// A solve changes that texture only (4 bytes per face). The canvas keeps the mesh's depth between frames (the
+// A solve changes that texture only (4 bytes per face, as the server sends it). The canvas keeps the mesh's depth between frames (the
 // drawing buffer is preserved), so markers, pins and lines drawn after it are hidden where they should be.
 // Faces a few pixels wide get no glyph (it would be noise): zoom in, or show streamlines.
 import * as THREE from "three";
@@ -198,16 +198,12 @@ export class FieldView {
   // "glyphs", or "none" (the surface alone, e.g. under streamlines)
   set style(name) { this.showGlyphs = name === "glyphs"; }
 
-  // the field of a solve: one unit tangent vector per face ((m, 3) float32), n directions per face
-  setField(field, n) {
-    const { angles, e1, e2 } = this;
-    for (let f = 0, m = this.faces; f < m; ++f) {
-      const x = field[3 * f], y = field[3 * f + 1], z = field[3 * f + 2];
-      angles[f] = Math.atan2(x * e2[3 * f] + y * e2[3 * f + 1] + z * e2[3 * f + 2],
-                             x * e1[3 * f] + y * e1[3 * f + 1] + z * e1[3 * f + 2]);
-    }
+  // the field of a solve: per face the angle of one of its n directions, counter-clockwise from its first edge
+  // (float32, as the server sends it)
+  setField(angles, n) {
+    this.angles.set(angles);
     this.texture.needsUpdate = true;
-    this.field = field;
+    this.field = angles;
     this.n = n;
     this.glyphUniforms.n.value = n;
   }
@@ -286,22 +282,16 @@ export class FieldView {
     return { x: left, y: bottom, width: Math.max(0, right - left), height: Math.max(0, top - bottom) };
   }
 
-  // the n directions of every face as the shader draws them (n per face, 3 numbers each): the field turned by
-  // 2 pi k / n about the face's unit normal; for the tests, which check them against the library
+  // the n directions of every face as the shader draws them (n per face, 3 numbers each): at the angle of the field
+  // plus 2 pi k / n in the face's frame; for the tests, which check them against the library
   directions() {
-    const { field, n, normals } = this, m = this.faces;
+    const { field, n, e1, e2 } = this, m = this.faces;
     const out = new Float32Array(m * n * 3);
-    for (let f = 0; f < m; ++f) {
-      const nx = normals[3 * f], ny = normals[3 * f + 1], nz = normals[3 * f + 2];
-      const x = field[3 * f], y = field[3 * f + 1], z = field[3 * f + 2];
-      const px = ny * z - nz * y, py = nz * x - nx * z, pz = nx * y - ny * x; // normal x field
+    for (let f = 0; f < m; ++f)
       for (let k = 0; k < n; ++k) {
-        const t = 2 * Math.PI * k / n, cos = Math.cos(t), sin = Math.sin(t), o = 3 * (f * n + k);
-        out[o] = cos * x + sin * px;
-        out[o + 1] = cos * y + sin * py;
-        out[o + 2] = cos * z + sin * pz;
+        const t = field[f] + 2 * Math.PI * k / n, cos = Math.cos(t), sin = Math.sin(t), o = 3 * (f * n + k);
+        for (let i = 0; i < 3; ++i) out[o + i] = cos * e1[3 * f + i] + sin * e2[3 * f + i];
       }
-    }
     return out;
   }
 }

@@ -188,7 +188,7 @@ async function solve() {
   }
   const received = performance.now();
   const { header: h, arrays } = frame;
-  fieldView.setField(arrays.field, h.n);
+  fieldView.setField(arrays.angle, h.n);
   drawMarkers();
   drawPins();
   const built = performance.now();

@@ -79,7 +79,11 @@ try {
     await page.mouse.move(q.x, q.y, { steps: 2 });
     await page.mouse.up();
     await page.waitForFunction(b => window.__editor.solves > b || window.__editor.lastError || window.__editor.unbalanced,
-                               before, { timeout: 30000 });
+                               before, { timeout: 30000 }).catch(async error => {
+      const why = await page.evaluate(([u, v]) => ({ status: document.getElementById("status").textContent,
+        from: window.__editor.state.singularities.has(u), to: window.__editor.state.singularities.has(v) }), [current, next]);
+      throw new Error(`edit ${i}: no solve after dragging ${current} to ${next} (${JSON.stringify([p, q])}): ${JSON.stringify(why)}`);
+    });
     const [error, unbalanced, moved] = await page.evaluate(v => [window.__editor.lastError, window.__editor.unbalanced,
                                                                window.__editor.state.singularities.has(v)], next);
     if (error || unbalanced || !moved) throw new Error(`edit ${i}: the drag to ${next} gave no solve (${error})`);

@@ -340,7 +340,10 @@ function rayAt(clientX, clientY) {
 }
 // the face under the pointer, the point hit and the face's vertex nearest to it
 function pick(clientX, clientY) {
-  const hit = bvh.raycastFirst(rayAt(clientX, clientY), THREE.DoubleSide);
+  // a ray through a vertex or along an edge can pass between the triangles' tests: a third of a pixel aside then
+  let hit = null;
+  for (const [dx, dy] of [[0, 0], [0.3, 0.3], [-0.3, -0.3], [0.3, -0.3], [-0.3, 0.3]])
+    if ((hit = bvh.raycastFirst(rayAt(clientX + dx, clientY + dy), THREE.DoubleSide))) break;
   if (!hit) return null;
   const f = hit.faceIndex;
   let vertex = -1, distance = Infinity;
@@ -357,6 +360,17 @@ function seen(v) {
   const p = point(v), origin = camera.position, distance = p.distanceTo(origin);
   const hit = bvh.raycastFirst(new THREE.Ray(origin.clone(), p.sub(origin).normalize()), THREE.DoubleSide);
   return !hit || hit.distance >= distance - 0.2 * fieldView.meanEdge;
+}
+
+// the singularity whose marker is under the pointer (within 8 pixels of its vertex, the nearest, seen by the
+// camera), or -1: a drag starts on the marker, not only on the vertex's own faces
+function grabbed(clientX, clientY) {
+  let best = -1, distance = 8;
+  for (const v of state.singularities.keys()) {
+    const s = screenOfPoint(point(v)), d = Math.hypot(s.x - clientX, s.y - clientY);
+    if (d <= distance && seen(v)) { best = v; distance = d; }
+  }
+  return best;
 }
 
 // where a point is on the screen, and whether it is in the view
@@ -386,8 +400,8 @@ renderer.domElement.addEventListener("pointerdown", e => {
   const hit = pick(e.clientX, e.clientY);
   const tool = $("tool").value;
   press = { x: e.clientX, y: e.clientY, hit, tool, dragged: -1, stroke: hit ? [hit] : [] };
-  if (tool === "singularities")
-    press.dragged = hit && state.singularities.has(hit.vertex) && !e.shiftKey && !e.altKey ? hit.vertex : -1;
+  if (tool === "singularities" && hit && !e.shiftKey && !e.altKey)
+    press.dragged = grabbed(e.clientX, e.clientY);
   controls.enabled = tool === "singularities" ? press.dragged < 0 : !hit;
 });
 renderer.domElement.addEventListener("pointermove", e => {
@@ -536,7 +550,7 @@ async function start() {
       camera.position.sub(controls.target).divideScalar(factor).add(controls.target);
       controls.update();
     },
-    internals: { renderer, scene, camera, draw, get fieldView() { return fieldView; } }, // for measurements
+    internals: { renderer, scene, camera, draw, seen, grabbed, pick, get fieldView() { return fieldView; } }, // for measurements and tests
   };
   state.n = header.n;
   for (const [v, k] of header.singularities) state.singularities.set(v, parseIndex(k));

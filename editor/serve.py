@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The field editor's server (issue 22, work in progress): one mesh, its prefactored solver, a page.
+"""The field editor's server: one mesh, its prefactored solver, a page.
 
     PYTHONPATH=build/python python3 editor/serve.py MESH [--n N] [--port P] [--bundle DIR] [--folder DIR]
 

@@ -466,7 +466,9 @@ function pinStroke(stroke) {
 
 // ---- the panel ------------------------------------------------------------------------------------------------
 function controlsShow() {
-  $("n").value = String(state.n);
+  const select = $("n");
+  if (![...select.options].some(o => o.value === String(state.n))) select.add(new Option(String(state.n)));
+  select.value = String(state.n);
   $("align").checked = state.alignBoundary;
 }
 // another n: the singularities of the old one are not multiples of 1/n in general, so the placement for the new
@@ -474,6 +476,14 @@ $("n").onchange = e => placeFor(Number(e.target.value));
 $("place").onclick = () => placeFor(state.n);
 $("undo").onclick = () => travel(undoStack, redoStack);
 $("redo").onclick = () => travel(redoStack, undoStack);
+window.addEventListener("keydown", e => { // ctrl-z undoes, ctrl-shift-z and ctrl-y redo (not while typing a name)
+  if (!(e.ctrlKey || e.metaKey) || e.target instanceof HTMLInputElement) return;
+  const key = e.key.toLowerCase();
+  if (key === "z" && !e.shiftKey) travel(undoStack, redoStack);
+  else if (key === "y" || (key === "z" && e.shiftKey)) travel(redoStack, undoStack);
+  else return;
+  e.preventDefault();
+});
 $("balance-move").onclick = () => balancingMove();
 $("clear-pins").onclick = () => edit(() => {
   if (!state.constraints.size) return false;

@@ -673,25 +673,18 @@ def main():
     args = ap.parse_args()
 
     bindings, editors, benchmark_files = load_side_results([p for p in args.json if os.path.exists(p)])
-    if args.section == "editor":
+    sections = {"editor": (editor_table, editors, EDITOR_TITLE, "editor latency"),
+                "python": (python_table, bindings, PYTHON_TITLE, "binding_overhead.py")}
+    if args.section in sections:
+        table, data, title, what = sections[args.section]
         section = []
-        editor_table(editors, section, args.command + " --editor")
+        table(data, section, f"{args.command} --{args.section}")
         if not section:
-            sys.exit("benchmark_table: no editor latency results in " + " ".join(args.json))
+            sys.exit(f"benchmark_table: no {what} results in " + " ".join(args.json))
         if not os.path.exists(args.out):
             sys.exit(f"benchmark_table: {args.out} missing (run the suite first)")
-        replace_section(args.out, EDITOR_TITLE, section)
-        print(f"benchmark_table: wrote the section {EDITOR_TITLE[4:]!r} of {args.out}")
-        return
-    if args.section == "python":
-        section = []
-        python_table(bindings, section, args.command + " --python")
-        if not section:
-            sys.exit("benchmark_table: no binding_overhead.py results in " + " ".join(args.json))
-        if not os.path.exists(args.out):
-            sys.exit(f"benchmark_table: {args.out} missing (run the suite first)")
-        replace_section(args.out, PYTHON_TITLE, section)
-        print(f"benchmark_table: wrote the section {PYTHON_TITLE[4:]!r} of {args.out}")
+        replace_section(args.out, title, section)
+        print(f"benchmark_table: wrote the section {title[4:]!r} of {args.out}")
         return
     results, contexts = load(benchmark_files)
     if not any(results.values()):

@@ -129,18 +129,21 @@ command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
 HAVE_CHOLMOD=0
 if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then HAVE_CHOLMOD=1; fi
 
+# the build of --python and --editor: the Python module (and the editor), with CHOLMOD when it is installed
+MODULE_DIR="$ROOT/build-bench"
+[ "$HAVE_CHOLMOD" = 1 ] && MODULE_DIR="$ROOT/build-bench-cholmod"
+build_module_targets() {
+  [ "$BUILD" = 1 ] || return 0
+  local extra=()
+  [ "$HAVE_CHOLMOD" = 1 ] && extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
+  cmake -S "$ROOT" -B "$MODULE_DIR" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF \
+        -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON -DTRIVIAL_CONNECTIONS_WITH_PYTHON=ON "${extra[@]}" >/dev/null
+  cmake --build "$MODULE_DIR" -j "$JOBS" --target "$@"
+}
+
 if [ "$EDITOR" = 1 ]; then
-  dir="$ROOT/build-bench"
-  extra=()
-  if [ "$HAVE_CHOLMOD" = 1 ]; then
-    dir="$ROOT/build-bench-cholmod"
-    extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
-  fi
-  if [ "$BUILD" = 1 ]; then
-    cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON \
-          -DTRIVIAL_CONNECTIONS_WITH_PYTHON=ON -DTRIVIAL_CONNECTIONS_WITH_EDITOR=ON "${extra[@]}" >/dev/null
-    cmake --build "$dir" -j "$JOBS" --target trivial_connections_python trivial_connections_editor
-  fi
+  dir="$MODULE_DIR"
+  build_module_targets trivial_connections_python trivial_connections_editor
   [ -x "$dir/trivial_connections-serve" ] || { echo "run_benchmarks.sh: no editor in $dir (node, npm and npm's registry are needed)" >&2; exit 1; }
   [ -f "$OUT" ] || { echo "run_benchmarks.sh: $OUT missing (run the suite first)" >&2; exit 1; }
   data="$ROOT/.cgal-data/data/meshes"
@@ -173,17 +176,8 @@ PY
 fi
 
 if [ "$PYTHON_BINDING" = 1 ]; then
-  dir="$ROOT/build-bench"
-  extra=()
-  if [ "$HAVE_CHOLMOD" = 1 ]; then
-    dir="$ROOT/build-bench-cholmod"
-    extra=(-DTRIVIAL_CONNECTIONS_WITH_CHOLMOD=ON)
-  fi
-  if [ "$BUILD" = 1 ]; then
-    cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON \
-          -DTRIVIAL_CONNECTIONS_WITH_PYTHON=ON "${extra[@]}" >/dev/null
-    cmake --build "$dir" -j "$JOBS" --target trivial_connections_python
-  fi
+  dir="$MODULE_DIR"
+  build_module_targets trivial_connections_python
   ls "$dir"/python/trivial_connections*.so >/dev/null 2>&1 || { echo "run_benchmarks.sh: the Python module is not built in $dir/python" >&2; exit 1; }
   [ -f "$OUT" ] || { echo "run_benchmarks.sh: $OUT missing (run the suite first)" >&2; exit 1; }
   meshes=()

@@ -32,14 +32,18 @@ layout(location = 0) out highp vec4 color;
 void main() { color = vec4(shade(vNormal), 1.0); }`;
 
 const glyphVertex = /* glsl */ `
+uniform highp sampler2D field;  // r: the angle of the face's direction in its frame
+uniform int textureWidth;
 in float faceId;
 in vec3 local;            // this corner in its face's frame (about the incentre), and the face's inradius
-flat out int vFace;
+flat out vec2 vRay;       // the face's direction in its frame (cos, sin): once per corner, not per pixel
 flat out float vRadius;
 out vec2 vLocal;
 out vec3 vNormal;
 void main() {
-  vFace = int(faceId);
+  int face = int(faceId);
+  float angle = texelFetch(field, ivec2(face % textureWidth, face / textureWidth), 0).r;
+  vRay = vec2(cos(angle), sin(angle));
   vRadius = local.z;
   vLocal = local.xy;
   vNormal = normalMatrix * normal;
@@ -50,26 +54,30 @@ const glyphFragment = /* glsl */ `
 precision highp float;
 precision highp int;
 ${shading}
-uniform highp sampler2D field;  // r: the angle of the face's direction in its frame
-uniform int textureWidth;
 uniform int n;
+uniform vec2 turn;        // cos and sin of 2 pi / n
 uniform vec3 ink;
-flat in int vFace;
+flat in vec2 vRay;
 flat in float vRadius;
 in vec2 vLocal;
 in vec3 vNormal;
 layout(location = 0) out highp vec4 color;
-const float TAU = 6.283185307179586;
 void main() {
   float size = length(fwidth(vLocal)) * 0.7071; // the mesh's units per pixel here
   vec2 p = vLocal / size;                       // in pixels
   float r = 0.9 * vRadius / size;
-  float angle = texelFetch(field, ivec2(vFace % textureWidth, vFace / textureWidth), 0).r;
-  float sector = TAU / float(n);
-  float a = atan(p.y, p.x) - angle;
-  float delta = a - sector * floor(a / sector + 0.5); // the angle to the nearest of the n rays
-  float distance = length(p);
-  float along = distance * cos(delta), across = distance * abs(sin(delta));
+  // the nearest of the n rays (the largest projection), p's distance along it and across it
+  float along = -1.0, across = 0.0;
+  vec2 d = vRay;
+  for (int k = 0; k < 64; ++k) {
+    if (k >= n) break;
+    float a = dot(p, d);
+    if (a > along) {
+      along = a;
+      across = abs(d.x * p.y - d.y * p.x);
+    }
+    d = vec2(d.x * turn.x - d.y * turn.y, d.x * turn.y + d.y * turn.x);
+  }
   float w = n == 1 ? mix(1.6, 0.4, clamp(along / r, 0.0, 1.0)) : 0.75; // half-width
   float amount = along >= 0.0 && along <= r ? 1.0 - smoothstep(w - 0.5, w + 0.5, across) : 0.0;
   color = vec4(mix(shade(vNormal), ink, amount * smoothstep(2.5, 5.0, r)), 1.0);
@@ -168,7 +176,8 @@ export class FieldView {
     corners.setIndex(new THREE.BufferAttribute(new Uint32Array(0), 1));
     corners.boundingSphere = this.boundingSphere;
     this.glyphUniforms = { surface, field: { value: this.texture }, textureWidth: { value: this.textureWidth },
-                           n: { value: 1 }, ink: { value: new THREE.Color(0x1f3a93) } };
+                           n: { value: 1 }, turn: { value: new THREE.Vector2(1, 0) },
+                           ink: { value: new THREE.Color(0x1f3a93) } };
     this.glyphMesh = new THREE.Mesh(corners, new THREE.ShaderMaterial({
       glslVersion: THREE.GLSL3, vertexShader: glyphVertex, fragmentShader: glyphFragment,
       uniforms: this.glyphUniforms, ...offset, depthFunc: THREE.LessEqualDepth, depthWrite: false }));
@@ -206,6 +215,7 @@ export class FieldView {
     this.field = angles;
     this.n = n;
     this.glyphUniforms.n.value = n;
+    this.glyphUniforms.turn.value.set(Math.cos(2 * Math.PI / n), Math.sin(2 * Math.PI / n));
   }
 
   // draws the mesh and its field into the canvas (see the top of this file); the caller draws overlays after it

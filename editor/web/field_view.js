@@ -96,8 +96,6 @@ export class FieldView {
   // V: (nv, 3) and F: (m, 3) flat arrays, as the server sent them
   constructor(renderer, V, F) {
     this.renderer = renderer;
-    this.V = V;
-    this.F = F;
     const m = this.faces = F.length / 3;
     const indexed = new THREE.BufferGeometry();
     indexed.setAttribute("position", new THREE.BufferAttribute(V, 3));
@@ -201,7 +199,6 @@ export class FieldView {
     this.stale = true; // the view frame no longer matches the camera or the size
     this.rectangle = null; // where the mesh is on the screen (CSS pixels, from the bottom left), null: anywhere
     this.glyphFaces = 0;
-    this.viewFrames = 0;
   }
 
   // "glyphs", or "none" (the surface alone, e.g. under streamlines)
@@ -239,7 +236,6 @@ export class FieldView {
       this.rectangle = this.screenRectangle(camera);
       this.selectGlyphFaces(camera);
       this.stale = false;
-      this.viewFrames += 1;
     } else {
       const r = this.rectangle;
       if (r) {

@@ -560,7 +560,7 @@ async function start() {
       camera.position.sub(controls.target).divideScalar(factor).add(controls.target);
       controls.update();
     },
-    internals: { renderer, scene, camera, draw, seen, grabbed, pick, get fieldView() { return fieldView; } }, // for measurements and tests
+    internals: { renderer, scene, camera, draw, get fieldView() { return fieldView; } }, // for measurements and tests
   };
   state.n = header.n;
   for (const [v, k] of header.singularities) state.singularities.set(v, parseIndex(k));

@@ -20,15 +20,19 @@ spec.loader.exec_module(serve)
 tc = serve.tc
 
 
+def off_file(path, V, F):
+    """writes the points V and triangles F as an OFF file (coordinates exactly) and returns its path"""
+    with open(path, "w") as f:
+        f.write(f"OFF\n{len(V)} {len(F)} 0\n")
+        f.writelines(f"{float(x)!r} {float(y)!r} {float(z)!r}\n" for x, y, z in V)
+        f.writelines(f"3 {a} {b} {c}\n" for a, b, c in F)
+    return path
+
+
 def octahedron_file(folder):
     V = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
     F = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
-    path = os.path.join(folder, "octahedron.off")
-    with open(path, "w") as f:
-        f.write(f"OFF\n{len(V)} {len(F)} 0\n")
-        f.writelines(f"{x} {y} {z}\n" for x, y, z in V)
-        f.writelines(f"3 {a} {b} {c}\n" for a, b, c in F)
-    return path
+    return off_file(os.path.join(folder, "octahedron.off"), V, F)
 
 
 def disk_file(folder, n=6):
@@ -38,12 +42,7 @@ def disk_file(folder, n=6):
     idx = lambda i, j: i * (n + 1) + j
     F = [t for i in range(n) for j in range(n)
          for t in [(idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)), (idx(i, j), idx(i + 1, j + 1), idx(i, j + 1))]]
-    path = os.path.join(folder, "disk.off")
-    with open(path, "w") as f:
-        f.write(f"OFF\n{len(V)} {len(F)} 0\n")
-        f.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in V)
-        f.writelines(f"3 {a} {b} {c}\n" for a, b, c in F)
-    return path
+    return off_file(os.path.join(folder, "disk.off"), V, F)
 
 
 def start(mesh, folder):

@@ -8,9 +8,14 @@ the mesh it was given; every edit the page sends is a solve on the solver factor
 as binary (see `frame`), never as JSON numbers. The only files it reads or writes for the page are in --folder
 (default: the current directory at start).
 
-API. Requests are JSON objects; replies are frames (`frame`: a JSON header, then arrays), or, when refused, a
-text/plain line giving the reason: 400 malformed request, 403 a path outside the folder, 404 unknown URL or
-missing file, 413 body too large, 422 refused by the library ("code: message", e.g. "poincare_hopf_violated: ...").
+API. Requests are JSON objects (UTF-8, sent with a Content-Length); replies are frames (`frame`: a JSON header,
+then arrays), or, when refused, a text/plain line giving the reason: 400 malformed request (not JSON, not an object,
+nested too deeply, an integer of more than MAX_DIGITS digits, NaN or Infinity, a field of the wrong type, a bad
+Content-Length or a body shorter than it), 403 a path outside the folder or the mesh itself, 404 unknown URL or
+missing file, 405 a method the URL does not take (with an Allow header), 408 the body did not arrive within
+BODY_TIMEOUT seconds, 409 saving over an existing file without "overwrite": true, 411 a POST without Content-Length
+(a chunked body is not read), 413 body too large, 422 refused by the library ("code: message", e.g.
+"poincare_hopf_violated: ..."). GET and HEAD (the headers of the GET) on the page and the mesh, POST on the rest.
   GET  /api/mesh         header {vertices, faces, n, chi, closed (per component), singularities (placed at start)};
                          arrays V <f4 (V, 3), F <u4 (F, 3), component <i4 (V,) (-1: no face), boundary <u4 (b, 2)
                          (boundary edges), angle_defect <f4 (V,) (2 pi minus the corner angles at the vertex)
@@ -26,33 +31,39 @@ missing file, 413 body too large, 422 refused by the library ("code: message", e
                          over the mesh the same way every time; header seeds: the number used. The rays are cut (to
                          maximum_faces_per_ray faces, at least 8), then seeds left out, so that all of them cross
                          at most RAY_STEPS faces: about half a second at most on 100k faces
-  POST /api/save         {kind, path, SOLVE, seeds?}: solves, then writes (completely or not at all) `path` in the
-                         folder -> header {saved: the path relative to the folder, bytes}. kind: "singularities",
-                         "constraints" (lines "f x y z"), "field" (the program's field file, path ending in .txt),
-                         "vtk" / "ply" (mesh and field for a viewer, path ending in .vtk / .ply), "streamlines" (VTK
-                         lines, as /api/streamlines)
+  POST /api/save         {kind, path, overwrite?, SOLVE, seeds?}: solves, then writes (completely or not at all)
+                         `path` in the folder -> header {saved: the path relative to the folder, bytes}. kind:
+                         "singularities", "constraints" (lines "f x y z"), "field" (the program's field file, path
+                         ending in .txt), "vtk" / "ply" (mesh and field for a viewer, path ending in .vtk / .ply),
+                         "streamlines" (VTK lines, as /api/streamlines). An existing file is replaced only with
+                         overwrite: true (default false: 409, the page asks first; the new file is linked into place,
+                         which fails if one appeared meanwhile). The mesh being edited is never replaced, even with
+                         overwrite (403): neither its path nor another name of it (symbolic or hard link)
   POST /api/load         {kind: "singularities" | "constraints", path} -> header {singularities: [[v, "p/q"]]} or
                          {constraints: [[f, [x, y, z]]]}, in file order, checked by the library's readers against the
                          mesh (vertex and face numbers in range, no repeat)
 SOLVE: n (1 to 64, default --n); singularities [[vertex, "p/q" or integer]] (default []); constraints
-[[face, [x, y, z]]] (default []: at most 100000, faces in range and each once, directions three finite numbers, not
+[[face, [x, y, z]]] (default []: at most MAX_CONSTRAINTS, faces in range and each once, directions three finite numbers, not
 all zero; the field points along the direction projected onto the face); align_boundary (default false: true follows
 the boundary, with a second solver made on first use; on a mesh without boundary it is the same solve).
 Paths (save, load): a non-empty relative path; with symbolic links resolved it must lie in the folder (403
-otherwise); to save, its directory must exist (404) and it must not be a directory (400); to load, it must be a
-regular file (404 if missing, 400 otherwise, 413 above 64 MB). Nothing is written when a request is refused.
+otherwise); to save, its directory must exist (404), it must not be the mesh (403) and, if it exists, it must be a
+regular file (400) and overwrite must be true (409); to load, it must be a regular file (404 if missing, 400
+otherwise, 413 above 64 MB). Nothing is written when a request is refused.
 Constraints and alignment: each solver (plain, aligned) keeps the constrained faces of its last request; a request
 with another set of faces calls set_constraints() first (whose cost grows with the set: ~1.5 s for 1000 faces
 spread over 89k), under a lock held until its solve is done, so concurrent requests each get their own answer.
 """
 import argparse
 import collections
+import errno
 import http.server
 import json
 import math
 import os
 import struct
 import sys
+import tempfile
 import threading
 import time
 import traceback
@@ -66,6 +77,8 @@ MAX_SEEDS = 100000
 DEFAULT_SEEDS = 3000
 RAY_STEPS = 500_000  # faces crossed by all the rays of a streamline request together, at most (~0.5 s at worst)
 MAX_LOAD = 64 << 20  # bytes of a file to load
+MAX_DIGITS = 1000  # digits of an integer in a request (Python refuses to convert more than 4300: a ValueError)
+BODY_TIMEOUT = 30  # seconds for a request body to arrive once its headers have (408 after)
 # save kinds: the ending their path must have ("" for any)
 SAVE_KINDS = {"singularities": "", "constraints": "", "field": ".txt", "vtk": ".vtk", "ply": ".ply",
               "streamlines": ""}
@@ -179,8 +192,12 @@ class Solver_state:
 
 class Session:
     def __init__(self, path, n, folder=None):
-        self.path = path
+        self.path = os.path.abspath(path)
         self.solver = tc.Solver.from_file(path)
+        # the mesh, never replaced by a save: its real path and its file (device, inode) at start
+        self.mesh_real = os.path.realpath(path)
+        stat = os.stat(path)
+        self.mesh_file = (stat.st_dev, stat.st_ino)
         self.V, self.F = self.solver.vertices, self.solver.faces
         self.n = n
         self.folder = os.path.realpath(os.getcwd() if folder is None else folder)
@@ -260,8 +277,8 @@ class Session:
         if not isinstance(items, list):
             raise ValueError(f"singularities must be a list of [vertex, index], got {shown(items)}")
         for item in items:
-            if not (isinstance(item, list) and len(item) == 2 and isinstance(item[0], int)
-                    and isinstance(item[1], (int, str))):
+            if not (isinstance(item, list) and len(item) == 2 and type(item[0]) is int
+                    and type(item[1]) in (int, str)):
                 raise ValueError(f"a singularity must be [vertex, index], got {shown(item)}")
             singularities[item[0]] = str(item[1])
         faces, directions = self.constraints(request.get("constraints", []))
@@ -393,6 +410,9 @@ class Session:
                 raise Refusal(400, f"path {shown(path)} is a directory")
             if not os.path.isdir(os.path.dirname(real)):
                 raise Refusal(404, f"path {shown(path)}: its directory does not exist")
+            self.not_the_mesh(real, path)
+            if os.path.lexists(real) and not os.path.isfile(real):
+                raise Refusal(400, f"path {shown(path)} exists and is not a regular file")
         else:
             if not os.path.lexists(real):
                 raise Refusal(404, f"no file {shown(path)} in the folder")
@@ -402,34 +422,108 @@ class Session:
                 raise Refusal(413, f"file {shown(path)} is larger than {MAX_LOAD} bytes")
         return real
 
+    def not_the_mesh(self, real, path):
+        """refuses (403) a path to save to that is the mesh being edited: its real path, or another name of its
+        file (a hard link; a symbolic link resolves to its real path) as it was at start or as it is now"""
+        if real == self.mesh_real:
+            raise Refusal(403, f"path {shown(path)} is the mesh being edited: it is never replaced")
+        try:
+            stat = os.stat(real)
+        except (OSError, ValueError):
+            return  # no such file (yet): link_into_place() will not replace one that appears
+        files = {self.mesh_file}
+        try:
+            now = os.stat(self.path)
+            files.add((now.st_dev, now.st_ino))
+        except OSError:
+            pass
+        if (stat.st_dev, stat.st_ino) in files:
+            raise Refusal(403, f"path {shown(path)} is another name of the mesh being edited: it is never replaced")
+
+    def write(self, target, path, overwrite, writer):
+        """writes a file completely or not at all: writer(temporary) writes a temporary file beside `target` (the
+        library writes atomically: its own temporary, renamed), which then takes the target's name. Without
+        overwrite, an existing file is a 409 (checked after the solve: the page asks to replace a file only when
+        the save would succeed) and the new file is linked to the name, which fails if a file has it (one that
+        appeared meanwhile: 409 too), so it never replaces one; with overwrite it is renamed over it, the mesh
+        checked again just before"""
+        if not overwrite and os.path.lexists(target):
+            raise Refusal(409, f"file {shown(path)} already exists in the folder: it is replaced only with "
+                               f'"overwrite": true')
+        directory, name = os.path.split(target)
+        temporary = None
+        try:
+            # the temporary keeps the name's ending: the library picks the field's format from it
+            fd, temporary = tempfile.mkstemp(prefix=".tc-save-", suffix="-" + name, dir=directory)
+            os.close(fd)
+            writer(temporary)
+            self.not_the_mesh(target, path)
+            if overwrite:
+                os.replace(temporary, target)
+            else:
+                self.link_into_place(temporary, target, path)
+        except OSError as e:  # e.g. a folder one may not write in: the library's code for it
+            raise Refusal(422, f"io_error: cannot write {shown(path)}: {e.strerror or e}") from None
+        finally:
+            if temporary is not None and os.path.lexists(temporary):
+                os.unlink(temporary)
+
+    @staticmethod
+    def link_into_place(temporary, target, path):
+        """gives the temporary file the target's name if no file has it, else 409 (the temporary stays, and the
+        caller removes it)"""
+        exists = Refusal(409, f"file {shown(path)} already exists in the folder: it is replaced only with "
+                              f'"overwrite": true')
+        try:
+            os.link(temporary, target)
+            return
+        except FileExistsError:
+            raise exists from None
+        except OSError as e:
+            if e.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EMLINK, errno.EACCES):
+                raise
+        # a file system without hard links: the name is taken (O_EXCL, empty until the rename fills it)
+        try:
+            os.close(os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644))
+        except FileExistsError:
+            raise exists from None
+        os.replace(temporary, target)
+
     def save_frame(self, request):
-        """solves (and traces), checks everything, then writes the file completely or not at all"""
+        """solves (and traces), checks everything, then writes the file completely or not at all; an existing file
+        is replaced only with overwrite: true, the mesh never"""
         if not isinstance(request, dict):
             raise ValueError("the body must be a JSON object")
         kind = request.get("kind")
-        if kind not in SAVE_KINDS:
+        if not isinstance(kind, str) or kind not in SAVE_KINDS:
             raise ValueError(f"kind must be one of {', '.join(SAVE_KINDS)}, got {shown(kind)}")
-        target = self.user_path(request.get("path"), saving=True)
+        overwrite = request.get("overwrite", False)
+        if not isinstance(overwrite, bool):
+            raise ValueError(f"overwrite must be true or false, got {shown(overwrite)}")
+        path = request.get("path")
+        target = self.user_path(path, saving=True)
         if not target.endswith(SAVE_KINDS[kind]):
-            raise ValueError(f"a {kind} file must end in {SAVE_KINDS[kind]}, got {shown(request['path'])}")
+            raise ValueError(f"a {kind} file must end in {SAVE_KINDS[kind]}, got {shown(path)}")
         p = self.problem(request)
         count = self.seed_count(request) if kind == "streamlines" else 0
         result, solver = self.solve(p)
         if kind == "singularities":
-            tc.write_singularities(target, p.singularities)
+            writer = lambda temporary: tc.write_singularities(temporary, p.singularities)
         elif kind == "constraints":
-            tc.write_face_directions(target, p.faces, p.directions)
+            writer = lambda temporary: tc.write_face_directions(temporary, p.faces, p.directions)
         elif kind == "streamlines":
-            tc.write_streamlines(target, self.streamlines(p, result, solver, count)[0])
+            lines = self.streamlines(p, result, solver, count)[0]
+            writer = lambda temporary: tc.write_streamlines(temporary, lines)
         else:
-            solver.write_field(target, result, p.singularities)
+            writer = lambda temporary: solver.write_field(temporary, result, p.singularities)
+        self.write(target, path, overwrite, writer)
         return frame({"saved": os.path.relpath(target, self.folder), "bytes": os.path.getsize(target)}, [])
 
     def load_frame(self, request):
         if not isinstance(request, dict):
             raise ValueError("the body must be a JSON object")
         kind = request.get("kind")
-        if kind not in ("singularities", "constraints"):
+        if not isinstance(kind, str) or kind not in ("singularities", "constraints"):
             raise ValueError(f"kind must be singularities or constraints, got {shown(kind)}")
         real = self.user_path(request.get("path"), saving=False)
         if kind == "singularities":
@@ -442,67 +536,152 @@ class Session:
         return frame({"constraints": [[f, d] for f, d in zip(faces.tolist(), directions.tolist())]}, [])
 
 
+def json_integer(text):
+    """an integer of a request: refused (ValueError) above MAX_DIGITS digits, before Python's own limit (4300
+    digits, whose ValueError would come from deep inside the parser) and its quadratic-time conversion"""
+    digits = len(text) - text.startswith("-")
+    if digits > MAX_DIGITS:
+        raise ValueError(f"an integer of {digits} digits (at most {MAX_DIGITS})")
+    return int(text)
+
+
+def json_constant(name):
+    """NaN, Infinity, -Infinity: Python's json reads them, JSON has no such numbers"""
+    raise ValueError(f"{name} is not a JSON number")
+
+
 class Handler(http.server.BaseHTTPRequestHandler):
+    """GET (and HEAD) on the page and the mesh, POST on the API; other methods 405 with an Allow header, methods
+    nobody knows 501. Every refusal, the base class's own (a malformed request line or header) included, is a
+    text/plain line; a refusal that leaves a body unread (or half read) closes the connection after it"""
     session = None
     bundle = None
     protocol_version = "HTTP/1.1"
     disable_nagle_algorithm = True  # no 40 ms wait for the client's delayed ACK between packets of a reply
+    GETS = ("/", "/editor.js", "/api/mesh")
+    POSTS = {"/api/solve": "solve_frame", "/api/place": "place_frame", "/api/streamlines": "streamlines_frame",
+             "/api/save": "save_frame", "/api/load": "load_frame"}
 
     def log_message(self, *args):
         pass
 
-    def reply(self, code, body, kind):
-        """the status line, the headers and the body in one write"""
+    def reply(self, code, body, kind, headers=()):
+        """the status line, the headers and the body (not for HEAD) in one write; a client gone is not an error"""
         head = (f"{self.protocol_version} {code} {self.responses.get(code, ('',))[0]}\r\n"
                 f"Content-Type: {kind}\r\nContent-Length: {len(body)}\r\nCache-Control: no-store\r\n"
+                + "".join(f"{name}: {value}\r\n" for name, value in headers)
                 + ("Connection: close\r\n" if self.close_connection else "") + "\r\n")
-        self.wfile.write(head.encode("latin-1") + body)
+        try:
+            self.wfile.write(head.encode("latin-1") + (b"" if self.command == "HEAD" else body))
+        except (BrokenPipeError, ConnectionResetError):
+            self.close_connection = True
 
-    def refuse(self, code, reason):
+    def refuse(self, code, reason, headers=()):
         """a 4xx (or 500) with a one-line reason; the folder's own path is left out of it"""
         folder = self.session.folder if self.session is not None else None
         if folder and folder != os.sep:
             reason = reason.replace(folder + os.sep, "")
-        self.reply(code, (" ".join(reason.split()) + "\n").encode(), "text/plain; charset=utf-8")
+        self.reply(code, (" ".join(reason.split()) + "\n").encode("utf-8", "backslashreplace"),
+                   "text/plain; charset=utf-8", headers)
+
+    def send_error(self, code, message=None, explain=None):
+        """the base class's refusals (a malformed request line or header, 414, 431, 501, 505) as one line too"""
+        self.close_connection = True
+        self.refuse(code, message or self.responses.get(code, ("refused",))[0])
+
+    def not_allowed(self, body_read=False):
+        """405 for a method the URL does not take (404 for an unknown URL); unless the body was read, the
+        connection closes after it"""
+        self.close_connection = self.close_connection or not body_read
+        if self.path in self.GETS:
+            return self.refuse(405, f"{self.command} {self.path}: this URL takes GET and HEAD",
+                               [("Allow", "GET, HEAD")])
+        if self.path in self.POSTS:
+            return self.refuse(405, f"{self.command} {self.path}: this URL takes POST", [("Allow", "POST")])
+        return self.refuse(404, f"not found: {self.path}")
+
+    do_PUT = do_DELETE = do_PATCH = do_OPTIONS = do_TRACE = do_CONNECT = not_allowed
 
     def do_GET(self):
-        files = {"/": (os.path.join(HERE, "web", "index.html"), "text/html; charset=utf-8"),
-                 "/editor.js": (os.path.join(self.bundle, "editor.js"), "text/javascript")}
+        if self.headers.get("Transfer-Encoding") or self.headers.get("Content-Length", "0").strip() != "0":
+            self.close_connection = True  # a body with a GET: not read, so nothing more can be on this connection
+        if self.path not in self.GETS:
+            return self.not_allowed(body_read=True)  # (or the connection closes, as just said)
         if self.path == "/api/mesh":
             return self.reply(200, self.session.mesh_frame(), "application/octet-stream")
-        if self.path not in files:
-            return self.refuse(404, f"not found: {self.path}")
-        path, kind = files[self.path]
-        with open(path, "rb") as f:
-            self.reply(200, f.read(), kind)
+        path, kind = {"/": (os.path.join(HERE, "web", "index.html"), "text/html; charset=utf-8"),
+                      "/editor.js": (os.path.join(self.bundle, "editor.js"), "text/javascript")}[self.path]
+        try:
+            with open(path, "rb") as f:
+                body = f.read()
+        except OSError as e:
+            return self.refuse(404, f"not found: {self.path} ({e.strerror}; the page's bundle is built by the "
+                                    f"target trivial_connections_editor)")
+        self.reply(200, body, kind)
+
+    do_HEAD = do_GET  # the headers of the GET (reply() leaves the body out)
+
+    def request_object(self):
+        """the body, read whole (Content-Length) and parsed: a JSON object, or None once refused"""
+        if "Transfer-Encoding" in self.headers:
+            self.close_connection = True
+            return self.refuse(411, "a body in chunks (Transfer-Encoding) is not read: send it with a "
+                                    "Content-Length")
+        lengths = {value.strip() for value in self.headers.get_all("Content-Length", [])}
+        if not lengths:
+            self.close_connection = True  # a body could follow (read to the end of the connection): not read
+            return self.refuse(411, "a POST needs a Content-Length")
+        length = lengths.pop()
+        if lengths or not length.isascii() or not length.isdigit():
+            self.close_connection = True
+            return self.refuse(400, f"bad Content-Length: {shown(self.headers.get_all('Content-Length'))}")
+        length = int(length)
+        if length > MAX_BODY:
+            self.close_connection = True  # the body is not read: nothing more can be on this connection
+            return self.refuse(413, f"request body of {length} bytes (at most {MAX_BODY})")
+        self.connection.settimeout(BODY_TIMEOUT)
+        try:
+            data = self.rfile.read(length)
+        except TimeoutError:
+            self.close_connection = True
+            return self.refuse(408, f"the body ({length} bytes) did not arrive within {BODY_TIMEOUT} s")
+        except (ConnectionResetError, BrokenPipeError):
+            self.close_connection = True  # nobody to answer
+            return None
+        finally:
+            self.connection.settimeout(self.timeout)
+        if len(data) < length:
+            self.close_connection = True
+            return self.refuse(400, f"the body ended after {len(data)} of its {length} bytes (Content-Length)")
+        try:
+            request = json.loads(data.decode("utf-8") or "{}", parse_int=json_integer, parse_constant=json_constant)
+        except UnicodeDecodeError as e:
+            return self.refuse(400, f"the body is not UTF-8: {e}")
+        except RecursionError:
+            return self.refuse(400, "malformed JSON: nested too deeply")
+        except ValueError as e:  # json.JSONDecodeError, json_integer(), json_constant()
+            return self.refuse(400, f"malformed JSON: {e}")
+        if not isinstance(request, dict):
+            names = {list: "an array", str: "a string", bool: "true or false", type(None): "null"}
+            return self.refuse(400, f"the body must be a JSON object, got {names.get(type(request), 'a number')}")
+        return request
 
     def do_POST(self):
+        request = self.request_object()  # read first, so that the connection stays usable after a 404 or 405
+        if request is None:
+            return
+        if self.path not in self.POSTS:
+            return self.not_allowed(body_read=True)
         try:
-            length = int(self.headers.get("Content-Length", "0") or 0)
-        except ValueError:
-            length = -1
-        if length < 0 or length > MAX_BODY:
-            self.close_connection = True  # the body is not read: nothing more can be on this connection
-            return self.refuse(413 if length > 0 else 400,
-                               f"request body of {length} bytes (at most {MAX_BODY})" if length > 0
-                               else "bad Content-Length")
-        try:
-            request = json.loads(self.rfile.read(length) or b"{}")
-        except (json.JSONDecodeError, UnicodeDecodeError) as e:
-            return self.refuse(400, f"malformed JSON: {e}")
-        routes = {"/api/solve": self.session.solve_frame, "/api/place": self.session.place_frame,
-                  "/api/streamlines": self.session.streamlines_frame, "/api/save": self.session.save_frame,
-                  "/api/load": self.session.load_frame}
-        if self.path not in routes:
-            return self.refuse(404, f"not found: {self.path}")
-        try:
-            body = routes[self.path](request)
+            body = getattr(self.session, self.POSTS[self.path])(request)
         except Refusal as e:
             return self.refuse(e.status, str(e))
         except tc.InvalidInput as e:
             return self.refuse(422, f"{e.code}: {e}")
         except (TypeError, ValueError, KeyError, OverflowError) as e:
             return self.refuse(400, f"bad request: {e}")
+        except RecursionError:
+            return self.refuse(400, "bad request: nested too deeply")
         except Exception as e:  # noqa: BLE001 (a reply rather than a dropped connection; the trace on stderr)
             traceback.print_exc()
             return self.refuse(500, f"internal error: {type(e).__name__}: {e}")

@@ -1,6 +1,7 @@
-"""The field editor's server (issue 22): its answers (constraints, boundary alignment, streamlines, files saved
-and loaded in its folder, the mesh's angle defects) checked against the module, and bad requests: a 4xx with a
-one-line reason, the session keeps working, nothing written. Runs editor/serve.py in this process on generated
+"""The field editor's server (issues 22 and 36): its answers (constraints, boundary alignment, streamlines, files
+saved and loaded in its folder, the mesh's angle defects) checked against the module, and bad requests: a 4xx with a
+one-line reason, the session keeps working, nothing written; saves that never replace the mesh, nor another file
+without "overwrite": true; malformed bodies, framings and methods answered, never a dropped connection. Runs editor/serve.py in this process on generated
 meshes (PYTHONPATH: the module)."""
 import fractions
 import http.client
@@ -8,6 +9,7 @@ import importlib.util
 import json
 import math
 import os
+import socket
 import threading
 
 import numpy as np
@@ -307,8 +309,8 @@ def test_constraint_sets_switch_and_each_request_gets_its_own(server):
     ([[8, [1, 0, 0]]], 422),                  # no face 8
     ([[-1, [1, 0, 0]]], 422),
     ([[2, [0, 0, 0.0]]], 422),                # zero
-    ([[2, [float("inf"), 0, 0]]], 422),       # Infinity (Python's json writes and reads it)
-    ([[2, [float("nan"), 0, 0]]], 422),
+    ([[2, [float("inf"), 0, 0]]], 400),       # Infinity: Python's json writes it, the server reads no such JSON
+    ([[2, [float("nan"), 0, 0]]], 400),
     ([[2, [10**400, 0, 0]]], 422),            # too large for a float
     ([[2, [1, 0, 0]], [2, [0, 1, 0]]], 422),  # face 2 twice
     ([[0, [1, 1, 1]]], 422),                  # normal to face 0 (the library refuses it)
@@ -448,9 +450,14 @@ def test_save_every_kind_and_read_it_back(disk):
     with open(saved["streamlines"]) as f:
         assert "LINES" in f.read()
     assert not [name for name in os.listdir(folder) if name.startswith(".")]  # no temporary file left
-    # saving again replaces the file
-    header, _ = answer(port, "/api/save", dict(body, singularities=[], kind="singularities", path="s.sing"))
+    # saving again replaces the file only when the request says so
+    again = dict(body, singularities=[], kind="singularities", path="s.sing")
+    status, data = post(port, "/api/save", again)
+    assert status == 409 and b"already exists" in data
+    assert tc.read_singularities(saved["singularities"]) == {v: fractions.Fraction(k) for v, k in SING}
+    header, _ = answer(port, "/api/save", dict(again, overwrite=True))
     assert tc.read_singularities(saved["singularities"]) == {}
+    assert not [name for name in os.listdir(folder) if name.startswith(".")]
 
 
 def test_load_round_trip(disk):
@@ -546,3 +553,306 @@ def test_one_connection_many_requests(server):
     r = c.getresponse()
     assert r.status == 200 and parse(r.read())[0]["faces"] == 8
     c.close()
+
+
+# ---- saving over files: never the mesh, other files only with "overwrite": true (issue 36) ---------------------
+
+
+@pytest.fixture
+def held(tmp_path):
+    """the server as `cd DIR; trivial_connections-serve held.off` starts it: the mesh in the folder (the current
+    directory, by default)"""
+    mesh = os.path.join(str(tmp_path), "held.off")
+    os.rename(octahedron_file(str(tmp_path)), mesh)
+    httpd = start(mesh, str(tmp_path))
+    yield httpd.server_address[1], str(tmp_path), mesh
+    httpd.shutdown()
+
+
+def contents(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+def one_line(data):
+    return data.endswith(b"\n") and data.count(b"\n") == 1 and len(data) > 10
+
+
+OCTAHEDRON_SOLVE = {"n": 4, "singularities": [[0, 1], [1, 1]]}
+
+
+def test_save_never_replaces_the_mesh(held):
+    port, folder, mesh = held
+    os.link(mesh, os.path.join(folder, "hard.off"))  # another name of the same file
+    os.symlink("held.off", os.path.join(folder, "soft.off"))
+    os.symlink(mesh, os.path.join(folder, "absolute.off"))
+    os.makedirs(os.path.join(folder, "sub"))
+    os.symlink(os.path.join("..", "hard.off"), os.path.join(folder, "sub", "up.off"))
+    before, stat = contents(mesh), os.stat(mesh)
+    names = tree(folder)
+    for path in ["held.off", "./held.off", "sub/../held.off", "hard.off", "soft.off", "absolute.off", "sub/up.off"]:
+        for kind in ["singularities", "constraints", "streamlines"]:
+            for overwrite in [{}, {"overwrite": False}, {"overwrite": True}]:
+                status, data = post(port, "/api/save", dict(OCTAHEDRON_SOLVE, kind=kind, path=path, **overwrite))
+                assert status == 403, (path, kind, overwrite, status, data)
+                assert one_line(data) and b"the mesh being edited" in data and folder.encode() not in data, data
+    assert contents(mesh) == before and os.stat(mesh).st_ino == stat.st_ino
+    assert tree(folder) == names  # nothing written, no temporary left
+    assert answer(port, "/api/solve", OCTAHEDRON_SOLVE)[0]["max_residual"] < 1e-9
+
+
+def test_save_over_an_existing_file_needs_overwrite(held):
+    port, folder, _ = held
+    taken = os.path.join(folder, "taken.sing")
+    with open(taken, "w") as f:
+        f.write("# someone's file\n")
+    os.symlink("taken.sing", os.path.join(folder, "alias.sing"))
+    names = tree(folder)
+    body = dict(OCTAHEDRON_SOLVE, kind="singularities")
+    for path in ["taken.sing", "alias.sing"]:
+        for overwrite in [{}, {"overwrite": False}]:
+            status, data = post(port, "/api/save", dict(body, path=path, **overwrite))
+            assert status == 409 and one_line(data) and b"already exists" in data, (status, data)
+    for overwrite in ["yes", 1, None]:
+        status, data = post(port, "/api/save", dict(body, path="taken.sing", overwrite=overwrite))
+        assert status == 400 and b"overwrite must be" in data, data
+    # a save that would fail anyway is refused for that, not for the file: the page asks only about saves that work
+    status, data = post(port, "/api/save", dict(body, path="taken.sing", singularities=[[0, 1]]))
+    assert status == 422 and data.startswith(b"poincare_hopf_violated"), data
+    assert contents(taken) == b"# someone's file\n" and tree(folder) == names
+    # confirmed: replaced, whole
+    header, _ = answer(port, "/api/save", dict(body, path="taken.sing", overwrite=True))
+    assert header["saved"] == "taken.sing" and header["bytes"] == os.path.getsize(taken)
+    assert tc.read_singularities(taken) == {0: 1, 1: 1}
+    # through a link inside the folder, the file it names is replaced (the link stays)
+    header, _ = answer(port, "/api/save", dict(body, singularities=[[2, 1], [3, 1]], path="alias.sing",
+                                               overwrite=True))
+    assert header["saved"] == "taken.sing" and os.path.islink(os.path.join(folder, "alias.sing"))
+    assert tc.read_singularities(taken) == {2: 1, 3: 1}
+    # a new name needs no confirmation; overwrite: true on a new name writes it too
+    answer(port, "/api/save", dict(body, path="new.sing"))
+    answer(port, "/api/save", dict(body, path="newer.sing", overwrite=True))
+    assert tree(folder) == names | {os.path.join(folder, "new.sing"), os.path.join(folder, "newer.sing")}
+    # not a regular file: never replaced
+    os.mkfifo(os.path.join(folder, "pipe.sing"))
+    status, data = post(port, "/api/save", dict(body, path="pipe.sing", overwrite=True))
+    assert status == 400 and b"not a regular file" in data
+
+
+def test_a_file_that_appears_during_a_save_is_not_replaced(held, monkeypatch):
+    """the check for an existing file comes before the solve; a file given the name after it (here: while the
+    library writes) is not replaced either: without overwrite the new file is linked into place, never renamed"""
+    port, folder, _ = held
+    late = os.path.join(folder, "late.sing")
+    write = tc.write_singularities
+
+    def racing(path, singularities):
+        with open(late, "w") as f:
+            f.write("# written meanwhile\n")
+        write(path, singularities)
+
+    monkeypatch.setattr(tc, "write_singularities", racing)
+    status, data = post(port, "/api/save", dict(OCTAHEDRON_SOLVE, kind="singularities", path="late.sing"))
+    assert status == 409 and one_line(data) and b"already exists" in data, (status, data)
+    assert contents(late) == b"# written meanwhile\n"
+    assert not [name for name in os.listdir(folder) if name.startswith(".")]  # no temporary left
+
+
+@pytest.mark.parametrize("refusal", [PermissionError(1, "Operation not permitted"), OSError(95, "Not supported")])
+def test_save_on_a_file_system_without_hard_links(held, monkeypatch, refusal):
+    """os.link refused (EPERM, EOPNOTSUPP: e.g. FAT, some network file systems): the name is taken with O_EXCL,
+    still never replacing a file"""
+    port, folder, _ = held
+
+    def no_link(*args, **kwargs):
+        raise refusal
+
+    monkeypatch.setattr(serve.os, "link", no_link)
+    body = dict(OCTAHEDRON_SOLVE, kind="singularities", path="fat.sing")
+    answer(port, "/api/save", body)
+    assert tc.read_singularities(os.path.join(folder, "fat.sing")) == {0: 1, 1: 1}
+    status, data = post(port, "/api/save", dict(body, singularities=[[4, 1], [5, 1]]))
+    assert status == 409 and tc.read_singularities(os.path.join(folder, "fat.sing")) == {0: 1, 1: 1}
+    answer(port, "/api/save", dict(body, singularities=[[2, 1], [3, 1]], overwrite=True))
+    assert tc.read_singularities(os.path.join(folder, "fat.sing")) == {2: 1, 3: 1}
+    assert not [name for name in os.listdir(folder) if name.startswith(".")]
+
+
+# ---- malformed bodies, framings and methods: a reply, never a dropped connection (issue 36) ----------------------
+
+
+POSTS = ["/api/solve", "/api/place", "/api/streamlines", "/api/save", "/api/load"]
+
+
+@pytest.mark.parametrize("body, part", [
+    (b"[" * 100000 + b"]" * 100000, b"nested too deeply"),  # RecursionError in the parser
+    (b"[" * 900 + b"]" * 900, b"JSON object"),  # parsed, but no object (and not repr'd whole)
+    (b'{"n": 1' + b"0" * 5000 + b"}", b"5001 digits"),  # past Python's integer-digit limit (a ValueError)
+    (b'{"n": 1' + b"0" * 1000 + b"}", b"1001 digits"),
+    (b'{"singularities": [[0, -' + b"9" * 4400 + b"], [1, 1]]}", b"4400 digits"),
+    (b'{"n": NaN}', b"NaN"),
+    (b'{"constraints": [[2, [Infinity, 0, 0]]]}', b"Infinity"),
+    (b'{"constraints": [[2, [-Infinity, 0, 0]]]}', b"-Infinity"),
+    (b'\xff\xfe{\x00}\x00', b"not UTF-8"),
+    (b'{"path": "\xe9.sing"}', b"not UTF-8"),
+    (b'\xef\xbb\xbf{}', b"malformed JSON"),  # a byte order mark
+    (b"5", b"JSON object"), (b"[]", b"JSON object"), (b'"{}"', b"JSON object"), (b"null", b"JSON object"),
+    (b"true", b"JSON object"), (b"{", b"malformed JSON"), (b"{}{}", b"malformed JSON"),
+], ids=["deep", "deep-900", "digits-5001", "digits-1001", "digits-4400", "NaN", "Infinity", "-Infinity", "utf-16",
+        "latin-1", "bom", "number", "array", "string", "null", "true", "unclosed", "two-objects"])
+@pytest.mark.parametrize("endpoint", POSTS)
+def test_malformed_bodies_get_a_400_line(server, capfd, endpoint, body, part):
+    port, folder = server
+    before = tree(str(folder))
+    status, data = request(port, "POST", endpoint, body)
+    assert status == 400 and one_line(data) and part in data, (status, data[:200])
+    assert solve(port, [[0, 1], [1, 1]])[0] == 200
+    assert tree(str(folder)) == before
+    assert "Traceback" not in capfd.readouterr().err
+
+
+@pytest.mark.parametrize("endpoint, body, status, part", [
+    ("/api/save", {"kind": ["singularities"], "path": "x.sing"}, 400, b"kind must be"),
+    ("/api/save", {"kind": {"field": 1}, "path": "x.txt"}, 400, b"kind must be"),
+    ("/api/load", {"kind": ["singularities"], "path": "x.sing"}, 400, b"kind must be"),
+    ("/api/solve", {"singularities": [[True, 1], [0, 1]]}, 400, b"a singularity must be"),
+    ("/api/solve", {"singularities": [[0, True], [1, 1]]}, 400, b"a singularity must be"),
+    ("/api/solve", {"singularities": [[0, 1.0], [1, 1]]}, 400, b"a singularity must be"),
+    ("/api/solve", {"singularities": [[0, [1]]]}, 400, b"a singularity must be"),
+    ("/api/solve", {"singularities": [[0, "x/y"], [1, 1]]}, 422, b""),
+    ("/api/solve", {"singularities": [[10**100, 1], [1, 1]]}, 422, b""),
+    ("/api/streamlines", {"seeds": 1.5}, 400, b"seeds must be"),
+    ("/api/save", {"kind": "singularities", "path": "x\ud800.sing"}, 400, b""),
+    ("/api/load", {"kind": "singularities", "path": "x\udcff.sing"}, 404, b""),
+])
+def test_fields_of_the_wrong_type_get_a_4xx_line(server, capfd, endpoint, body, status, part):
+    port, folder = server
+    before = tree(str(folder))
+    code, data = post(port, endpoint, dict({"n": 4}, **body))
+    assert code == status and one_line(data) and part in data, (code, data)
+    assert solve(port, [[0, 1], [1, 1]])[0] == 200
+    assert tree(str(folder)) == before
+    assert "Traceback" not in capfd.readouterr().err
+
+
+def exchange(port, data, close=True, timeout=10):
+    """sends raw bytes on a new connection (then closes its sending side, unless told not to) and returns what the
+    server answers until it closes the connection"""
+    with socket.create_connection(("127.0.0.1", port), timeout=timeout) as s:
+        s.sendall(data)
+        if close:
+            s.shutdown(socket.SHUT_WR)
+        chunks = []
+        while chunk := s.recv(65536):
+            chunks.append(chunk)
+    return b"".join(chunks)
+
+
+def status_of(reply):
+    """the status, the headers ({lower-case name: value}) and the body of one raw reply"""
+    head, _, body = reply.partition(b"\r\n\r\n")
+    lines = head.decode("latin-1").split("\r\n")
+    headers = dict((k.strip().lower(), v.strip()) for k, v in (line.split(":", 1) for line in lines[1:]))
+    return int(lines[0].split()[1]), headers, body
+
+
+def post_head(path, extra):
+    return (f"POST {path} HTTP/1.1\r\nHost: x\r\n" + "".join(f"{h}\r\n" for h in extra) + "\r\n").encode()
+
+
+@pytest.mark.parametrize("data, code, part", [
+    # chunked: not read (was answered 200/422 as a solve of {})
+    (post_head("/api/solve", ["Transfer-Encoding: chunked"]) + b"2\r\n{}\r\n0\r\n\r\n", 411, b"Content-Length"),
+    (post_head("/api/solve", ["Transfer-Encoding: chunked", "Content-Length: 2"]) + b"2\r\n{}\r\n0\r\n\r\n", 411,
+     b"Content-Length"),
+    (post_head("/api/solve", []) + b"{}", 411, b"Content-Length"),  # no Content-Length at all
+    (post_head("/api/solve", ["Content-Length: abc"]) + b"{}", 400, b"Content-Length"),
+    (post_head("/api/solve", ["Content-Length: -5"]) + b"{}", 400, b"Content-Length"),
+    (post_head("/api/solve", ["Content-Length: 1_0"]) + b"{}", 400, b"Content-Length"),
+    (post_head("/api/solve", ["Content-Length: +2"]) + b"{}", 400, b"Content-Length"),
+    (post_head("/api/solve", ["Content-Length: 2", "Content-Length: 3"]) + b"{} ", 400, b"Content-Length"),
+    (post_head("/api/solve", ["Content-Length: 99999999999999999999999"]), 413, b"at most"),
+    # a body shorter than its Content-Length, the client done sending
+    (post_head("/api/solve", ["Content-Length: 100"]) + json.dumps(OCTAHEDRON_SOLVE).encode(), 400,
+     b"ended after 43 of its 100 bytes"),
+    (b"GET / HTTP/1.1\r\nHost: x\r\n" + b"X-Long: " + b"a" * 70000 + b"\r\n\r\n", 431, b""),
+    (b"GET /" + b"a" * 70000 + b" HTTP/1.1\r\n\r\n", 414, b""),
+    (b"GET / HTTP/2.0\r\n\r\n", 505, b""),
+    (b"GET\r\n\r\n", 400, b""),
+], ids=["chunked", "chunked-and-length", "no-length", "length-abc", "length-negative", "length-underscore",
+        "length-plus", "two-lengths", "length-huge", "short-body", "long-header", "long-url", "http-2", "no-url"])
+def test_bad_framing_gets_a_reply_and_a_closed_connection(server, capfd, data, code, part):
+    port, _ = server
+    status, headers, body = status_of(exchange(port, data))
+    assert status == code and one_line(body) and part in body, (status, body)
+    assert headers["content-type"].startswith("text/plain") and int(headers["content-length"]) == len(body)
+    assert solve(port, [[0, 1], [1, 1]])[0] == 200
+    assert "Traceback" not in capfd.readouterr().err
+
+
+def test_a_body_that_does_not_arrive_gets_408(server, monkeypatch):
+    port, _ = server
+    monkeypatch.setattr(serve, "BODY_TIMEOUT", 0.5)
+    # 10 bytes of the 100 announced, and the connection kept open
+    status, headers, body = status_of(exchange(port, post_head("/api/solve", ["Content-Length: 100"]) + b'{"n": 4, ',
+                                               close=False))
+    assert status == 408 and headers["connection"] == "close" and one_line(body)
+    assert solve(port, [[0, 1], [1, 1]])[0] == 200
+
+
+def test_other_methods_get_405_with_allow(server):
+    port, _ = server
+    for method in ["PUT", "DELETE", "PATCH", "OPTIONS", "TRACE"]:
+        for path, allow in [("/api/solve", "POST"), ("/api/save", "POST"), ("/", "GET, HEAD"),
+                            ("/api/mesh", "GET, HEAD")]:
+            c = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+            c.request(method, path, body=b"{}")
+            r = c.getresponse()
+            data = r.read()
+            assert r.status == 405 and r.getheader("Allow") == allow and one_line(data), (method, path, data)
+            c.close()
+        assert request(port, method, "/nowhere", b"{}")[0] == 404
+    status, data = request(port, "FROB", "/api/solve", b"{}")  # a method nobody knows
+    assert status == 501 and one_line(data)
+    # the wrong one of GET and POST, on one connection that stays usable (the body was read)
+    c = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+    for method, path, body, allow in [("GET", "/api/solve", None, "POST"), ("POST", "/", b"{}", "GET, HEAD"),
+                                      ("POST", "/api/mesh", b"{}", "GET, HEAD")]:
+        c.request(method, path, body=body)
+        r = c.getresponse()
+        assert r.status == 405 and r.getheader("Allow") == allow and one_line(r.read())
+    c.request("POST", "/api/solve", json.dumps(OCTAHEDRON_SOLVE))
+    assert c.getresponse().status == 200
+    c.close()
+
+
+def test_head_gives_the_headers_of_the_get(server):
+    """HEAD on the page and the mesh: the GET's status and Content-Length, no body (the next reply on the same
+    connection is whole)"""
+    port, _ = server
+    c = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+    for path in ["/", "/api/mesh", "/nowhere"]:
+        c.request("GET", path)
+        r = c.getresponse()
+        body = r.read()
+        c.request("HEAD", path)
+        h = c.getresponse()
+        assert h.read() == b"" and h.status == r.status and int(h.getheader("Content-Length")) == len(body)
+        assert h.getheader("Content-Type") == r.getheader("Content-Type")
+    c.request("GET", "/api/mesh")
+    assert parse(c.getresponse().read())[0]["faces"] == 8
+    c.close()
+    with socket.create_connection(("127.0.0.1", port), timeout=10) as s:  # no body bytes at all
+        s.sendall(b"HEAD / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
+        reply = b""
+        while chunk := s.recv(65536):
+            reply += chunk
+    assert reply.endswith(b"\r\n\r\n") and reply.count(b"\r\n\r\n") == 1
+
+
+def test_a_missing_bundle_is_a_404_line(server, capfd):
+    port, _ = server  # its bundle folder has no editor.js
+    status, data = request(port, "GET", "/editor.js")
+    assert status == 404 and one_line(data) and b"trivial_connections_editor" in data
+    assert request(port, "GET", "/")[0] == 200
+    assert "Traceback" not in capfd.readouterr().err

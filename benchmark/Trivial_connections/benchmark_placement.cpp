@@ -222,7 +222,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
                                                             symmetry);
         t_assembly = seconds_since(t0);
         t0 = Clock::now();
-        const TC::internal::Smoothest_field_factor factor(problem, 1e-9 * TC::internal::spectral_scale(problem));
+        const TC::internal::Smoothest_field_factor factor(problem, TC::internal::preconditioner_shifts(problem));
         t_factorization = seconds_since(t0);
         Eigen::VectorXcd r(m.nf);
         for(int f = 0; f < m.nf; ++f)

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -44,12 +45,17 @@ struct Smoothest_field_problem
   std::vector<double> area;          // per face: B's diagonal
   std::vector<Complex> start;        // per face: the first vector of the eigensolver
   std::vector<int> component_of_face;
+  std::vector<int> component_of_vertex; // -1: a vertex without face
   int components = 0;
 
   template <class TriangleMesh>
   Smoothest_field_problem(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g, const Mesh_topology& t, int n)
     : component_of_face(t.component_of_face), components(int(t.components.size()))
   {
+    component_of_vertex.assign(std::size_t(m.nv), -1);
+    for(int v = 0; v < m.nv; ++v)
+      if(t.node_of_vertex[v] >= 0)
+        component_of_vertex[v] = t.component_of_node[t.node_of_vertex[v]];
     area.resize(std::size_t(m.nf));
     start.resize(std::size_t(m.nf));
     for(int f = 0; f < m.nf; ++f) {
@@ -153,14 +159,40 @@ inline std::vector<double> component_norms(const Smoothest_field_problem& p, con
   return s;
 }
 
-// a scale of A's spectrum: its largest diagonal entry over the face's area (an upper bound of the largest
-// eigenvalue up to a factor 2, by Gershgorin)
-inline double spectral_scale(const Smoothest_field_problem& p)
+// per component, a scale of its block of A's spectrum: the largest diagonal entry over the face's area (an upper
+// bound of the block's largest eigenvalue up to a factor 2, by Gershgorin); 0 for a component without interior
+// edge, whose block is 0
+inline std::vector<double> component_spectral_scales(const Smoothest_field_problem& p)
 {
-  double s = 0;
-  for(int f = 0; f < int(p.area.size()); ++f)
-    s = (std::max)(s, p.A.coeff(f, f).real() / p.area[f]);
+  std::vector<double> s(std::size_t(p.components), 0.);
+  for(int f = 0; f < int(p.area.size()); ++f) {
+    double& c = s[p.component_of_face[f]];
+    c = (std::max)(c, p.A.coeff(f, f).real() / p.area[f]);
+  }
   return s;
+}
+
+// per face, the shift of the preconditioner A + shift B: 1e-9 times its component's spectral scale (A is singular
+// when a component carries a parallel field, a flat torus for instance; the shift changes no eigenvector). Each
+// component its own, so that a component's shift does not depend on the others beside it. Where a component's
+// block of A is 0 (no interior edge: one triangle, or a fan of triangles with no shared edge), every field is an
+// eigenvector and any positive shift does: 1 over the component's area, which has the units of A / B.
+inline std::vector<double> preconditioner_shifts(const Smoothest_field_problem& p,
+                                                 const std::vector<double>& scales)
+{
+  std::vector<double> area(std::size_t(p.components), 0.);
+  for(int f = 0; f < int(p.area.size()); ++f)
+    area[p.component_of_face[f]] += p.area[f];
+  std::vector<double> shift(p.area.size());
+  for(int f = 0; f < int(p.area.size()); ++f) {
+    const int c = p.component_of_face[f];
+    shift[f] = scales[c] > 0 ? 1e-9 * scales[c] : 1 / area[c];
+  }
+  return shift;
+}
+inline std::vector<double> preconditioner_shifts(const Smoothest_field_problem& p)
+{
+  return preconditioner_shifts(p, component_spectral_scales(p));
 }
 
 // per component, the B inner product of a and b (sum over its faces of area conj(a) b)
@@ -186,43 +218,53 @@ inline std::vector<std::complex<double>> component_energies(const Smoothest_fiel
 /*
   The smallest eigenvector of the pencil on every component, by the locally optimal block preconditioned conjugate
   gradient method (LOBPCG, Knyazev 2001) with block size 1, preconditioned by one factor of A + sigma B
-  (sigma = 1e-9 times the spectral scale: A is singular when a component carries a parallel field, a flat torus for
-  instance, and the shift changes no eigenvector). Each iteration is one solve with that factor (the residual
-  A x - lambda B x preconditioned, which is inverse iteration's direction), then the Rayleigh-Ritz step over
-  x, that direction and the previous step, per component (the components are independent blocks: one solve serves
-  all). Plain inverse iteration converges as lambda_1 / lambda_2 per solve, which is slow where the smallest
-  eigenvalues cluster (60 solves on a 90k-face elephant); the Ritz step over three vectors converges about as the
-  square root of that.
-  Stopping rule, after at least three iterations: every component's Rayleigh quotient lambda_k changed by at most
-  1e-10 (lambda_k + 1e-8 scale) in the last iteration (converged: the quotient converges as the square of the
-  vector, so the directions are then within about 1e-5 of the eigenvector's); or the singularities the field has
-  (`singularities_of(u)`, n k_v per vertex) were the same in the last three iterations while every quotient
-  changed by at most 1e-6 (lambda_k + 1e-8 scale): what is read off the field is settled, though the vector may
-  still drift inside a cluster of nearly equal eigenvalues (on a surface of revolution, or a sphere, where any
-  field of the cluster is as smooth); or `max_iterations`.
+  (preconditioner_shifts()). Each iteration is one solve with that factor (the residual A x - lambda B x
+  preconditioned, which is inverse iteration's direction), then the Rayleigh-Ritz step over x, that direction and
+  the previous step, per component (the components are independent blocks: one solve serves all). Plain inverse
+  iteration converges as lambda_1 / lambda_2 per solve, which is slow where the smallest eigenvalues cluster (60
+  solves on a 90k-face elephant); the Ritz step over three vectors converges about as the square root of that.
+
+  Each component runs as it would alone: its own scale, its own stopping rule, and once it stops it is frozen
+  (taken out of the solves' right-hand sides and the Ritz steps) while the others go on. Iterating past
+  convergence is not harmless: the residual is then rounding noise, the three vectors of the Ritz step are nearly
+  dependent, and the step can throw a converged component far off (a femur's quotient went from 41 to 15,000 while
+  a knot beside it was still converging). For the same reason a step that raises a component's Rayleigh quotient
+  (which LOBPCG never does in exact arithmetic) is undone, and the component stops there.
+  Stopping rule of a component, after at least three iterations: its Rayleigh quotient lambda changed by at most
+  1e-10 (lambda + 1e-8 scale) in the last iteration (converged: the quotient converges as the square of the
+  vector, so the directions are then within about 1e-5 of the eigenvector's); or the singularities its field has
+  (`singularities_of(u)`: n k_v per vertex, read on its vertices) were the same in the last three iterations while
+  its quotient changed by at most 1e-6 (lambda + 1e-8 scale): what is read off the field is settled, though the
+  vector may still drift inside a cluster of nearly equal eigenvalues (on a surface of revolution, or a sphere,
+  where any field of the cluster is as smooth); or `max_iterations`.
   `fixed` (optional, per face, with `fixed_value`): faces whose u is prescribed (the boundary alignment); a
   component with such faces is solved once, with these Dirichlet values, instead of iterated.
+  `on_iteration` (optional): called after each iteration with the number of iterations done and `max_iterations`.
 */
 template <class SingularityReader>
 Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vector<char>& fixed,
                                 const std::vector<std::complex<double>>& fixed_value,
-                                const SingularityReader& singularities_of, int max_iterations = 100)
+                                const SingularityReader& singularities_of, int max_iterations = 100,
+                                const std::function<void(int, int)>& on_iteration = {})
 {
   using Complex = std::complex<double>;
   const int nf = int(p.area.size());
   const int nc = p.components;
-  const double scale = spectral_scale(p);
-  const double shift = 1e-9 * scale;
+  const std::vector<double> scale = component_spectral_scales(p);
 
-  std::vector<char> dirichlet(std::size_t(nc), 0);
+  // per component: 1 while it iterates (neither Dirichlet nor stopped)
+  std::vector<char> active(std::size_t(nc), 1), dirichlet(std::size_t(nc), 0);
   for(int f = 0; f < nf; ++f)
     if(!fixed.empty() && fixed[f])
       dirichlet[p.component_of_face[f]] = 1;
+  for(int c = 0; c < nc; ++c)
+    active[c] = !dirichlet[c];
 
   // with fixed faces, the free faces' unknowns solve A_FF u_F = -A_FP u_P: the fixed faces become identity rows
   // and their couplings move to the right-hand side
   Eigen::VectorXcd dirichlet_rhs = Eigen::VectorXcd::Zero(nf);
   std::optional<Smoothest_field_problem> reduced; // only with fixed faces: a copy of A costs as much as its assembly
+  std::vector<double> shift = preconditioner_shifts(p, scale);
   if(!fixed.empty()) {
     reduced.emplace(p);
     std::vector<Eigen::Triplet<Complex>> entries;
@@ -249,26 +291,28 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
     reduced->A.setFromTriplets(entries.begin(), entries.end());
   }
   Smoothest_field_factor factor(reduced ? *reduced : p, shift);
+  shift.clear();
+  shift.shrink_to_fit();
 
   Smoothest_field result;
   result.rayleigh_quotient.assign(std::size_t(nc), 0.);
   const bool any_dirichlet = std::find(dirichlet.begin(), dirichlet.end(), 1) != dirichlet.end();
-  const bool any_eigen = std::find(dirichlet.begin(), dirichlet.end(), 0) != dirichlet.end();
-  auto in_eigen = [&](int f) { return !dirichlet[p.component_of_face[f]]; };
+  auto in_eigen = [&](int f) { return active[p.component_of_face[f]] != 0; };
+  auto any_active = [&] { return std::find(active.begin(), active.end(), 1) != active.end(); };
 
   // the Dirichlet components: one solve; the others start from the geometric start vector, B-normalised
   Eigen::VectorXcd x = Eigen::Map<const Eigen::VectorXcd>(p.start.data(), nf);
   if(any_dirichlet) {
     Eigen::VectorXcd r = Eigen::VectorXcd::Zero(nf);
     for(int f = 0; f < nf; ++f)
-      if(!in_eigen(f))
+      if(dirichlet[p.component_of_face[f]])
         r[f] = dirichlet_rhs[f];
     const Eigen::VectorXcd d = factor.solve(r);
     for(int f = 0; f < nf; ++f)
-      if(!in_eigen(f))
+      if(dirichlet[p.component_of_face[f]])
         x[f] = d[f];
   }
-  // scales a vector per eigen component (by `coefficient`), leaving the Dirichlet components alone
+  // scales a vector per active component to B-norm 1, leaving the others alone
   auto normalise = [&](Eigen::VectorXcd& v, Eigen::VectorXcd* Av) {
     const std::vector<double> norms = component_norms(p, v);
     for(int f = 0; f < nf; ++f)
@@ -282,6 +326,7 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
   normalise(x, nullptr);
   Eigen::VectorXcd Ax = p.apply(x);
   Eigen::VectorXcd P = Eigen::VectorXcd::Zero(nf), AP = Eigen::VectorXcd::Zero(nf);
+  // the quotient of x per component (x is B-unit on the active ones)
   std::vector<double> lambda(std::size_t(nc), 0.);
   {
     const std::vector<Complex> e = component_energies(p, x, Ax);
@@ -289,10 +334,13 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
       lambda[c] = e[c].real();
   }
   std::vector<double> previous(lambda);
+  // the singularities read at the last reading, and per component how many iterations in a row they stayed
   std::vector<std::int64_t> singularities, last_singularities;
-  int settled = 0; // iterations in a row with the same singularities
+  int last_reading = -2;
+  std::vector<int> settled(std::size_t(nc), 0);
+  Eigen::VectorXcd kept_x, kept_Ax; // x before the step, to undo it on a component whose quotient rose
   bool have_step = false;
-  for(int it = 0; any_eigen; ++it) {
+  for(int it = 0; it < max_iterations && any_active(); ++it) {
     // the preconditioned residual
     Eigen::VectorXcd r(nf);
     for(int f = 0; f < nf; ++f)
@@ -301,42 +349,40 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
     for(int f = 0; f < nf; ++f)
       if(!in_eigen(f))
         W[f] = 0;
-    // per component, the B-orthonormal basis x, w, p (Gram-Schmidt; a vector whose remainder is below 1e-10 of
-    // its norm is dropped), with its A images
-    auto orthogonalise = [&](Eigen::VectorXcd& v, Eigen::VectorXcd& Av, const Eigen::VectorXcd& q,
-                             const Eigen::VectorXcd& Aq) {
+    // per component, the B-orthonormal basis x, w, p: Gram-Schmidt, twice (once leaves a vector whose remainder
+    // is small far from orthogonal, and the Ritz step then finds quotients below the smallest eigenvalue, even
+    // negative ones); a vector whose remainder after the first pass is below 1e-8 of its norm is dropped (it is
+    // rounding noise in the span of the others: directions converge long before that). The A images of the kept
+    // vectors are computed from them, not updated by the same subtractions, whose rounding is of the size of
+    // the remainder of a vector nearly in the span of the others.
+    auto orthogonalise = [&](Eigen::VectorXcd& v, const Eigen::VectorXcd& q) {
       const std::vector<Complex> d = component_products(p, q, v);
-      for(int f = 0; f < nf; ++f) {
-        const Complex c = d[p.component_of_face[f]];
-        v[f] -= c * q[f];
-        Av[f] -= c * Aq[f];
-      }
-    };
-    // after orthogonalisation: per component, keep v (normalised) or drop it when its squared norm fell below
-    // 1e-20 of `before`
-    auto keep_remainder = [&](Eigen::VectorXcd& v, Eigen::VectorXcd& Av, const std::vector<double>& before,
-                              std::vector<char>& keep) {
-      const std::vector<double> after = component_norms(p, v);
-      for(int c = 0; c < nc; ++c)
-        keep[c] = !dirichlet[c] && after[c] > 1e-20 * before[c] && after[c] > 0;
       for(int f = 0; f < nf; ++f)
-        if(!keep[p.component_of_face[f]])
-          v[f] = Av[f] = 0;
-      normalise(v, &Av);
+        v[f] -= d[p.component_of_face[f]] * q[f];
     };
-    Eigen::VectorXcd AW = p.apply(W);
+    auto orthogonalised = [&](Eigen::VectorXcd& v, const Eigen::VectorXcd* q0, const Eigen::VectorXcd* q1,
+                              std::vector<char>& keep) {
+      const std::vector<double> before = component_norms(p, v);
+      for(int pass = 0; pass < 2; ++pass) {
+        for(const Eigen::VectorXcd* q : {q0, q1})
+          if(q)
+            orthogonalise(v, *q);
+        if(pass == 0) {
+          const std::vector<double> after = component_norms(p, v);
+          for(int c = 0; c < nc; ++c)
+            keep[c] = active[c] && after[c] > 1e-16 * before[c] && after[c] > 0;
+          for(int f = 0; f < nf; ++f)
+            if(!keep[p.component_of_face[f]])
+              v[f] = 0;
+        }
+      }
+      normalise(v, nullptr);
+      return p.apply(v);
+    };
     std::vector<char> keep_w(std::size_t(nc), 0), keep_p(std::size_t(nc), 0);
-    {
-      const std::vector<double> before = component_norms(p, W);
-      orthogonalise(W, AW, x, Ax);
-      keep_remainder(W, AW, before, keep_w);
-    }
-    if(have_step) {
-      const std::vector<double> before = component_norms(p, P);
-      orthogonalise(P, AP, x, Ax);
-      orthogonalise(P, AP, W, AW);
-      keep_remainder(P, AP, before, keep_p);
-    }
+    const Eigen::VectorXcd AW = orthogonalised(W, &x, nullptr, keep_w);
+    if(have_step)
+      AP = orthogonalised(P, &x, &W, keep_p);
     // the Ritz step: per component, the smallest eigenvector of the (at most) 3 x 3 Hermitian matrix Q^H A Q
     const Eigen::VectorXcd* basis[3] = {&x, &W, &P};
     const Eigen::VectorXcd* images[3] = {&Ax, &AW, &AP};
@@ -353,7 +399,7 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
           h(a, b) = std::conj(h(b, a));
     std::vector<Eigen::Vector3cd> y(std::size_t(nc), Eigen::Vector3cd(1., 0., 0.));
     for(int c = 0; c < nc; ++c) {
-      if(dirichlet[c])
+      if(!active[c])
         continue;
       const int k = 1 + (keep_w[c] ? 1 : 0) + (keep_p[c] ? 1 : 0);
       // the kept vectors first (w may be dropped while p is kept)
@@ -373,9 +419,10 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
       for(int a = 0; a < k; ++a)
         v[index[a]] = eigen.eigenvectors()(a, 0);
       y[c] = v;
-      lambda[c] = eigen.eigenvalues()[0];
     }
     // the new x, and the step (its part orthogonal to the old x)
+    kept_x = x;
+    kept_Ax = Ax;
     for(int f = 0; f < nf; ++f) {
       if(!in_eigen(f))
         continue;
@@ -388,25 +435,67 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
     }
     have_step = true;
     normalise(x, &Ax); // against the drift of rounding: x is B-unit already
-    bool converged = it + 1 >= 3, nearly = it + 1 >= 3;
-    for(int c = 0; c < nc; ++c) {
-      if(dirichlet[c])
-        continue;
-      const double change = std::abs(lambda[c] - previous[c]), tolerance = std::abs(lambda[c]) + 1e-8 * scale;
-      converged = converged && change <= 1e-10 * tolerance;
-      nearly = nearly && change <= 1e-6 * tolerance;
-      previous[c] = lambda[c];
+    // the quotient of the new x itself (the Ritz value, but for the rounding of a step through nearly dependent
+    // vectors): a component whose quotient rose gets its x back and stops
+    std::vector<char> undone(std::size_t(nc), 0);
+    {
+      const std::vector<Complex> e = component_energies(p, x, Ax);
+      for(int c = 0; c < nc; ++c) {
+        if(!active[c])
+          continue;
+        const double q = e[c].real();
+        if(q > previous[c] + 1e-12 * (std::abs(previous[c]) + 1e-8 * scale[c])) {
+          undone[c] = 1;
+          active[c] = 0;
+        } else {
+          lambda[c] = q;
+        }
+      }
+      for(int f = 0; f < nf; ++f)
+        if(undone[p.component_of_face[f]]) {
+          x[f] = kept_x[f];
+          Ax[f] = kept_Ax[f];
+        }
     }
     result.iterations = it + 1;
-    if(converged || it + 1 >= max_iterations)
-      break;
-    if(nearly || settled > 0) {
-      singularities = singularities_of(x);
-      settled = singularities == last_singularities ? settled + 1 : 1;
-      last_singularities.swap(singularities);
-      if(nearly && settled >= 3)
-        break;
+    // each component's stopping rule
+    std::vector<char> nearly(std::size_t(nc), 0);
+    bool read = false;
+    for(int c = 0; c < nc; ++c) {
+      if(!active[c])
+        continue;
+      const double change = std::abs(lambda[c] - previous[c]), tolerance = std::abs(lambda[c]) + 1e-8 * scale[c];
+      previous[c] = lambda[c];
+      if(it + 1 < 3)
+        continue;
+      if(change <= 1e-10 * tolerance) {
+        active[c] = 0; // converged
+        continue;
+      }
+      nearly[c] = change <= 1e-6 * tolerance;
+      read = read || nearly[c] || settled[c] > 0;
     }
+    if(read) {
+      singularities = singularities_of(x);
+      std::vector<char> same(std::size_t(nc), last_reading == it - 1 ? 1 : 0);
+      if(last_reading == it - 1)
+        for(std::size_t v = 0; v < singularities.size(); ++v) {
+          const int c = p.component_of_vertex[v];
+          if(c >= 0 && singularities[v] != last_singularities[v])
+            same[c] = 0;
+        }
+      for(int c = 0; c < nc; ++c) {
+        if(!active[c] || !(nearly[c] || settled[c] > 0))
+          continue;
+        settled[c] = same[c] && settled[c] > 0 ? settled[c] + 1 : 1;
+        if(nearly[c] && settled[c] >= 3)
+          active[c] = 0; // settled
+      }
+      last_singularities.swap(singularities);
+      last_reading = it;
+    }
+    if(on_iteration)
+      on_iteration(it + 1, max_iterations);
   }
   // the quotients of the result, every component
   {

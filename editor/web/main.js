@@ -503,16 +503,29 @@ $("kind").onchange = e => {
     .find(x => path.endsWith(x));
   $("path").value = (old ? path.slice(0, -old.length) : path) + EXTENSIONS[e.target.value];
 };
+// a file that exists is replaced only once the user says so: the server refuses it (409) without "overwrite": true;
+// the mesh being edited it never replaces (403, its reason shown)
 $("save").onclick = async () => {
   const kind = $("kind").value, path = $("path").value;
   if (kind === "png") return savePng(path);
+  const body = { ...request(), kind, path };
+  let h;
   try {
-    const { header: h } = await post("/api/save", { ...request(), kind, path });
-    say(`saved ${h.saved} (${h.bytes} bytes)`);
-    window.__editor.saved = h.saved;
+    try {
+      ({ header: h } = await post("/api/save", body));
+    } catch (error) {
+      if (error.status !== 409) throw error;
+      if (!window.confirm(`${path} already exists in the server's folder. Replace it?`)) {
+        window.__editor.declined = path;
+        return say(`not saved: ${path} exists and was kept`);
+      }
+      ({ header: h } = await post("/api/save", { ...body, overwrite: true }));
+    }
   } catch (error) {
-    say(error.message, true);
+    return say(error.message, true);
   }
+  say(`saved ${h.saved} (${h.bytes} bytes)`);
+  window.__editor.saved = h.saved;
 };
 $("load").onclick = async () => {
   const kind = $("kind").value, path = $("path").value;

@@ -19,10 +19,15 @@ export function parseFrame(buffer) {
   return { header, arrays };
 }
 
-// POSTs a JSON body; the frame of the answer, or an Error with the server's one-line reason
+// POSTs a JSON body; the frame of the answer, or an Error with the server's one-line reason and the HTTP status
+// (error.status: e.g. 409 when a save would replace an existing file)
 export async function post(path, body) {
   const response = await fetch(path, { method: "POST", body: JSON.stringify(body) });
-  if (!response.ok) throw new Error((await response.text()).trim() || `${path}: HTTP ${response.status}`);
+  if (!response.ok) {
+    const error = new Error((await response.text()).trim() || `${path}: HTTP ${response.status}`);
+    error.status = response.status;
+    throw error;
+  }
   return parseFrame(await response.arrayBuffer());
 }
 

@@ -4,13 +4,16 @@
 //
 // SERVE: the launcher (trivial_connections-serve). On MESH (closed): load, a click adding +1/n, a shift-click adding
 // -1/n elsewhere, two undos, two redos, a drag, a pinned direction, a stroke, an undo, an unbalancing click completed
-// by the balancing move, save and load of singularities and constraints, n = 6, streamlines, a PNG. After each step
+// by the balancing move, save and load of singularities and constraints, a save over an existing file (the page asks:
+// declined, the file is kept; accepted, replaced), n = 6, streamlines, a PNG. After each step
 // the field the page holds is checked against the library's answer for the same request (check_field.py, beside
 // this file; PYTHONPATH: the module), not pixels. The screenshot of the last step goes to OUTDIR/editor.png; its
 // structure is checked: the mesh at the centre, and each visible singularity's marker, in its colour, at the pixel
-// where the camera projects its vertex. On BORDERED_MESH: boundary alignment on, then a pin.
+// where the camera projects its vertex. On BORDERED_MESH, copied to OUTDIR/held/held.off and served from that folder
+// as `cd DIR; trivial_connections-serve held.off` does (issue 36): boundary alignment on, a pin, then saves under the
+// mesh's own name and a hard link's, refused with the reason shown and the mesh untouched.
 import { execFileSync } from "node:child_process";
-import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import { copyFileSync, existsSync, linkSync, mkdirSync, readdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import path from "node:path";
 import { fileURLToPath } from "node:url";
 import { launchBrowser, startServer } from "./harness.mjs";
@@ -198,6 +201,36 @@ async function closedMesh(browser) {
     if (existsSync(path.join(outdir, "outside.sing"))) fail("a path outside the folder was written");
     console.log(`refused: ${await page.evaluate(() => window.__editor.lastError)}`);
     await page.evaluate(() => { window.__editor.lastError = null; });
+
+    // a name that exists: the page asks first; declined, the file is kept; accepted, it is replaced
+    const taken = path.join(files, "taken.sing"), theirs = "# someone else's file\n";
+    writeFileSync(taken, theirs);
+    const asked = [];
+    let yes = false;
+    const answer = dialog => {
+      asked.push(dialog.message());
+      return yes ? dialog.accept() : dialog.dismiss();
+    };
+    page.on("dialog", answer);
+    await page.selectOption("#kind", "singularities");
+    await page.fill("#path", "taken.sing");
+    await page.evaluate(() => { window.__editor.saved = window.__editor.declined = null; });
+    await page.click("#save");
+    await page.waitForFunction(() => window.__editor.declined || window.__editor.saved || window.__editor.lastError);
+    if (asked.length !== 1 || !asked[0].includes("taken.sing")) fail(`save over taken.sing: asked ${JSON.stringify(asked)}`);
+    if (readFileSync(taken, "utf8") !== theirs) fail("the save over taken.sing, declined, changed it");
+    if (!(await page.textContent("#status")).includes("not saved")) fail("the page does not say taken.sing was kept");
+    yes = true;
+    await page.click("#save");
+    await page.waitForFunction(() => window.__editor.saved || window.__editor.lastError);
+    const error = await page.evaluate(() => window.__editor.lastError);
+    if (error) fail(`the save over taken.sing, accepted: ${error}`);
+    const lines = readFileSync(taken, "utf8").split("\n").filter(l => l && !l.startsWith("#"));
+    const count = await page.evaluate(() => window.__editor.singularities().length);
+    if (asked.length !== 2 || lines.length !== count)
+      fail(`the save over taken.sing, accepted: ${lines.length} lines for ${count} singularities, asked ${asked.length}`);
+    page.off("dialog", answer);
+    console.log(`a save over an existing file: asked "${asked[0]}", declined (kept), then accepted (replaced)`);
     before = await solves(page);
     await page.click("#place"); // another state
     await solved(page, before);
@@ -279,21 +312,51 @@ async function structure(page) {
 }
 
 async function borderedMesh(browser) {
-  const { server, address } = await startServer(serve, bordered, ["--n", "4"]);
+  // served as `cd DIR; trivial_connections-serve held.off`: the mesh in the server's folder (the working directory)
+  const held = path.join(outdir, "held");
+  rmSync(held, { recursive: true, force: true });
+  mkdirSync(held, { recursive: true });
+  const heldMesh = path.join(held, "held.off");
+  copyFileSync(bordered, heldMesh);
+  linkSync(heldMesh, path.join(held, "other name.off"));
+  const original = readFileSync(heldMesh);
+  const { server, address } = await startServer(serve, "held.off", ["--n", "4"], held);
   try {
     const page = await open(browser, address);
-    await checkField(page, bordered, "bordered mesh: load");
+    await checkField(page, heldMesh, "bordered mesh: load");
     let before = await solves(page);
     await page.check("#align");
     await solved(page, before);
-    await checkField(page, bordered, "bordered mesh: aligned with the boundary");
+    await checkField(page, heldMesh, "bordered mesh: aligned with the boundary");
     const [f] = await visibleFaces(page, 1);
     await page.selectOption("#tool", "pin");
     before = await solves(page);
     const p = await page.evaluate(g => window.__editor.screenOfFace(g), f);
     await drag(page, p, { x: p.x - 10, y: p.y + 40 });
     await solved(page, before);
-    await checkField(page, bordered, "bordered mesh: aligned, and a pin");
+    await checkField(page, heldMesh, "bordered mesh: aligned, and a pin");
+
+    // the mesh's own name, and another name of its file: refused with the reason shown, never asked, never written
+    const asked = [];
+    page.on("dialog", dialog => {
+      asked.push(dialog.message());
+      return dialog.accept(); // even a yes must not replace the mesh
+    });
+    for (const name of ["held.off", "other name.off"]) {
+      await page.selectOption("#kind", "singularities");
+      await page.fill("#path", name);
+      await page.evaluate(() => { window.__editor.lastError = window.__editor.saved = null; });
+      await page.click("#save");
+      await page.waitForFunction(() => window.__editor.lastError || window.__editor.saved);
+      const shown = await page.textContent("#status");
+      if (!shown.includes("mesh being edited") || !shown.includes(name))
+        fail(`save as ${name} (the mesh): the page shows "${shown}"`);
+      console.log(`refused: ${shown}`);
+    }
+    if (asked.length) fail(`the page asked to replace the mesh: ${JSON.stringify(asked)}`);
+    if (!readFileSync(heldMesh).equals(original)) fail("the mesh was written");
+    const left = readdirSync(held).sort();
+    if (JSON.stringify(left) !== JSON.stringify(["held.off", "other name.off"])) fail(`the folder holds ${left}`);
   } finally {
     server.kill();
   }

@@ -6,9 +6,10 @@ import { createRequire } from "node:module";
 const require = createRequire(import.meta.url);
 const { chromium } = require("playwright-core");
 
-// the launcher (trivial_connections-serve) on `mesh` with a free port; resolves once it listens (after factoring)
-export async function startServer(serve, mesh, extra = []) {
-  const server = spawn(serve, [mesh, "--port", "0", ...extra], { stdio: ["ignore", "pipe", "inherit"] });
+// the launcher (trivial_connections-serve) on `mesh` with a free port, started in `cwd` (default: this process's;
+// the server's folder unless `extra` names one); resolves once it listens (after factoring)
+export async function startServer(serve, mesh, extra = [], cwd = undefined) {
+  const server = spawn(serve, [mesh, "--port", "0", ...extra], { stdio: ["ignore", "pipe", "inherit"], cwd });
   const address = await new Promise((resolve, reject) => {
     let out = "";
     const timer = setTimeout(() => reject(new Error("the server did not start in 120 s")), 120000);

@@ -233,9 +233,11 @@ Loop_periods boundary_loop_periods(const Options& o, const Inputs& in, const Sol
     if(!index.is_multiple_of_one_over(o.n))
       throw TC::Invalid_input(TC::Error_code::index_not_multiple,
                               the_index + " is not a multiple of 1/" + std::to_string(o.n), v);
-    // bounded like the vertex indices, so that the sums stay far from overflow
-    if(std::abs(index.numerator()) > (std::int64_t(1) << 30) / (o.n / index.denominator()))
-      throw TC::Invalid_input(TC::Error_code::invalid_index, the_index + " is too large", v);
+    // bounded like the vertex indices
+    if(!TC::internal::index_in_range(index, o.n))
+      throw TC::Invalid_input(TC::Error_code::invalid_index, the_index + " is too large (at most " +
+                                                               TC::internal::max_index_text(o.n) + " in absolute value)",
+                              v);
     loop_periods[*l] = index.times(o.n);
     named_by[*l] = v;
   }
@@ -295,13 +297,18 @@ void align_with_curvature(const Options& o, Inputs& in, Solver& solver, Design& 
 }
 
 // --auto and --refine: the singularities the trivial connection gets
-void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& design, Timings& time)
+void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& design, Progress_printer& progress,
+                          Timings& time)
 {
   Stopwatch stopwatch{time.placement};
   namespace P = TC::parameters;
-  if(o.align_curvature)
+  if(o.align_curvature) {
+    progress.begin("curvature guide");
     align_with_curvature(o, in, solver, design);
+    progress.end("curvature guide", std::to_string(design.curvature_guides) + " guided faces");
+  }
   if(o.automatic) {
+    progress.begin("placement");
     in.fixed = in.singularities;
     Singularities placed;
     // the holes' indices of --boundary-indices fix the index sums of their components
@@ -320,8 +327,13 @@ void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& 
     else
       place(P::fixed_singularities(in.fixed, base));
     in.singularities = placed;
+    const TC::Placement_report& p = *design.placement;
+    progress.end("placement", std::string(p.aligned ? "curvature-aligned" : "smoothest") + " field" +
+                                (p.iterations > 0 ? ", " + std::to_string(p.iterations) + " iterations" : "") + ", " +
+                                std::to_string(p.number_of_singularities) + " singularities");
   }
   if(o.refine) {
+    progress.begin("refinement");
     std::vector<vertex_descriptor> fixed_vertices;
     for(const auto& s : in.fixed)
       fixed_vertices.push_back(s.first);
@@ -338,6 +350,9 @@ void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& 
     });
     in.mesh.remove_property_map(x);
     in.singularities.assign(design.refinement->singularities.begin(), design.refinement->singularities.end());
+    const auto& r = *design.refinement;
+    progress.end("refinement", std::to_string(r.moves.size()) + " moves in " + std::to_string(r.trials) + " trial solves" +
+                                 (r.local_minimum ? ", a local minimum" : ", the budget of trials ran out"));
   }
 }
 
@@ -617,7 +632,7 @@ int run(const Options& o, Progress_printer& progress)
   read_inputs(o, progress, in, time);
   Solver solver = build_solver(o, in, solver_progress, time);
   Design design;
-  design_singularities(o, in, solver, design, time);
+  design_singularities(o, in, solver, design, progress, time);
   const Solution solution = solve(o, in, solver, solver_progress, time);
   write_outputs(o, in, solver, solution, progress, time);
   print_report(std::cout, o, in, solution, design, time, solver);

@@ -393,21 +393,22 @@ public:
     m_open = true;
     print("[" + seconds(m_start) + " s] " + phase + " ...");
   }
-  void end(const char* phase)
+  // `detail`: what the phase did, after its time ("16 iterations, 36 singularities")
+  void end(const char* phase, const std::string& detail = std::string())
   {
     if(!m_enabled)
       return;
     const auto start = m_starts.find(phase);
     if(start == m_starts.end())
       return;
-    const std::string took = seconds(start->second);
+    const std::string took = seconds(start->second) + " s" + (detail.empty() ? "" : "; " + detail);
     m_starts.erase(start);
     if(m_open && m_open_phase == phase) {
       m_open = false;
-      print(" done (" + took + " s)\n");
+      print(" done (" + took + ")\n");
     } else { // another phase ran inside this one
       end_line();
-      print("[" + seconds(m_start) + " s] " + phase + " done (" + took + " s)\n");
+      print("[" + seconds(m_start) + " s] " + phase + " done (" + took + ")\n");
     }
   }
   // ends an open line (before an error message or the report of an exception out of a phase)

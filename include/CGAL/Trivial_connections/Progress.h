@@ -13,9 +13,9 @@ namespace Trivial_connections {
 
 /*!
 \ingroup PkgTrivialConnectionsRef
-The phases reported through the `progress` named parameter, in the order they run.
-The constructor of `Trivial_connection_solver` runs `mesh_setup` to `loop_metric`, `solve()` runs `solve`
-and `loop_integers`, `compute_field()` runs `field`.
+The phases reported through the `progress` named parameter.
+The constructor of `Trivial_connection_solver` runs `mesh_setup` to `loop_metric`, in this order, `solve()` runs `solve`
+and `loop_integers`, `compute_field()` runs `field`, and `place_singularities()` runs `placement`.
 */
 enum class Phase {
   mesh_setup,    ///< flat arrays of the mesh, validation
@@ -26,7 +26,9 @@ enum class Phase {
   loop_metric,   ///< the metric of the loop integers, read from the factorization
   solve,         ///< back-substitutions of one `solve()`
   loop_integers, ///< the closest-vector search for the loop integers
-  field          ///< propagation of the direction field along the dual tree
+  field,         ///< propagation of the direction field along the dual tree
+  placement      ///< the smooth field of `place_singularities()` and the reading of its singularities; the
+                 ///< fractions in between are the eigensolver's iterations over its budget of 100
 };
 
 /// a short lower-case name of the phase (`"factorization"`, ...)
@@ -45,6 +47,7 @@ inline const char* phase_name(Phase p)
   case Phase::solve: return "solve";
   case Phase::loop_integers: return "loop integers";
   case Phase::field: return "field";
+  case Phase::placement: return "placement";
   }
   return "unknown";
 }

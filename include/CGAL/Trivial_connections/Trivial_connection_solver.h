@@ -179,7 +179,7 @@ public:
       \cgalParamType{`double`} \cgalParamDefault{1}
     \cgalParamNEnd
   \cgalNamedParamsEnd
-  \throws Invalid_input `empty_mesh`, `not_triangle_mesh`, `non_manifold`, `degenerate_face`,
+  \throws Invalid_input `empty_mesh`, `not_triangle_mesh`, `non_manifold`, `non_finite_point`, `degenerate_face`,
           `invalid_constraint` (a constrained or guided face not of the mesh, listed twice, both constrained and
           guided, or on an aligned boundary), `invalid_argument` (a guidance weight not positive and finite),
           `solver_failure`

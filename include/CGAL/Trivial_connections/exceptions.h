@@ -24,8 +24,8 @@ enum class Error_code {
   not_triangle_mesh,          ///< a face is not a triangle
   non_manifold,               ///< a non-manifold vertex or edge
   inconsistent_orientation,   ///< two faces that share an edge do not traverse it in opposite directions
-  degenerate_face,            ///< a face has zero area or a non-finite vertex coordinate, or is so nearly collinear
-                              ///< (every angle within 1e-12 rad of 0 or pi) that its plane is not determined in double precision
+  degenerate_face,            ///< a face has zero area, or is so nearly collinear (every angle within 1e-12 rad of 0
+                              ///< or pi) that its plane is not determined in double precision
   invalid_vertex,             ///< a vertex that does not exist, or that belongs to no face
   singularity_on_boundary,    ///< a singularity placed on a boundary vertex
   duplicate_singularity,      ///< a vertex listed twice
@@ -39,7 +39,9 @@ enum class Error_code {
   invalid_argument,           ///< any other malformed argument (seed face, face out of range, ...)
   io_error,                   ///< a file could not be read or written
   parse_error,                ///< a file could not be parsed
-  solver_failure              ///< the sparse factorization or a solve failed
+  solver_failure,             ///< the sparse factorization or a solve failed
+  non_finite_point            ///< a vertex's point has a coordinate that is not a finite number (NaN, infinite);
+                              ///< the file readers report it as a `parse_error` of the file, with the same message
 };
 
 /*!
@@ -70,6 +72,7 @@ inline const char* error_code_name(Error_code c)
     case Error_code::io_error: return "io_error";
     case Error_code::parse_error: return "parse_error";
     case Error_code::solver_failure: return "solver_failure";
+    case Error_code::non_finite_point: return "non_finite_point";
   }
   return "unknown";
 }

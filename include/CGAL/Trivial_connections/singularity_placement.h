@@ -6,6 +6,7 @@
 #ifndef CGAL_TRIVIAL_CONNECTIONS_SINGULARITY_PLACEMENT_H
 #define CGAL_TRIVIAL_CONNECTIONS_SINGULARITY_PLACEMENT_H
 
+#include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Singularity_index.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 #include <CGAL/Trivial_connections/exceptions.h>
@@ -22,6 +23,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -138,6 +140,11 @@ the aligned field and the boundary.
       A component whose guide is zero everywhere gets the smoothest field}
   \cgalParamNEnd
   \cgalParamNBegin{alignment_strength} \cgalParamType{`double`} \cgalParamDefault{100} \cgalParamNEnd
+  \cgalParamNBegin{progress}
+    \cgalParamDescription{called with `Phase::placement`: 0 at the start, after each eigensolver iteration the
+      iterations done over their budget (100), and 1 at the end; an exception it throws ends the placement}
+    \cgalParamType{`Progress_callback`} \cgalParamDefault{none}
+  \cgalParamNEnd
   \cgalParamNBegin{fixed_singularities}
     \cgalParamDescription{a range of pairs (vertex, index) kept as they are: the automatic singularities nearest
       to them give way, one unit of 1/n at a time, until each component's index sum is that of the automatic
@@ -146,7 +153,8 @@ the aligned field and the boundary.
   \cgalParamNBegin{loop_periods}
     \cgalParamDescription{as for `solve()`: on a component whose boundary loops all have an index, the vertex
       indices must sum to its Euler characteristic minus theirs; the automatic singularities nearest to its boundary
-      give way (or units are added nearest to it) until they do. Other entries are ignored}
+      give way (or units are added nearest to it) until they do. Other entries are ignored, but every entry is
+      checked as `solve()` checks it}
     \cgalParamType{`std::vector<std::int64_t>` or `std::vector<std::optional<std::int64_t>>`}
   \cgalParamNEnd
 \cgalNamedParamsEnd
@@ -172,6 +180,17 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
   if(!(strength > 0) || !std::isfinite(strength))
     throw Invalid_input(Error_code::invalid_argument,
                         "the alignment strength must be positive and finite (got " + std::to_string(strength) + ")");
+
+  const Progress_callback progress(
+    CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::progress), Progress_callback()));
+  auto notify = [&progress](double fraction) {
+    if(progress)
+      progress(Phase::placement, fraction);
+  };
+  const std::function<void(int, int)> on_iteration = [&notify](int done, int budget) {
+    notify(double(done) / budget);
+  };
+  notify(0);
 
   Placement_report report;
   report.symmetry_order = n;
@@ -210,7 +229,7 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
     report.aligned = true;
     if(any_unguided) {
       // the components without a guide: the smoothest field
-      const internal::Smoothest_field smooth = internal::smoothest_field(problem, fixed_faces, fixed_values, singularities_of);
+      const internal::Smoothest_field smooth = internal::smoothest_field(problem, fixed_faces, fixed_values, singularities_of, 100, on_iteration);
       for(int f = 0; f < m.nf; ++f)
         if(unguided[t.component_of_face[f]])
           field.u[f] = smooth.u[f];
@@ -220,7 +239,7 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
       field.iterations = smooth.iterations;
     }
   } else {
-    field = internal::smoothest_field(problem, fixed_faces, fixed_values, singularities_of);
+    field = internal::smoothest_field(problem, fixed_faces, fixed_values, singularities_of, 100, on_iteration);
   }
   report.rayleigh_quotients = field.rayleigh_quotient;
   report.iterations = field.iterations;
@@ -268,6 +287,9 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
     std::vector<std::int64_t> sum(t.components.size(), 0);
     std::vector<char> complete(t.components.size(), 1);
     for(std::size_t l = 0; l < t.loops.size(); ++l)
+      if(periods[l])
+        internal::checked_loop_period(*periods[l], l, t, n);
+    for(std::size_t l = 0; l < t.loops.size(); ++l)
       if(t.loops[l].kind == Loop_kind::boundary) {
         if(periods[l])
           sum[t.loops[l].component] += *periods[l];
@@ -303,6 +325,7 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
   std::sort(counts.begin(), counts.end());
   for(const auto& c : counts)
     report.singularities_per_index.emplace_back(Singularity_index(c.first, n), c.second);
+  notify(1);
   return report;
 }
 

@@ -155,9 +155,23 @@ inline std::vector<Eigen::VectorXd> loop_right_hand_sides(const std::vector<std:
   return t;
 }
 
+// A prescribed period of loop l, checked against max_scaled_index()
+inline std::int64_t checked_loop_period(std::int64_t period, std::size_t l, const Mesh_topology& topology, int n)
+{
+  const std::int64_t bound = max_scaled_index(n);
+  if(period > bound || period < -bound)
+    throw Invalid_input(Error_code::invalid_loop_periods,
+                        "the period " + std::to_string(period) + " of loop " + std::to_string(l) + " (" +
+                          (topology.loops[l].kind == Loop_kind::boundary ? "a boundary loop" : "a generator") +
+                          ") is too large: at most " + std::to_string(bound) + " in absolute value (" +
+                          max_index_text(n) + " turns)",
+                        l);
+  return period;
+}
+
 /*
   `loop_periods` of a solve: one entry per loop of the tree-cotree decomposition, empty where the solver
-  chooses, read into `periods` and `prescribed`. The boundary loops of a component are prescribed all or none,
+  chooses, read into `periods` and `prescribed`; each bounded by max_scaled_index(). The boundary loops of a component are prescribed all or none,
   and then, with the vertex index sums of `components` (from checked_vertex_indices()), they must satisfy
   Poincare-Hopf.
 */
@@ -172,7 +186,7 @@ inline void read_prescribed_periods(const std::vector<std::optional<std::int64_t
   std::vector<std::size_t> boundary_given(components.size(), 0);
   for(std::size_t l = 0; l < loops.size(); ++l) {
     prescribed[l] = given[l].has_value() ? 1 : 0;
-    periods[l] = given[l].value_or(0);
+    periods[l] = given[l] ? checked_loop_period(*given[l], l, topology, n) : 0;
     if(loops[l].kind == Loop_kind::boundary && given[l])
       ++boundary_given[loops[l].component];
   }

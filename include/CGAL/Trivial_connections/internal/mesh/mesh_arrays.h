@@ -176,7 +176,8 @@ struct Mesh_arrays
       ++faces_at_vertex[v];
   }
 
-  // The points (finite) and non-degenerate faces. Writes `points` only.
+  // The points (finite, every vertex's: a point the faces do not use is still a mistake of the caller's, as the
+  // file readers take it) and non-degenerate faces. Writes `points` only.
   template <class VertexPointMap, class Traits>
   void check_and_read_points(VertexPointMap vpm, const Traits& traits)
   {
@@ -187,6 +188,12 @@ struct Mesh_arrays
     for(int v = 0; v < nv; ++v) {
       const auto& p = get(vpm, vertex_descriptors[v]);
       points[v] = {{CGAL::to_double(x(p)), CGAL::to_double(y(p)), CGAL::to_double(z(p))}};
+      for(double c : points[v])
+        if(!std::isfinite(c)) // as the file readers say it
+          throw Invalid_input(Error_code::non_finite_point,
+                              "vertex " + std::to_string(v) + ": the coordinate '" +
+                                (std::isnan(c) ? "nan" : c > 0 ? "inf" : "-inf") + "' is not a finite number",
+                              std::size_t(v));
     }
     check_degenerate_faces(vpm, traits);
   }

@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -34,6 +35,31 @@ inline int checked_symmetry_order(int n)
     throw Invalid_input(Error_code::invalid_symmetry_order,
                         "the symmetry order n must be at least 1 (got " + std::to_string(n) + ")");
   return n;
+}
+
+/*
+  The bound of the integers that set holonomies: |n k_v| of a vertex index k_v, and |period| of a loop (holonomy
+  2 pi period / n), at most 2^16 full turns (n 2^16) and never more than 2^30. A solve's right-hand side holds
+  2 pi k: at 2^16 turns (4.1e5 rad) its rounding is 6e-11 rad, well below the residuals a solve is held to (1e-9);
+  at 10^9 turns it would be 1e-6 rad, and the result silently off by that. 2^30 keeps the sums over any mesh far
+  from overflow.
+*/
+inline std::int64_t max_scaled_index(int n)
+{
+  return (std::min)(std::int64_t(1) << 30, (std::int64_t(1) << 16) * std::int64_t(n));
+}
+
+// whether n index is within max_scaled_index(n), for an index that is a multiple of 1/n (n index itself may
+// overflow: it is not computed)
+inline bool index_in_range(const Singularity_index& index, int n)
+{
+  return std::abs(index.numerator()) <= max_scaled_index(n) / (n / index.denominator());
+}
+
+// what a message says of the bound: "65536" (turns)
+inline std::string max_index_text(int n)
+{
+  return Singularity_index(max_scaled_index(n), n).to_string();
 }
 
 /*
@@ -69,9 +95,10 @@ std::vector<std::int64_t> checked_vertex_indices(const Mesh_arrays<TriangleMesh>
       throw Invalid_input(Error_code::index_not_multiple,
                           "the index " + index.to_string() + " of vertex " + std::to_string(v) +
                             " is not a multiple of 1/" + std::to_string(n), v);
-    if(std::abs(index.numerator()) > (std::int64_t(1) << 30) / (n / index.denominator()))
+    if(!index_in_range(index, n))
       throw Invalid_input(Error_code::invalid_index,
-                          "the index " + index.to_string() + " of vertex " + std::to_string(v) + " is too large", v);
+                          "the index " + index.to_string() + " of vertex " + std::to_string(v) +
+                            " is too large (at most " + max_index_text(n) + " in absolute value)", v);
     k[v] = index.times(n);
     sums[topology.component_of_node[topology.node_of_vertex[v]]] += k[v];
   }

@@ -1,0 +1,157 @@
+#!/usr/bin/python3
+"""The program's automatic placement where it used to fail (issue 36), checked from its outputs:
+  - several components: CGAL's knot and femur in one OFF file, in both orders, get what each gets alone (the same
+    singularities at the same points, energies that add up);
+  - small shapes (one triangle, two, a strip, a tetrahedron, and a triangle beside a large mesh) get a field, which
+    the independent checker (check_connection.py) accepts against the singularities written;
+  - --progress names the placement with its iterations, the curvature guide and the refinement.
+Usage: cli_placement.py PROGRAM CHECKER DATA_DIR OUT_DIR (DATA_DIR: CGAL's data/meshes)."""
+import os
+import re
+import subprocess
+import sys
+
+program, checker, data, out = sys.argv[1:5]
+os.makedirs(out, exist_ok=True)
+failures = []
+
+
+def check(condition, what):
+    print(("ok: " if condition else "FAIL: ") + what)
+    if not condition:
+        failures.append(what)
+
+
+def read_off(path):
+    with open(path) as f:
+        lines = [l for l in (line.split("#")[0].strip() for line in f) if l]
+    assert lines[0] == "OFF", path
+    nv, nf = map(int, lines[1].split()[:2])
+    V = [tuple(lines[2 + i].split()[:3]) for i in range(nv)]
+    F = [tuple(int(t) for t in lines[2 + nv + i].split()[1:4]) for i in range(nf)]
+    return V, F
+
+
+def write_off(path, parts):
+    V, F = [], []
+    for v, f in parts:
+        offset = len(V)
+        V += v
+        F += [tuple(i + offset for i in t) for t in f]
+    with open(path, "w") as out_file:
+        out_file.write("OFF\n%d %d 0\n" % (len(V), len(F)))
+        out_file.writelines(" ".join(map(str, p)) + "\n" for p in V)
+        out_file.writelines("3 %d %d %d\n" % t for t in F)
+
+
+def run(mesh, name, *options):
+    """runs the program with --auto on mesh; returns (report, stderr, the singularities as {point: index})"""
+    prefix = os.path.join(out, name)
+    args = [program, mesh, "--auto", "--connection", prefix + ".c.txt", "--field", prefix + ".f.txt",
+            "--write-singularities", prefix + ".sing", *options]
+    r = subprocess.run(args, capture_output=True, text=True)
+    if r.returncode != 0:
+        check(False, "%s: exit status %d: %s" % (name, r.returncode, r.stderr.strip()))
+        return None, r.stderr, {}
+    V, _ = read_off(mesh)
+    placed = {}
+    with open(prefix + ".sing") as f:
+        for line in f:
+            t = line.split("#")[0].split()
+            if t:
+                placed[V[int(t[0])]] = t[1]
+    return r.stdout, r.stderr, placed
+
+
+def number(report, pattern):
+    m = re.search(pattern, report)
+    return float(m.group(1)) if m else float("nan")
+
+
+def checked_by_the_checker(mesh, name, n, optimality=True):
+    """the checker on the outputs; without optimality where constraints (an aligned boundary) take part"""
+    prefix = os.path.join(out, name)
+    r = subprocess.run([sys.executable, checker, mesh, "--connection", prefix + ".c.txt", "--field", prefix + ".f.txt",
+                        "--singularities", prefix + ".sing", "--n", str(n)] + ([] if optimality else ["--no-optimality"]),
+                       capture_output=True, text=True)
+    said = " ".join((r.stdout + r.stderr).split())
+    check(r.returncode == 0 and said.endswith("PASS"), "%s: the checker says %s" % (name, said[-300:]))
+
+
+# ---- several components
+knot, femur = read_off(os.path.join(data, "knot.off")), read_off(os.path.join(data, "femur.off"))
+for n in (1, 4):
+    alone, energy, field_energy = {}, 0.0, 0.0
+    for name, part in (("knot", knot), ("femur", femur)):
+        path = os.path.join(out, name + ".off")
+        write_off(path, [part])
+        report, _, placed = run(path, "%s_n%d" % (name, n), "--n", str(n))
+        if report is None:
+            continue
+        alone.update(placed)
+        energy += number(report, r"\nenergy: ([0-9.e+-]+)")
+        field_energy += number(report, r"its connection energy ([0-9.e+-]+)")
+    for name, parts in (("knot_femur", [knot, femur]), ("femur_knot", [femur, knot])):
+        path = os.path.join(out, name + ".off")
+        write_off(path, parts)
+        report, _, placed = run(path, "%s_n%d" % (name, n), "--n", str(n))
+        if report is None:
+            continue
+        check(placed == alone, "%s, n = %d: %d singularities, %d for the parts alone, %d differ" % (
+            name, n, len(placed), len(alone), len(set(placed.items()) ^ set(alone.items()))))
+        e, fe = number(report, r"\nenergy: ([0-9.e+-]+)"), number(report, r"its connection energy ([0-9.e+-]+)")
+        check(abs(e - energy) <= 1e-8 * energy, "%s, n = %d: energy %.10g, the parts' sum %.10g" % (name, n, e, energy))
+        check(abs(fe - field_energy) <= 1e-8 * field_energy,
+              "%s, n = %d: the smooth field's energy %.10g, the parts' sum %.10g" % (name, n, fe, field_energy))
+
+# ---- small shapes
+triangle = ([(0, 0, 0), (1, 0, 0), (0.3, 0.8, 0)], [(0, 1, 2)])
+two = ([(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0.4)], [(0, 1, 2), (1, 3, 2)])
+tetrahedron = ([(1, 1, 1), (-1, -1, 1), (-1, 1, -1), (1, -1, -1)], [(0, 1, 2), (0, 3, 1), (0, 2, 3), (1, 3, 2)])
+strip = ([(i, 0.1 * (i % 3), z) for z in (0, 1) for i in range(9)],
+         [t for i in range(8) for t in ((i, i + 1, i + 9), (i + 1, i + 10, i + 9))])
+far_triangle = ([(x + 3, y, z) for x, y, z in triangle[0]], triangle[1])
+shapes = {"triangle": [triangle], "two_triangles": [two], "strip": [strip], "tetrahedron": [tetrahedron],
+          "knot_and_a_triangle": [knot, far_triangle]}
+for name, parts in shapes.items():
+    path = os.path.join(out, name + ".off")
+    write_off(path, parts)
+    for n in (1, 2, 4):
+        for options in ((), ("--align-boundary",), ("--align-curvature",), ("--refine",)):
+            if "--align-curvature" in options and n % 2:
+                continue
+            case = "%s_n%d%s" % (name, n, "".join(o.replace("--", "_") for o in options))
+            report, _, placed = run(path, case, "--n", str(n), *options)
+            if report is None:
+                continue
+            check(True, "%s: %d singularities" % (case, len(placed)))
+            # the checker needs an interior edge (it takes minima over them); guided: not the unguided optimum
+            if name != "triangle" and "--align-curvature" not in options:
+                checked_by_the_checker(path, case, n, optimality="--align-boundary" not in options)
+    # a regular tetrahedron carries a parallel line and cross field with four 1/2 singularities
+    if name == "tetrahedron":
+        for n in (2, 4):
+            _, _, placed = run(path, "tetrahedron_n%d_again" % n, "--n", str(n))
+            check(sorted(placed.values()) == ["1/2"] * 4, "tetrahedron, n = %d: %s" % (n, sorted(placed.values())))
+# the knot beside a triangle: the knot's own singularities
+_, _, with_triangle = run(os.path.join(out, "knot_and_a_triangle.off"), "knot_and_a_triangle_n4_again", "--n", "4")
+_, _, knot_alone = run(os.path.join(out, "knot.off"), "knot_n4_again", "--n", "4")
+check(with_triangle == knot_alone, "the knot beside a triangle: %d singularities, %d alone" % (
+    len(with_triangle), len(knot_alone)))
+
+# ---- --progress names every phase of the design
+report, err, _ = run(os.path.join(data, "fandisk.off"), "fandisk_progress", "--n", "4", "--align-curvature", "--refine",
+                     "--progress")
+for phase, detail in (("curvature guide", r"\d+ guided faces"),
+                      ("placement", r"curvature-aligned field(, \d+ iterations)?, \d+ singularities"),
+                      ("refinement", r"\d+ moves in \d+ trial solves")):
+    check(re.search(r"\] %s \.\.\. done \( *[0-9.]+ s; %s" % (phase, detail), err) is not None,
+          "--progress shows '%s' with what it did" % phase)
+report, err, _ = run(os.path.join(data, "fandisk.off"), "fandisk_progress_smooth", "--n", "4", "--progress")
+check(re.search(r"\] placement \.\.\. done \( *[0-9.]+ s; smoothest field, \d+ iterations, \d+ singularities", err)
+      is not None, "--progress shows the smoothest field's iterations")
+
+if failures:
+    print("%d failure(s)" % len(failures))
+    sys.exit(1)
+print("all checks passed")

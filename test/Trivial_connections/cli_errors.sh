@@ -41,9 +41,9 @@ expect "$pig" '4 -1\n314 -1\n' 4 "boundary.idx: 2 of the 7 boundary loops of com
 expect "$pig" '4 -1\n314 -1\n408 -1\n291 -1\n463 -1\n429 -1\n352 -1\n' 1 "boundary.idx: Poincare-Hopf"   # sum -7, chi = -5
 expect "$pig" '4 -1\n4 -1\n' 1 "twice"
 expect "$pig" '99999 1\n' 1 "99999"                                   # out of range
-# indices within Poincare-Hopf but beyond 2^16 turns: the rounding of 2 pi k would show in the residuals
-expect "$pig" '4 1000000000\n314 -1000000000\n408 -1\n291 -1\n463 -1\n429 -1\n352 -1\n' 1 "is too large (at most 65536"
-expect "$pig" '4 65537\n314 -65537\n408 -1\n291 -1\n463 -1\n429 -1\n352 -1\n' 1 "is too large (at most 65536"
+# indices within Poincare-Hopf but beyond 2^10 turns: the rounding of 2 pi k would show in the residuals
+expect "$pig" '4 1000000000\n314 -1000000000\n408 -1\n291 -1\n463 -1\n429 -1\n352 -1\n' 1 "is too large (at most 1024"
+expect "$pig" '4 1025\n314 -1025\n408 -1\n291 -1\n463 -1\n429 -1\n352 -1\n' 1 "is too large (at most 1024"
 expect "$pig" 'garbage\n' 1 "boundary.idx"
 expect "$sphere" '0 1\n' 1 "is not on a boundary"                     # a closed mesh has no boundary loop
 

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <complex>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -562,13 +563,13 @@ TEST(Placement, bad_parameters_are_errors)
             "poincare_hopf_violated");
 }
 
-// The smallest eigenvalue of the pencil (A, B) of each component, dense (small meshes only): what the placement's
-// Rayleigh quotients must be
+// The smallest eigenvalue of the pencil (A, B) of each component of at most 64 faces, dense (NaN for the larger
+// ones): what the placement's Rayleigh quotients must be
 std::vector<double> dense_smallest_eigenvalues(const Solver& solver, int n)
 {
   const TC::internal::Smoothest_field_problem problem(Access::mesh(solver), Access::geometry(solver),
                                                       Access::topology(solver), n);
-  const Eigen::MatrixXcd A = Eigen::MatrixXcd(problem.A).selfadjointView<Eigen::Lower>();
+  const Eigen::SparseMatrix<std::complex<double>> A = problem.A.selfadjointView<Eigen::Lower>();
   std::vector<double> smallest;
   for(int c = 0; c < problem.components; ++c) {
     std::vector<int> faces;
@@ -576,10 +577,14 @@ std::vector<double> dense_smallest_eigenvalues(const Solver& solver, int n)
       if(problem.component_of_face[f] == c)
         faces.push_back(f);
     const Eigen::Index k = Eigen::Index(faces.size());
+    if(k > 64) {
+      smallest.push_back(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
     Eigen::MatrixXcd Ac(k, k), Bc = Eigen::MatrixXcd::Zero(k, k);
     for(Eigen::Index i = 0; i < k; ++i) {
       for(Eigen::Index j = 0; j < k; ++j)
-        Ac(i, j) = A(faces[i], faces[j]);
+        Ac(i, j) = A.coeff(faces[i], faces[j]);
       Bc(i, i) = problem.area[faces[i]];
     }
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXcd> eigen(Ac, Bc, Eigen::EigenvaluesOnly);
@@ -649,23 +654,25 @@ TEST(Placement, small_shapes_get_the_smoothest_field)
         ASSERT_EQ(p.report.rayleigh_quotients.size(), smallest.size());
         const double scale = spectral_scale_of(solver, n);
         for(std::size_t c = 0; c < smallest.size(); ++c)
-          if(!beside || c == 1) // the rounded cube's is checked by the test of its corners
+          if(!std::isnan(smallest[c])) // the rounded cube's is checked by the test of its corners
             EXPECT_NEAR(p.report.rayleigh_quotients[c], smallest[c], 1e-8 * (smallest[c] + 1e-6 * scale)) << "component " << c;
         EXPECT_TRUE(std::isfinite(p.report.field_energy));
         // a regular tetrahedron's angle defects are pi: Levi-Civita transport is trivial for a line field with
         // four 1/2 singularities, so the smoothest line and cross fields are parallel and have exactly those
+        const int first = beside ? int(large.points.size()) : 0; // the small shape's first vertex
+        Singularities on_small;
+        for(const auto& q : p.singularities)
+          if(q.first >= first)
+            on_small.push_back(q);
         if(name == "a tetrahedron" && n != 1) {
-          Singularities expected;
-          for(int v = 0; v < 4; ++v)
-            expected.emplace_back(beside ? int(large.points.size()) + v : v, Index(1, 2));
-          const Singularities& placed = p.singularities;
-          EXPECT_EQ(placed.size() - (beside ? 8 : 0), 4u);
-          for(const auto& e : expected)
-            EXPECT_NE(std::find(placed.begin(), placed.end(), e), placed.end()) << "vertex " << e.first;
+          EXPECT_EQ(on_small.size(), 4u);
+          for(int v = first; v < first + 4; ++v)
+            EXPECT_NE(std::find(on_small.begin(), on_small.end(), std::make_pair(v, Index(1, 2))), on_small.end())
+              << "vertex " << v;
         }
         // the open shapes carry a parallel field: no singularity
-        if(name != "a tetrahedron" && !beside)
-          EXPECT_TRUE(p.singularities.empty());
+        if(name != "a tetrahedron")
+          EXPECT_TRUE(on_small.empty());
       }
       // the other placements, on the same solver
       std::vector<Vector> guide(view.nf(), Vector(1, 0.5, 0.2));
@@ -729,7 +736,8 @@ TEST(Placement, every_component_is_placed_as_it_would_be_alone)
       ASSERT_EQ(q.size(), quotients.size());
       for(std::size_t c = 0; c < q.size(); ++c)
         EXPECT_NEAR(q[c], quotients[c], 1e-9 * quotients[c] + 1e-12);
-      EXPECT_NEAR(p.report.field_energy, energy, 1e-9 * energy);
+      // the quotient converges as the square of the vector: the energy read off the field agrees less closely
+      EXPECT_NEAR(p.report.field_energy, energy, 1e-6 * energy);
     }
   }
 }

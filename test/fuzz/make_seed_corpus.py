@@ -228,8 +228,8 @@ def inputs():
     yield "valid_stl_tetra", "S1", stl(tet), sing([(0, 2)])
     yield "valid_stl_ico_n2", "S2", stl(ico), sing([(v, 1) for v in range(2)])
     yield "valid_large_indices", "O1", off(tet), sing([(0, 1000), (1, -998)])
-    # within the solver's index bound (2^30) but, at the time of writing, a solver_failure: the absolute 1e-9
-    # residual is below the rounding of 2 pi k for |k| above about 1e6
+    # beyond the index bound of 2^10 turns (invalid_index); it was within the earlier bound (2^30) and then a
+    # solver_failure: the absolute 1e-9 residual is below the rounding of 2 pi k for |k| above about 1e6
     yield "huge_indices", "O1", off(tet), sing([(0, 1 << 29), (1, 2 - (1 << 29))])
     yield "valid_comments_blank_lines", "O1", "# comment\nOFF\n# c\n4 4 0\n" + off(tet).split("\n", 2)[2], \
         "\n# only a comment\n0 1   # trailing\n\n1 +1\n"

@@ -39,14 +39,14 @@ inline int checked_symmetry_order(int n)
 
 /*
   The bound of the integers that set holonomies: |n k_v| of a vertex index k_v, and |period| of a loop (holonomy
-  2 pi period / n), at most 2^16 full turns (n 2^16) and never more than 2^30. A solve's right-hand side holds
-  2 pi k: at 2^16 turns (4.1e5 rad) its rounding is 6e-11 rad, well below the residuals a solve is held to (1e-9);
-  at 10^9 turns it would be 1e-6 rad, and the result silently off by that. 2^30 keeps the sums over any mesh far
-  from overflow.
+  2 pi period / n), at most 2^10 full turns (n 2^10) and never more than 2^30. A solve's right-hand side holds
+  2 pi k, and the residuals it reaches are rounding relative to it: about 4e-11 rad at 2^10 turns (6.4e3 rad), well
+  below the 1e-9 a solve is held to, but 2.7e-9 at 2^16 turns on a small torus, and 1e-6 at 10^9 turns, silently.
+  No design needs more than a few turns. 2^30 keeps the sums over any mesh far from overflow.
 */
 inline std::int64_t max_scaled_index(int n)
 {
-  return (std::min)(std::int64_t(1) << 30, (std::int64_t(1) << 16) * std::int64_t(n));
+  return (std::min)(std::int64_t(1) << 30, (std::int64_t(1) << 10) * std::int64_t(n));
 }
 
 // whether n index is within max_scaled_index(n), for an index that is a multiple of 1/n (n index itself may
@@ -56,7 +56,7 @@ inline bool index_in_range(const Singularity_index& index, int n)
   return std::abs(index.numerator()) <= max_scaled_index(n) / (n / index.denominator());
 }
 
-// what a message says of the bound: "65536" (turns)
+// what a message says of the bound: "1024" (turns)
 inline std::string max_index_text(int n)
 {
   return Singularity_index(max_scaled_index(n), n).to_string();

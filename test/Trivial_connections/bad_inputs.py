@@ -276,8 +276,11 @@ case("isolated_vertex_is_ignored", {"m.off": "OFF\n5 4 0\n" + TET_V + "7 7 7\n" 
 case("duplicate_vertex_makes_a_crack", {"m.off": "OFF\n5 4 0\n" + TET_V + "0 0 0\n3 0 2 1\n3 4 1 3\n3 1 2 3\n3 2 0 3\n"},
      ["m.off"], 0)
 case("flat_disk_no_singularity", {"m.off": DISK}, ["m.off"], 0)
-# huge indices: 2 pi k is rounded to ~1e-8 for k = 1e7, which the solver must accept (a relative allowance)
-case("huge_indices_are_solved", {"m.off": TET, "s.sing": "0 10000000\n1 -9999998\n"},
+# huge indices: 2 pi k is rounded to ~1e-8 for k = 1e7, which would show in the residuals: beyond 1024 turns an
+# index is refused; at the bound it is solved
+case("huge_indices_are_refused", {"m.off": TET, "s.sing": "0 10000000\n1 -9999998\n"},
+     ["m.off", "--singularities", "s.sing"], 1, ["vertex 0", "is too large (at most 1024"])
+case("indices_at_the_bound_are_solved", {"m.off": TET, "s.sing": "0 1024\n1 -1022\n"},
      ["m.off", "--singularities", "s.sing"], 0)
 # caps (an angle pi - 4e-9) are solved; so are needles (one tiny angle), even of aspect ratio 1e100
 case("cap_aspect_1e9_is_solved", {"m.off": NEEDLE.format("1e-9")}, ["m.off"], 0)

@@ -742,6 +742,34 @@ TEST(Placement, every_component_is_placed_as_it_would_be_alone)
   }
 }
 
+// The placement reports its phase: 0, the iterations over their budget (increasing, below 1), then 1; a callback that
+// throws ends the placement and the exception reaches the caller
+TEST(Placement, progress_is_reported_and_can_cancel)
+{
+  const Surface_mesh tm = to_surface_mesh(rounded_cube_soup(2));
+  const Mesh_view<Surface_mesh> view(tm);
+  const Solver solver(tm);
+  std::vector<std::pair<TC::Phase, double>> events;
+  const TC::Progress_callback record = [&](TC::Phase p, double fraction) { events.emplace_back(p, fraction); };
+  const Placed p = place(view, solver, TC::parameters::progress(record, TC::parameters::symmetry_order(4)));
+  ASSERT_GE(events.size(), 3u);
+  EXPECT_EQ(events.front(), std::make_pair(TC::Phase::placement, 0.));
+  EXPECT_EQ(events.back(), std::make_pair(TC::Phase::placement, 1.));
+  EXPECT_EQ(int(events.size()), p.report.iterations + 2); // one call per iteration
+  for(std::size_t i = 1; i + 1 < events.size(); ++i) {
+    EXPECT_EQ(events[i].first, TC::Phase::placement);
+    EXPECT_GT(events[i].second, events[i - 1].second);
+    EXPECT_LT(events[i].second, 1.);
+  }
+  EXPECT_STREQ(TC::phase_name(TC::Phase::placement), "placement");
+  struct Cancelled {};
+  const TC::Progress_callback cancel = [](TC::Phase, double fraction) {
+    if(fraction > 0)
+      throw Cancelled();
+  };
+  EXPECT_THROW(place(view, solver, TC::parameters::progress(cancel, TC::parameters::symmetry_order(4))), Cancelled);
+}
+
 // Real meshes of every kind: closed of genus 0 to 11, bordered (up to 106 holes), several components; n = 1, 4
 TEST(Placement, real_meshes_every_invariant_holds)
 {

@@ -27,8 +27,8 @@ enum class Phase {
   solve,         ///< back-substitutions of one `solve()`
   loop_integers, ///< the closest-vector search for the loop integers
   field,         ///< propagation of the direction field along the dual tree
-  placement      ///< the smooth field of `place_singularities()` and the reading of its singularities; the
-                 ///< fractions in between are the eigensolver's iterations over its budget of 100
+  placement      ///< the smooth field of `place_singularities()` and the reading of its singularities; in
+                 ///< between, 0.99 times the eigensolver's iterations over their budget of 100
 };
 
 /// a short lower-case name of the phase (`"factorization"`, ...)

@@ -141,8 +141,9 @@ the aligned field and the boundary.
   \cgalParamNEnd
   \cgalParamNBegin{alignment_strength} \cgalParamType{`double`} \cgalParamDefault{100} \cgalParamNEnd
   \cgalParamNBegin{progress}
-    \cgalParamDescription{called with `Phase::placement`: 0 at the start, after each eigensolver iteration the
-      iterations done over their budget (100), and 1 at the end; an exception it throws ends the placement}
+    \cgalParamDescription{called with `Phase::placement`: 0 at the start, after each eigensolver iteration 0.99
+      times the iterations done over their budget (100), and 1 at the end; an exception it throws ends the
+      placement}
     \cgalParamType{`Progress_callback`} \cgalParamDefault{none}
   \cgalParamNEnd
   \cgalParamNBegin{fixed_singularities}
@@ -187,8 +188,9 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
     if(progress)
       progress(Phase::placement, fraction);
   };
+  // below 1 even at the last iteration of the budget: 1 is the end of the phase
   const std::function<void(int, int)> on_iteration = [&notify](int done, int budget) {
-    notify(double(done) / budget);
+    notify(0.99 * done / budget);
   };
   notify(0);
 
@@ -229,7 +231,8 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
     report.aligned = true;
     if(any_unguided) {
       // the components without a guide: the smoothest field
-      const internal::Smoothest_field smooth = internal::smoothest_field(problem, fixed_faces, fixed_values, singularities_of, 100, on_iteration);
+      const internal::Smoothest_field smooth =
+        internal::smoothest_field(problem, fixed_faces, fixed_values, singularities_of, 100, on_iteration);
       for(int f = 0; f < m.nf; ++f)
         if(unguided[t.component_of_face[f]])
           field.u[f] = smooth.u[f];

@@ -171,9 +171,9 @@ inline std::int64_t checked_loop_period(std::int64_t period, std::size_t l, cons
 
 /*
   `loop_periods` of a solve: one entry per loop of the tree-cotree decomposition, empty where the solver
-  chooses, read into `periods` and `prescribed`; each bounded by max_scaled_index(). The boundary loops of a component are prescribed all or none,
-  and then, with the vertex index sums of `components` (from checked_vertex_indices()), they must satisfy
-  Poincare-Hopf.
+  chooses, read into `periods` and `prescribed`, each bounded by max_scaled_index(). The boundary loops of a
+  component are prescribed all or none, and then, with the vertex index sums of `components` (from
+  checked_vertex_indices()), they must satisfy Poincare-Hopf.
 */
 inline void read_prescribed_periods(const std::vector<std::optional<std::int64_t>>& given, const Mesh_topology& topology,
                                     const std::vector<Component_report>& components, int n, std::vector<std::int64_t>& periods, std::vector<char>& prescribed)

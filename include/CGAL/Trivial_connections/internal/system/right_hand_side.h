@@ -17,9 +17,9 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <algorithm>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -64,7 +64,7 @@ inline std::string max_index_text(int n)
 
 /*
   The singularities as n times their index per vertex, checked: vertices of the mesh with a face, listed
-  once, interior, multiples of 1/n, bounded (so that the sums over all vertices stay far from overflow), and
+  once, interior, multiples of 1/n, bounded (max_scaled_index()), and
   Poincare-Hopf on every closed component, exactly. Writes each component's index sum into `components`.
 */
 template <class TriangleMesh, class SingularityRange>

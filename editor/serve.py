@@ -448,8 +448,7 @@ class Session:
         appeared meanwhile: 409 too), so it never replaces one; with overwrite it is renamed over it, the mesh
         checked again just before"""
         if not overwrite and os.path.lexists(target):
-            raise Refusal(409, f"file {shown(path)} already exists in the folder: it is replaced only with "
-                               f'"overwrite": true')
+            raise exists_refusal(path)
         directory, name = os.path.split(target)
         temporary = None
         try:
@@ -472,8 +471,7 @@ class Session:
     def link_into_place(temporary, target, path):
         """gives the temporary file the target's name if no file has it, else 409 (the temporary stays, and the
         caller removes it)"""
-        exists = Refusal(409, f"file {shown(path)} already exists in the folder: it is replaced only with "
-                              f'"overwrite": true')
+        exists = exists_refusal(path)
         try:
             os.link(temporary, target)
             return
@@ -534,6 +532,12 @@ class Session:
             raise Refusal(422, f"invalid_constraint: {len(faces)} constraints in {shown(request['path'])}, at most "
                                f"{MAX_CONSTRAINTS}")
         return frame({"constraints": [[f, d] for f, d in zip(faces.tolist(), directions.tolist())]}, [])
+
+
+def exists_refusal(path):
+    """the 409 of a save to an existing file without "overwrite": true"""
+    return Refusal(409, f"file {shown(path)} already exists in the folder: it is replaced only with "
+                        f'"overwrite": true')
 
 
 def json_integer(text):

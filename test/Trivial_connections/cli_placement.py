@@ -11,6 +11,8 @@ import re
 import subprocess
 import sys
 
+from check_constraints import read_off  # (V as floats, F), beside this script
+
 program, checker, data, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
 failures = []
@@ -22,25 +24,16 @@ def check(condition, what):
         failures.append(what)
 
 
-def read_off(path):
-    with open(path) as f:
-        lines = [l for l in (line.split("#")[0].strip() for line in f) if l]
-    assert lines[0] == "OFF", path
-    nv, nf = map(int, lines[1].split()[:2])
-    V = [tuple(lines[2 + i].split()[:3]) for i in range(nv)]
-    F = [tuple(int(t) for t in lines[2 + nv + i].split()[1:4]) for i in range(nf)]
-    return V, F
-
-
 def write_off(path, parts):
+    """the parts (V, F) as one OFF file; repr() of each coordinate reads back to the same float"""
     V, F = [], []
     for v, f in parts:
         offset = len(V)
-        V += v
+        V += [tuple(float(c) for c in p) for p in v]
         F += [tuple(i + offset for i in t) for t in f]
     with open(path, "w") as out_file:
         out_file.write("OFF\n%d %d 0\n" % (len(V), len(F)))
-        out_file.writelines(" ".join(map(str, p)) + "\n" for p in V)
+        out_file.writelines(" ".join(map(repr, p)) + "\n" for p in V)
         out_file.writelines("3 %d %d %d\n" % t for t in F)
 
 
@@ -53,7 +46,7 @@ def run(mesh, name, *options):
     if r.returncode != 0:
         check(False, "%s: exit status %d: %s" % (name, r.returncode, r.stderr.strip()))
         return None, r.stderr, {}
-    V, _ = read_off(mesh)
+    V = [tuple(float(c) for c in p) for p in read_off(mesh)[0]]
     placed = {}
     with open(prefix + ".sing") as f:
         for line in f:

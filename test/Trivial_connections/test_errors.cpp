@@ -235,12 +235,7 @@ TEST(Bad_mesh, non_finite_coordinates)
       } else {
         s.points[5] = point;
       }
-      SM sm;
-      std::vector<SM::Vertex_index> vertices;
-      for(const Point& p : s.points)
-        vertices.push_back(sm.add_vertex(p));
-      for(const Tri& t : s.faces)
-        sm.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]);
+      const SM sm = to_surface_mesh(s); // keeps a vertex no face uses
       if(auto e = expect_invalid([&] { Solver solver(sm); }, Error_code::non_finite_point)) {
         EXPECT_EQ(e->where(), std::size_t(v));
         EXPECT_EQ(std::string(e->what()), "vertex " + std::to_string(v) + ": the coordinate " + text +

@@ -593,15 +593,13 @@ std::vector<double> dense_smallest_eigenvalues(const Solver& solver, int n)
   return smallest;
 }
 
-// the largest A_ff / area_f of a solver's mesh: a scale of the pencil's spectrum, for tolerances
+// the largest of the components' spectral scales (largest A_ff / area_f), for tolerances
 double spectral_scale_of(const Solver& solver, int n)
 {
   const TC::internal::Smoothest_field_problem problem(Access::mesh(solver), Access::geometry(solver),
                                                       Access::topology(solver), n);
-  double s = 0;
-  for(int f = 0; f < int(problem.area.size()); ++f)
-    s = std::max(s, problem.A.coeff(f, f).real() / problem.area[f]);
-  return s;
+  const std::vector<double> scales = TC::internal::component_spectral_scales(problem);
+  return *std::max_element(scales.begin(), scales.end());
 }
 
 Soup one_triangle_soup(const Vector& at = Vector(0, 0, 0))

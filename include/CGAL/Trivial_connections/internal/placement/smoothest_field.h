@@ -264,7 +264,6 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
   // and their couplings move to the right-hand side
   Eigen::VectorXcd dirichlet_rhs = Eigen::VectorXcd::Zero(nf);
   std::optional<Smoothest_field_problem> reduced; // only with fixed faces: a copy of A costs as much as its assembly
-  std::vector<double> shift = preconditioner_shifts(p, scale);
   if(!fixed.empty()) {
     reduced.emplace(p);
     std::vector<Eigen::Triplet<Complex>> entries;
@@ -290,14 +289,12 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
     reduced->A.setZero();
     reduced->A.setFromTriplets(entries.begin(), entries.end());
   }
-  Smoothest_field_factor factor(reduced ? *reduced : p, shift);
-  shift.clear();
-  shift.shrink_to_fit();
+  const Smoothest_field_factor factor(reduced ? *reduced : p, preconditioner_shifts(p, scale));
 
   Smoothest_field result;
   result.rayleigh_quotient.assign(std::size_t(nc), 0.);
   const bool any_dirichlet = std::find(dirichlet.begin(), dirichlet.end(), 1) != dirichlet.end();
-  auto in_eigen = [&](int f) { return active[p.component_of_face[f]] != 0; };
+  auto iterating = [&](int f) { return active[p.component_of_face[f]] != 0; };
   auto any_active = [&] { return std::find(active.begin(), active.end(), 1) != active.end(); };
 
   // the Dirichlet components: one solve; the others start from the geometric start vector, B-normalised
@@ -316,7 +313,7 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
   auto normalise = [&](Eigen::VectorXcd& v, Eigen::VectorXcd* Av) {
     const std::vector<double> norms = component_norms(p, v);
     for(int f = 0; f < nf; ++f)
-      if(in_eigen(f) && norms[p.component_of_face[f]] > 0) {
+      if(iterating(f) && norms[p.component_of_face[f]] > 0) {
         const double s = 1 / std::sqrt(norms[p.component_of_face[f]]);
         v[f] *= s;
         if(Av)
@@ -344,10 +341,10 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
     // the preconditioned residual
     Eigen::VectorXcd r(nf);
     for(int f = 0; f < nf; ++f)
-      r[f] = in_eigen(f) ? Ax[f] - lambda[p.component_of_face[f]] * p.area[f] * x[f] : Complex(0., 0.);
+      r[f] = iterating(f) ? Ax[f] - lambda[p.component_of_face[f]] * p.area[f] * x[f] : Complex(0., 0.);
     Eigen::VectorXcd W = factor.solve(r);
     for(int f = 0; f < nf; ++f)
-      if(!in_eigen(f))
+      if(!iterating(f))
         W[f] = 0;
     // per component, the B-orthonormal basis x, w, p: Gram-Schmidt, twice (once leaves a vector whose remainder
     // is small far from orthogonal, and the Ritz step then finds quotients below the smallest eigenvalue, even
@@ -424,7 +421,7 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
     kept_x = x;
     kept_Ax = Ax;
     for(int f = 0; f < nf; ++f) {
-      if(!in_eigen(f))
+      if(!iterating(f))
         continue;
       const Eigen::Vector3cd& v = y[p.component_of_face[f]];
       const Complex step = v[1] * W[f] + v[2] * P[f], Astep = v[1] * AW[f] + v[2] * AP[f];

@@ -659,6 +659,8 @@ struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverT
   static const Mesh_arrays<TriangleMesh>& mesh(const Solver& s) { return s.m_mesh; }
   static const Mesh_geometry& geometry(const Solver& s) { return s.m_geometry; }
   static const Mesh_topology& topology(const Solver& s) { return s.m_topology; }
+  // the constrained and guided faces (read-only: the placement holds the constrained ones)
+  static const Constraint_links& links(const Solver& s) { return s.m_links; }
   // a solver of tm from its arrays, made from the connectivity tm is built from (see Mesh_arrays); with a
   // vertex_point_map in np, nothing of tm is read until the constructor has returned
   template <class NamedParameters = parameters::Default_named_parameters>

@@ -17,11 +17,14 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <complex>
+#include <iostream>
 #include <iterator>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -784,6 +787,200 @@ TEST(Placement, real_meshes_every_invariant_holds)
       EXPECT_EQ(p.report.number_of_singularities, p.singularities.size());
     }
   }
+}
+
+
+// ---------------------------------------------------------------------------------------------------------------
+// Placement that honours the pins (issue 37): the solver's constrained faces are held in the smooth field
+// ---------------------------------------------------------------------------------------------------------------
+
+/// a unit cube, each face cut into s x s squares (two triangles each), every vertex inside a face moved at random
+/// within its face (a fifth of a square at most): flat everywhere but at the eight corners
+Soup jittered_cube_soup(int s, unsigned seed)
+{
+  Soup soup = voxel_surface_soup({{{0, 0, 0}}}, s);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.2 / s, 0.2 / s);
+  for(Point& p : soup.points) {
+    double c[3] = {p.x(), p.y(), p.z()};
+    int on_cube_faces = 0;
+    for(double v : c)
+      on_cube_faces += v == 0 || v == 1;
+    if(on_cube_faces != 1)
+      continue; // on an edge of the cube
+    for(double& v : c)
+      if(v != 0 && v != 1)
+        v += jitter(rng);
+    p = Point(c[0], c[1], c[2]);
+  }
+  return soup;
+}
+
+/// pins along the sharp edges: every face beside an interior edge whose dihedral angle (between the two normals)
+/// exceeds `degrees`, pinned to the direction of that edge (of its longest such edge, beside two or three)
+struct Pins
+{
+  std::vector<int> faces;
+  std::vector<Vector> directions; // per face (zero where not pinned)
+  Indexed_map<Surface_mesh::Face_index, Vector> map(const Mesh_view<Surface_mesh>& view)
+  {
+    return Indexed_map<Surface_mesh::Face_index, Vector>{&view.fid, &directions};
+  }
+  std::vector<Surface_mesh::Face_index> descriptors(const Mesh_view<Surface_mesh>& view) const
+  {
+    std::vector<Surface_mesh::Face_index> d;
+    for(int f : faces)
+      d.push_back(view.faces[f]);
+    return d;
+  }
+};
+
+Pins sharp_edge_pins(const Mesh_view<Surface_mesh>& view, double degrees)
+{
+  const double c = std::cos(degrees * pi / 180);
+  std::vector<double> longest(view.nf(), 0.);
+  Pins pins;
+  pins.directions.assign(view.nf(), Vector(0, 0, 0));
+  for(int h : view.interior_edges) {
+    const int f = view.hface[h], g = view.hface[view.opp[h]];
+    if(!(dot(view.N[f], view.N[g]) < c))
+      continue;
+    const V3 e = view.P[view.tgt[h]] - view.P[view.src[h]];
+    for(int k : {f, g})
+      if(norm(e) > longest[k]) {
+        longest[k] = norm(e);
+        pins.directions[k] = Vector(e[0], e[1], e[2]);
+      }
+  }
+  for(int f = 0; f < view.nf(); ++f)
+    if(longest[f] > 0)
+      pins.faces.push_back(f);
+  return pins;
+}
+
+/// the trivial connection with `sing` under the pins, its holonomy checked (the cycles through pins are not
+/// prescribed)
+TC::Solve_report solve_pinned(const Mesh_view<Surface_mesh>& view, Solver& solver, const Singularities& sing, int n,
+                              Pins& pins)
+{
+  std::vector<double> x;
+  const TC::Solve_report r = solver.solve(descriptors(view, sing), view.halfedge_map(x),
+                                          TC::parameters::face_directions(pins.map(view), TC::parameters::symmetry_order(n)));
+  check_connection(view, solver, sing, n, x, r, /*all_cycles_constrained=*/false);
+  return r;
+}
+
+// The cube is flat but at its corners, and its edges' directions agree modulo 90 degrees on every face and across
+// every edge (the transport across an edge keeps the edge's direction): the smooth field held at the pins is
+// parallel, so its singularities are the eight corners, +1/4 each (angle defect pi/2), and the trivial connection
+// with them is Levi-Civita itself, which meets every pin: energy 0 up to rounding.
+TEST(Placement, pinned_cube_edges_give_eight_quarter_singularities_at_the_corners_and_a_flat_connection)
+{
+  const int s = 6;
+  const Surface_mesh tm = to_surface_mesh(jittered_cube_soup(s, 3));
+  const Mesh_view<Surface_mesh> view(tm);
+  Pins pins = sharp_edge_pins(view, 30);
+  // 12 edges x s segments, one face on each side; per cube face, two corner triangles are beside two edges
+  EXPECT_EQ(pins.faces.size(), std::size_t(12 * s * 2 - 6 * 2));
+  Solver solver(tm, TC::parameters::constrained_faces(pins.descriptors(view)));
+
+  const Placed p = place(view, solver, TC::parameters::face_directions(pins.map(view), TC::parameters::symmetry_order(4)));
+  EXPECT_EQ(p.report.pinned, pins.faces.size());
+  ASSERT_EQ(p.singularities.size(), 8u);
+  std::set<std::array<double, 3>> corners;
+  for(const auto& q : p.singularities) {
+    EXPECT_EQ(q.second, Index(1, 4));
+    const V3& c = view.P[q.first];
+    for(double v : c)
+      EXPECT_TRUE(v == 0 || v == 1) << "vertex " << q.first << " is not a corner of the cube";
+    corners.insert(c);
+  }
+  EXPECT_EQ(corners.size(), 8u);
+  EXPECT_LT(p.report.field_energy, 1e-12);
+
+  const TC::Solve_report r = solve_pinned(view, solver, p.singularities, 4, pins);
+  EXPECT_LT(r.energy, 1e-8);
+  EXPECT_LE(r.max_constraint_residual, 1e-9);
+
+  // the directions are required, as by solve()
+  std::vector<std::pair<Solver::vertex_descriptor, TC::Singularity_index>> out;
+  try {
+    TC::place_singularities(solver, std::back_inserter(out), TC::parameters::symmetry_order(4));
+    ADD_FAILURE() << "no exception without face_directions";
+  } catch(const TC::Invalid_input& e) {
+    EXPECT_EQ(e.code(), TC::Error_code::invalid_constraint) << e.what();
+    EXPECT_NE(std::string(e.what()).find("face_directions"), std::string::npos) << e.what();
+  }
+  // a direction normal to its face is refused
+  Pins normal = pins;
+  const V3& N = view.N[pins.faces[0]];
+  normal.directions[pins.faces[0]] = Vector(N[0], N[1], N[2]);
+  try {
+    TC::place_singularities(solver, std::back_inserter(out),
+                            TC::parameters::face_directions(normal.map(view), TC::parameters::symmetry_order(4)));
+    ADD_FAILURE() << "no exception with a direction normal to its face";
+  } catch(const TC::Invalid_input& e) {
+    EXPECT_EQ(e.code(), TC::Error_code::invalid_constraint) << e.what();
+  }
+  // with the boundary aligned too (none here) and with an alignment guide, the pins are held as well
+  std::vector<Vector> guide(view.nf(), Vector(0, 0, 0));
+  const Placed aligned =
+    place(view, solver, TC::parameters::face_directions(pins.map(view), TC::parameters::symmetry_order(4,
+                          TC::parameters::align_with_boundary(true, TC::parameters::alignment_guide(values_of(view, guide))))));
+  EXPECT_EQ(aligned.singularities, p.singularities);
+}
+
+// fandisk with every face beside an edge sharper than 30 degrees pinned to it: the trivial connection with the
+// singularities of the pinned smooth field is cheaper than with those of the free one
+TEST(Placement, pinned_placement_lowers_the_energy_of_the_pinned_connection_on_fandisk)
+{
+  Surface_mesh tm;
+  TC_READ_CGAL_MESH_OR_SKIP("fandisk.off", tm);
+  const Mesh_view<Surface_mesh> view(tm);
+  Pins pins = sharp_edge_pins(view, 30);
+  ASSERT_GT(pins.faces.size(), 1000u);
+  Solver free_solver(tm);
+  Solver solver(tm, TC::parameters::constrained_faces(pins.descriptors(view)));
+  const int n = 4;
+  const Placed unpinned = place(view, free_solver, TC::parameters::symmetry_order(n));
+  const auto start = std::chrono::steady_clock::now();
+  const Placed pinned = place(view, solver, TC::parameters::face_directions(pins.map(view), TC::parameters::symmetry_order(n)));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(pinned.report.pinned, pins.faces.size());
+  EXPECT_EQ(pinned.report.iterations, 0); // one component, with pins: one linear solve
+  const TC::Solve_report before = solve_pinned(view, solver, unpinned.singularities, n, pins);
+  const TC::Solve_report after = solve_pinned(view, solver, pinned.singularities, n, pins);
+  EXPECT_LE(before.max_constraint_residual, 1e-9);
+  EXPECT_LE(after.max_constraint_residual, 1e-9);
+  EXPECT_LT(after.energy, before.energy);
+  std::cout << "[ fandisk  ] " << pins.faces.size() << " pins; energy with the free placement (" << unpinned.singularities.size()
+            << " singularities) " << before.energy << ", with the pinned placement (" << pinned.singularities.size()
+            << ") " << after.energy << "; pinned placement " << seconds << " s" << std::endl;
+}
+
+TEST(Placement, pinned_placement_is_independent_of_vertex_and_face_numbering)
+{
+  const Soup soup = genus2_soup(2);
+  std::vector<std::set<std::pair<std::array<double, 3>, long long>>> sets;
+  for(unsigned seed : {0u, 11u}) {
+    const Soup s = seed == 0 ? soup : renumbered(soup, seed, nullptr, true);
+    const Surface_mesh tm = to_surface_mesh(s);
+    const Mesh_view<Surface_mesh> view(tm);
+    Pins pins = sharp_edge_pins(view, 30);
+    ASSERT_GT(pins.faces.size(), 100u);
+    Solver solver(tm, TC::parameters::constrained_faces(pins.descriptors(view)));
+    const Placed p = place(view, solver, TC::parameters::face_directions(pins.map(view), TC::parameters::symmetry_order(4)));
+    EXPECT_EQ(p.report.pinned, pins.faces.size());
+    EXPECT_EQ(sum_of(p.singularities, 4), Index(-2));
+    std::set<std::pair<std::array<double, 3>, long long>> set;
+    for(const auto& q : p.singularities)
+      set.insert({view.P[q.first], q.second.times(4)});
+    sets.push_back(set);
+    const TC::Solve_report r = solve_pinned(view, solver, p.singularities, 4, pins);
+    EXPECT_LE(r.max_constraint_residual, 1e-9);
+  }
+  EXPECT_EQ(sets[0], sets[1]);
+  EXPECT_FALSE(sets[0].empty());
 }
 
 } // namespace

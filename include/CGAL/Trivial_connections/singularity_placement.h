@@ -15,6 +15,7 @@
 #include <CGAL/Trivial_connections/internal/placement/field_singularities.h>
 #include <CGAL/Trivial_connections/internal/placement/smoothest_field.h>
 #include <CGAL/Trivial_connections/internal/integers/loop_periods.h>
+#include <CGAL/Trivial_connections/internal/system/constraint_targets.h>
 #include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -45,12 +46,13 @@ struct Placement_report
   /// placed singularities, so the optimal one's `Solve_report::energy` is at most this when its integers are optimal
   double field_energy = 0;
   /// per component, the smooth field's Rayleigh quotient `u^H A u / u^H B u` (its smallest eigenvalue
-  /// unless aligned or with an aligned boundary)
+  /// unless aligned, with an aligned boundary or with constrained faces)
   std::vector<double> rayleigh_quotients;
   int iterations = 0;               ///< eigensolver iterations, one solve each (0 when only linear solves were needed)
   double max_rounding = 0;          ///< largest distance of a vertex's `n k_v` from the integer taken (about 1e-12)
   /// the number of singularities of each index, by increasing index
   std::vector<std::pair<Singularity_index, std::size_t>> singularities_per_index;
+  std::size_t pinned = 0;           ///< faces held at their constrained direction (the solver's `constrained_faces`)
   std::size_t number_of_singularities = 0; ///< vertices written
   std::size_t fixed = 0;            ///< of which given as `fixed_singularities`
   std::size_t units_removed = 0;    ///< units of 1/n taken from automatic singularities near the fixed ones or holes
@@ -106,6 +108,36 @@ void boundary_powers(const Mesh& m, const Mesh_geometry& g, int n, std::vector<c
   }
 }
 
+// The n-th power of the direction of every constrained face of the solver (a user target, not a guided face nor
+// an aligned boundary face of the solver), its vector in `directions` projected onto the face as solve() reads
+// it (set_user_target_angles(), which also checks the guided faces' vectors as solve() does), marked in `fixed`
+// and written in `value` over what is there (the boundary's); returns the number of such faces.
+template <class Mesh, class Traits, class DirectionMap>
+std::size_t pin_powers(const Mesh& m, const Constraint_links& links, const Traits& traits, const DirectionMap& directions,
+                       int n, std::vector<char>& fixed, std::vector<std::complex<double>>& value)
+{
+  std::vector<double> angle(links.faces.size(), 0.);
+  set_user_target_angles(m, links, traits, directions, angle);
+  fixed.assign(std::size_t(m.nf), 0);
+  value.assign(std::size_t(m.nf), std::complex<double>(0., 0.));
+  std::size_t count = 0;
+  for(std::size_t a = 0; a < links.faces.size(); ++a) {
+    const Constraint_links::Constrained_face& c = links.faces[a];
+    if(c.border_corner >= 0 || c.soft)
+      continue;
+    fixed[c.face] = 1;
+    value[c.face] = std::polar(1., n * angle[a]);
+    ++count;
+  }
+  return count;
+}
+
+inline bool has_pins(const Constraint_links& links)
+{
+  return std::any_of(links.faces.begin(), links.faces.end(),
+                     [](const Constraint_links::Constrained_face& c) { return c.border_corner < 0 && !c.soft; });
+}
+
 } // namespace internal
 
 /*!
@@ -118,7 +150,11 @@ closed component by construction. `solver.solve()` then gives the trivial connec
 singularities. The smooth field is the smallest eigenvector of the pencil (A, B) of its face-based Dirichlet
 energy (`sum_e w_e |u_g - r_e^n u_f|^2`, with the solver's weights and transport) and the face areas, computed
 per component by LOBPCG preconditioned with one sparse Cholesky factor; see the user manual for the stopping rule,
-the aligned field and the boundary.
+the aligned field and the boundary. When the solver has constrained faces (`constrained_faces`), the field is
+held at their directions (`face_directions`): on each component with such faces it is the minimiser of the same
+energy with these faces fixed, one linear solve, as Directional's constrained power field, so that the trivial
+connection with its singularities can meet the constraints without twisting between them. Guided faces
+(`guided_faces`) do not enter the placement.
 
 \tparam Solver a `Trivial_connection_solver`
 \tparam OutputIterator an output iterator accepting `std::pair<vertex_descriptor, Singularity_index>`
@@ -140,6 +176,15 @@ the aligned field and the boundary.
       A component whose guide is zero everywhere gets the smoothest field}
   \cgalParamNEnd
   \cgalParamNBegin{alignment_strength} \cgalParamType{`double`} \cgalParamDefault{100} \cgalParamNEnd
+  \cgalParamNBegin{face_directions}
+    \cgalParamDescription{as for `solve()`: a readable property map `face_descriptor -> Vector_3`, required when the
+      solver has constrained faces. The smooth field is held at each constrained face's direction (projected onto
+      the face, one of its n directions: u_f = exp(i n theta_f) in the face's frame), whatever the other
+      parameters: over the boundary's direction where `align_with_boundary` also prescribes the face, and with
+      `alignment_guide` the aligned field is minimised with these faces held. The vectors at guided faces are
+      checked as `solve()` checks them and are otherwise not used}
+    \cgalParamDefault{none}
+  \cgalParamNEnd
   \cgalParamNBegin{progress}
     \cgalParamDescription{called with `Phase::placement`: 0 at the start, after each eigensolver iteration 0.99
       times the iterations done over their budget (100), and 1 at the end; an exception it throws ends the
@@ -160,7 +205,8 @@ the aligned field and the boundary.
   \cgalParamNEnd
 \cgalNamedParamsEnd
 \throws Invalid_input `invalid_symmetry_order`, `invalid_argument` (a guide not finite, a strength not positive
-        and finite), those of `solve()` for the fixed singularities (except Poincare-Hopf, which the placement
+        and finite), `invalid_constraint` (as `solve()`: `face_directions` missing while the solver has constrained
+        faces, or a direction zero, not finite or normal to its face), those of `solve()` for the fixed singularities (except Poincare-Hopf, which the placement
         completes), `poincare_hopf_violated` (fixed singularities that cannot be completed), `solver_failure`
 \returns the energies and the count of singularities per index
 */
@@ -201,6 +247,29 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
   std::vector<std::complex<double>> fixed_values;
   if(align_boundary)
     internal::boundary_powers(m, g, n, fixed_faces, fixed_values);
+  // the solver's constrained faces (pins) are held at their directions, over the boundary's where both are given
+  std::vector<char> pinned;
+  std::vector<std::complex<double>> pinned_values;
+  if(internal::has_pins(Access::links(solver))) {
+    if constexpr(CGAL::parameters::is_default_parameter<NamedParameters, tc_np::face_directions_t>::value) {
+      throw Invalid_input(Error_code::invalid_constraint,
+                          "the solver has constrained faces: their directions (face_directions) are missing");
+    } else {
+      report.pinned = internal::pin_powers(m, Access::links(solver), solver.geom_traits(),
+                                           CGAL::parameters::get_parameter(np, tc_np::face_directions), n, pinned,
+                                           pinned_values);
+    }
+    if(fixed_faces.empty()) {
+      fixed_faces = pinned;
+      fixed_values = pinned_values;
+    } else {
+      for(int f = 0; f < m.nf; ++f)
+        if(pinned[f]) {
+          fixed_faces[f] = 1;
+          fixed_values[f] = pinned_values[f];
+        }
+    }
+  }
   // what the eigensolver reads to know that its singularities are settled (Eigen vectors are contiguous)
   auto singularities_of = [&](const Eigen::VectorXcd& u) {
     return internal::read_field_singularities(m, g, std::vector<std::complex<double>>(u.data(), u.data() + u.size()), n).k;
@@ -215,7 +284,7 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
       for(int f = 0; f < m.nf; ++f)
         strongest[t.component_of_face[f]] = (std::max)(strongest[t.component_of_face[f]], std::abs(q[f]));
       for(int f = 0; f < m.nf; ++f)
-        if(fixed_faces[f]) {
+        if(!fixed_faces.empty() && fixed_faces[f] && (pinned.empty() || !pinned[f])) {
           const double s = strongest[t.component_of_face[f]];
           q[f] = fixed_values[f] * (s > 0 ? s : 1.);
         }
@@ -227,7 +296,7 @@ Placement_report place_singularities(const Solver& solver, OutputIterator out,
     bool any_unguided = false;
     for(std::size_t c = 0; c < weight.size(); ++c)
       any_unguided = any_unguided || (unguided[c] = !(weight[c] > 0));
-    field = internal::aligned_field(problem, q, strength);
+    field = internal::aligned_field(problem, q, strength, pinned, pinned_values);
     report.aligned = true;
     if(any_unguided) {
       // the components without a guide: the smoothest field

@@ -216,6 +216,45 @@ inline std::vector<std::complex<double>> component_energies(const Smoothest_fiel
 }
 
 /*
+  The problem with the faces of `fixed` held at `fixed_value` (Dirichlet values): their rows and columns of A
+  become identity rows with B's entry 0 (so that no shift reaches them), and their couplings move to `rhs`, which
+  receives -A_FP u_P on the free faces and u_P on the fixed ones. The free faces' unknowns of a solve with the
+  reduced A (plus any shift times B) then minimise the energy with the fixed faces held.
+*/
+inline Smoothest_field_problem dirichlet_reduced(const Smoothest_field_problem& p, const std::vector<char>& fixed,
+                                                 const std::vector<std::complex<double>>& fixed_value,
+                                                 Eigen::VectorXcd& rhs)
+{
+  using Complex = std::complex<double>;
+  const int nf = int(p.area.size());
+  Smoothest_field_problem reduced(p);
+  rhs = Eigen::VectorXcd::Zero(nf);
+  std::vector<Eigen::Triplet<Complex>> entries;
+  for(int c = 0; c < p.A.outerSize(); ++c)
+    for(Smoothest_field_problem::Sparse::InnerIterator it(p.A, c); it; ++it) {
+      const int r = int(it.row()), col = int(it.col());
+      if(r == col) {
+        entries.emplace_back(r, r, fixed[r] ? Complex(1., 0.) : it.value());
+      } else if(fixed[r] && fixed[col]) {
+      } else if(fixed[col]) {
+        rhs[r] -= it.value() * fixed_value[col];
+      } else if(fixed[r]) {
+        rhs[col] -= std::conj(it.value()) * fixed_value[r];
+      } else {
+        entries.emplace_back(r, col, it.value());
+      }
+    }
+  for(int f = 0; f < nf; ++f)
+    if(fixed[f]) {
+      rhs[f] = fixed_value[f];
+      reduced.area[f] = 0; // no shift on an identity row
+    }
+  reduced.A.setZero();
+  reduced.A.setFromTriplets(entries.begin(), entries.end());
+  return reduced;
+}
+
+/*
   The smallest eigenvector of the pencil on every component, by the locally optimal block preconditioned conjugate
   gradient method (LOBPCG, Knyazev 2001) with block size 1, preconditioned by one factor of A + sigma B
   (preconditioner_shifts()). Each iteration is one solve with that factor (the residual A x - lambda B x
@@ -260,35 +299,11 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
   for(int c = 0; c < nc; ++c)
     active[c] = !dirichlet[c];
 
-  // with fixed faces, the free faces' unknowns solve A_FF u_F = -A_FP u_P: the fixed faces become identity rows
-  // and their couplings move to the right-hand side
+  // with fixed faces, the free faces' unknowns solve A_FF u_F = -A_FP u_P
   Eigen::VectorXcd dirichlet_rhs = Eigen::VectorXcd::Zero(nf);
   std::optional<Smoothest_field_problem> reduced; // only with fixed faces: a copy of A costs as much as its assembly
-  if(!fixed.empty()) {
-    reduced.emplace(p);
-    std::vector<Eigen::Triplet<Complex>> entries;
-    for(int c = 0; c < p.A.outerSize(); ++c)
-      for(Smoothest_field_problem::Sparse::InnerIterator it(p.A, c); it; ++it) {
-        const int r = int(it.row()), col = int(it.col());
-        if(r == col) {
-          entries.emplace_back(r, r, fixed[r] ? Complex(1., 0.) : it.value());
-        } else if(fixed[r] && fixed[col]) {
-        } else if(fixed[col]) {
-          dirichlet_rhs[r] -= it.value() * fixed_value[col];
-        } else if(fixed[r]) {
-          dirichlet_rhs[col] -= std::conj(it.value()) * fixed_value[r];
-        } else {
-          entries.emplace_back(r, col, it.value());
-        }
-      }
-    for(int f = 0; f < nf; ++f)
-      if(fixed[f]) {
-        dirichlet_rhs[f] = fixed_value[f];
-        reduced->area[f] = 0; // no shift on an identity row
-      }
-    reduced->A.setZero();
-    reduced->A.setFromTriplets(entries.begin(), entries.end());
-  }
+  if(!fixed.empty())
+    reduced.emplace(dirichlet_reduced(p, fixed, fixed_value, dirichlet_rhs));
   const Smoothest_field_factor factor(reduced ? *reduced : p, preconditioner_shifts(p, scale));
 
   Smoothest_field result;
@@ -511,9 +526,12 @@ Smoothest_field smoothest_field(const Smoothest_field_problem& p, const std::vec
   units of A / B (1 / length^2); it is `strength` divided by the area of the component, so that the trade-off
   does not depend on the mesh's scale or resolution: the field follows the guide over distances longer than
   about sqrt(area / strength) and smooths it over shorter ones.
+  `fixed` (optional, per face, with `fixed_value`): faces whose u is prescribed (pins); the minimiser is then
+  taken over the other faces, the fixed ones held (dirichlet_reduced()).
 */
 inline Smoothest_field aligned_field(const Smoothest_field_problem& p, const std::vector<std::complex<double>>& q,
-                                     double strength)
+                                     double strength, const std::vector<char>& fixed = {},
+                                     const std::vector<std::complex<double>>& fixed_value = {})
 {
   const int nf = int(p.area.size());
   std::vector<double> component_area(std::size_t(p.components), 0.);
@@ -523,10 +541,14 @@ inline Smoothest_field aligned_field(const Smoothest_field_problem& p, const std
   std::vector<double> shift(static_cast<std::size_t>(nf));
   for(int f = 0; f < nf; ++f)
     shift[f] = strength / component_area[p.component_of_face[f]];
-  Smoothest_field_factor factor(p, shift);
-  Eigen::VectorXcd r(nf);
+  Eigen::VectorXcd r = Eigen::VectorXcd::Zero(nf);
+  std::optional<Smoothest_field_problem> reduced;
+  if(std::find(fixed.begin(), fixed.end(), 1) != fixed.end())
+    reduced.emplace(dirichlet_reduced(p, fixed, fixed_value, r));
+  Smoothest_field_factor factor(reduced ? *reduced : p, shift);
   for(int f = 0; f < nf; ++f)
-    r[f] = shift[f] * p.area[f] * q[f];
+    if(!reduced || !fixed[f])
+      r[f] += shift[f] * p.area[f] * q[f];
   const Eigen::VectorXcd u = factor.solve(r);
   Smoothest_field result;
   result.u.assign(u.data(), u.data() + nf);

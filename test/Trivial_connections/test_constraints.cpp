@@ -958,6 +958,209 @@ TEST(Directional_constraints, real_meshes)
 }
 
 // -----------------------------------------------------------------------------------------------------
+// Touching pins: the links across one shared edge are decided by rounding, their edges leave the system
+// -----------------------------------------------------------------------------------------------------
+
+namespace {
+
+/// `size` faces around `seed`, breadth-first: a cluster of touching pins
+template <class Mesh>
+std::vector<int> face_cluster(const Mesh_view<Mesh>& view, int seed, int size)
+{
+  std::vector<int> out{seed};
+  std::vector<char> in(std::size_t(view.nf()), 0);
+  in[std::size_t(seed)] = 1;
+  for(std::size_t q = 0; q < out.size() && int(out.size()) < size; ++q)
+    for(int h : view.face_he[out[q]])
+      if(view.interior_halfedge(h)) {
+        const int g = view.hface[view.opp[h]];
+        if(!in[std::size_t(g)] && int(out.size()) < size) {
+          in[std::size_t(g)] = 1;
+          out.push_back(g);
+        }
+      }
+  return out;
+}
+
+/// the faces of `clusters` with the directions of `field` turned by `turn(i)` radians about the normal
+template <class Mesh, class Turn>
+Targets cluster_targets(const Mesh_view<Mesh>& view, const std::vector<std::vector<int>>& clusters,
+                        const std::vector<Vector>& field, Turn turn)
+{
+  Targets t;
+  for(const std::vector<int>& c : clusters)
+    for(int f : c) {
+      const double a = turn(int(t.faces.size()));
+      const V3 d = field_at(view, field, f), d2 = cross(view.N[f], d);
+      t.faces.push_back(f);
+      t.directions.push_back(std::cos(a) * d + std::sin(a) * d2);
+    }
+  return t;
+}
+
+} // namespace
+
+TEST(Touching_pins, the_rounded_integers_are_the_best_of_every_choice)
+{
+  // two clusters of touching pins and a lone one on a torus: all the integers (links and generators)
+  // enumerated densely, independently of the package's links
+  const Surface_mesh m = torus(2, 0.7, 12, 8);
+  const Mesh_view<Surface_mesh> view(m);
+  const Singularities none;
+  TC::Trivial_connection_solver<Surface_mesh> free_solver(m);
+  const auto unpinned = solve_constrained(view, free_solver, none, 4, Targets());
+  const std::vector<std::vector<int>> clusters = {face_cluster(view, 5, 4), face_cluster(view, 101, 4), {150}};
+  for(int n : {1, 4}) {
+    // directions within 15 degrees of a smooth field: rounding is right, and the bound proves it
+    const Targets t = cluster_targets(view, clusters, unpinned.field, [](int i) { return 0.26 * std::sin(2.1 * i); });
+    TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+    SCOPED_TRACE("n = " + std::to_string(n));
+    const auto s = solve_constrained(view, solver, none, n, t);
+    check_constrained(view, solver, none, n, t, false, s);
+    expect_brute_force(view, solver, none, n, t, false, s.report, 1, 10);
+    EXPECT_TRUE(s.report.integers_proven_optimal);
+    EXPECT_NEAR(s.report.energy_lower_bound, s.report.energy, 1e-9 * std::max(1., s.report.energy));
+  }
+}
+
+TEST(Touching_pins, pins_that_disagree_keep_the_lower_bound_honest)
+{
+  // neighbouring pins up to 45 degrees apart (mod 90): rounding may be wrong, the report must not hide it
+  const Surface_mesh m = torus(2, 0.7, 12, 8);
+  const Mesh_view<Surface_mesh> view(m);
+  const Singularities none;
+  TC::Trivial_connection_solver<Surface_mesh> free_solver(m);
+  const auto unpinned = solve_constrained(view, free_solver, none, 4, Targets());
+  const std::vector<std::vector<int>> clusters = {face_cluster(view, 5, 5), face_cluster(view, 101, 3)};
+  int proven = 0, unproven = 0;
+  for(double spread : {0.3, 0.6, 0.75}) {
+    const Targets t = cluster_targets(view, clusters, unpinned.field, [&](int i) { return spread * std::sin(1.7 * i + 0.4); });
+    TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+    SCOPED_TRACE("spread " + std::to_string(spread));
+    const auto s = solve_constrained(view, solver, none, 4, t);
+    check_constrained(view, solver, none, 4, t, false, s);
+    int dimension = 0;
+    const double lowest = brute_force_minimum(view, solver, none, 4, t.faces, t.directions, 1, &dimension);
+    EXPECT_GE(s.report.energy, lowest - 1e-9 * std::max(1., lowest));
+    EXPECT_LE(s.report.energy_lower_bound, lowest + 1e-9 * std::max(1., lowest));
+    EXPECT_LE(s.report.energy_lower_bound, s.report.energy);
+    if(s.report.integers_proven_optimal) {
+      ++proven;
+      EXPECT_NEAR(s.report.energy, lowest, 1e-9 * std::max(1., lowest));
+    } else {
+      ++unproven;
+    }
+  }
+  EXPECT_GT(proven, 0);
+}
+
+TEST(Touching_pins, pins_on_the_field_of_the_free_solve_change_nothing)
+{
+  // a third of the faces pinned, in clusters, to the field without pins: that field meets them, so it is the
+  // optimum with them too, and the solver must prove it
+  const Soup soup = warped(icosphere_soup(3));
+  const Surface_mesh m = to_surface_mesh(soup);
+  const Mesh_view<Surface_mesh> view(m);
+  for(int n : {1, 4}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    const Singularities sing = plan_singularities(view, n);
+    TC::Trivial_connection_solver<Surface_mesh> free_solver(m);
+    const auto unpinned = solve_constrained(view, free_solver, sing, n, Targets());
+    std::vector<std::vector<int>> clusters;
+    std::vector<char> taken(std::size_t(view.nf()), 0);
+    for(int seed = 0; seed < view.nf(); seed += 97) {
+      std::vector<int> c;
+      for(int f : face_cluster(view, seed, 40))
+        if(!taken[std::size_t(f)]) { taken[std::size_t(f)] = 1; c.push_back(f); }
+      clusters.push_back(c);
+    }
+    const Targets t = cluster_targets(view, clusters, unpinned.field, [](int) { return 0.; });
+    ASSERT_GT(t.faces.size(), std::size_t(view.nf() / 4));
+    TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+    const auto s = solve_constrained(view, solver, sing, n, t);
+    check_constrained(view, solver, sing, n, t, false, s);
+    EXPECT_TRUE(s.report.integers_proven_optimal);
+    EXPECT_NEAR(s.report.energy, unpinned.report.energy, 1e-9 * std::max(1., unpinned.report.energy));
+    double worst = 0;
+    for(int h : view.interior_halfedges) worst = std::max(worst, std::abs(s.x[h] - unpinned.x[h]));
+    EXPECT_LT(worst, 1e-9);
+  }
+}
+
+TEST(Touching_pins, set_constraints_factors_again_and_matches_fresh_solvers)
+{
+  const Soup soup = warped(annulus_soup(0.5, 1.5, 4, 16));
+  const Surface_mesh m = to_surface_mesh(soup);
+  const Mesh_view<Surface_mesh> view(m);
+  const Singularities none;
+  TC::Trivial_connection_solver<Surface_mesh> free_solver(m);
+  const auto unpinned = solve_constrained(view, free_solver, none, 4, Targets());
+  const Targets touching =
+    cluster_targets(view, {face_cluster(view, 20, 6), face_cluster(view, 70, 3)}, unpinned.field, [](int i) { return 0.2 * i; });
+  const Targets apart = spread_targets(view, 3, true);
+  TC::Trivial_connection_solver<Surface_mesh> solver(m);
+  // without touching pins the factor is kept (one forward substitution per link); with them, or when leaving them,
+  // M changes and is factored again
+  const std::vector<std::pair<const Targets*, bool>> steps = {{&touching, true}, {&apart, true}, {&touching, true}};
+  for(std::size_t k = 0; k < steps.size(); ++k) {
+    SCOPED_TRACE("step " + std::to_string(k));
+    const Targets& t = *steps[k].first;
+    const TC::Constraint_update u = solver.set_constraints(TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+    EXPECT_EQ(u.refactored, steps[k].second);
+    TC::Trivial_connection_solver<Surface_mesh> fresh(m, TC::parameters::constrained_faces(face_descriptors(view, t.faces)));
+    for(int n : {1, 4}) {
+      const auto s = solve_constrained(view, solver, none, n, t);
+      const auto f = solve_constrained(view, fresh, none, n, t);
+      check_constrained(view, solver, none, n, t, false, s);
+      EXPECT_NEAR(s.report.energy, f.report.energy, 1e-9 * std::max(1., f.report.energy));
+    }
+  }
+  const TC::Constraint_update again = solver.set_constraints(TC::parameters::constrained_faces(face_descriptors(view, apart.faces)));
+  EXPECT_TRUE(again.refactored); // leaving touching pins
+  const TC::Constraint_update kept = solver.set_constraints(TC::parameters::constrained_faces(face_descriptors(view, apart.faces)));
+  EXPECT_FALSE(kept.refactored);
+}
+
+TEST(Touching_pins, independent_of_vertex_and_face_numbering)
+{
+  const Soup soup = warped(icosphere_soup(2));
+  const Surface_mesh a = to_surface_mesh(soup);
+  std::vector<int> perm;
+  const Surface_mesh b = to_surface_mesh(renumbered(soup, 11, &perm, /*shuffle_faces=*/true));
+  const Mesh_view<Surface_mesh> va(a), vb(b);
+  const Singularities sa = plan_singularities(va, 4);
+  Singularities sb;
+  for(const auto& p : sa)
+    for(int v = 0; v < vb.nv(); ++v)
+      if(norm(vb.P[v] - va.P[p.first]) < 1e-12) sb.push_back({v, p.second});
+  ASSERT_EQ(sb.size(), sa.size());
+  TC::Trivial_connection_solver<Surface_mesh> free_solver(a);
+  const auto unpinned = solve_constrained(va, free_solver, sa, 4, Targets());
+  const Targets ta = cluster_targets(va, {face_cluster(va, 3, 12), face_cluster(va, 200, 7), {90}}, unpinned.field,
+                                     [](int i) { return 0.3 * std::cos(1.3 * i); });
+  Targets tb;
+  std::vector<int> match(std::size_t(va.nf()), -1);
+  for(int f = 0; f < va.nf(); ++f)
+    for(int g = 0; g < vb.nf(); ++g)
+      if(norm(vb.bary[g] - va.bary[f]) < 1e-12) match[std::size_t(f)] = g;
+  for(std::size_t i = 0; i < ta.faces.size(); ++i) {
+    tb.faces.push_back(match[std::size_t(ta.faces[i])]);
+    tb.directions.push_back(ta.directions[i]);
+  }
+  TC::Trivial_connection_solver<Surface_mesh> solver_a(a, TC::parameters::constrained_faces(face_descriptors(va, ta.faces)));
+  TC::Trivial_connection_solver<Surface_mesh> solver_b(b, TC::parameters::constrained_faces(face_descriptors(vb, tb.faces)));
+  const auto ra = solve_constrained(va, solver_a, sa, 4, ta);
+  const auto rb = solve_constrained(vb, solver_b, sb, 4, tb);
+  check_constrained(vb, solver_b, sb, 4, tb, false, rb);
+  EXPECT_NEAR(ra.report.energy, rb.report.energy, 1e-9 * std::max(1., ra.report.energy));
+  double worst = 0;
+  for(int f = 0; f < va.nf(); ++f)
+    worst = std::max(worst, std::abs(wrap(signed_angle(field_at(va, ra.field, f), field_at(vb, rb.field, match[std::size_t(f)]),
+                                                       va.N[f]), two_pi / 4)));
+  EXPECT_LT(worst, 1e-8);
+}
+
+// -----------------------------------------------------------------------------------------------------
 // Bad input
 // -----------------------------------------------------------------------------------------------------
 

@@ -26,6 +26,7 @@
 #include <CGAL/Trivial_connections/internal/system/system_assembly.h>
 #include <CGAL/Trivial_connections/internal/factorization/concurrent_node_order.h>
 #include <CGAL/Trivial_connections/internal/factorization/prefactored_system.h>
+#include <CGAL/Trivial_connections/internal/integers/decided_links.h>
 #include <CGAL/Trivial_connections/internal/integers/integer_solve.h>
 #include <CGAL/Trivial_connections/internal/integers/loop_periods.h>
 #include <CGAL/Trivial_connections/internal/field/field_propagation.h>
@@ -379,8 +380,10 @@ public:
     read_face_sets(np, user_faces, guided);
     Constraint_update update;
     try {
-      if(m_system.loop_rows_in_factor()) {
-        m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight);
+      internal::Constraint_links links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight);
+      // touching pins fix edges, which changes M: only links without them go outside a kept factor
+      if(m_system.loop_rows_in_factor() && m_rows.decided_slots.empty() && !links.has_decided_links()) {
+        m_links = std::move(links);
         update = m_system.set_links(m_links, m_rows);
       } else {
         rebuild(user_faces, guided);
@@ -459,12 +462,22 @@ public:
     const double unit = 2 * CGAL_PI / n;
     notify(progress, Phase::solve, 0);
     Eigen::VectorXd b = internal::right_hand_side(m_rows, k, periods, holonomy, n, m_gauss_bonnet_shares);
+    // the edges between touching pins are fixed by rounding: their x_e moves to the right-hand side
+    const bool decided = !m_rows.decided_slots.empty();
+    Eigen::VectorXd x_fixed;
+    if(decided) {
+      x_fixed = internal::decided_connection(m_rows, holonomy, unit, periods);
+      internal::Constraint_sums fixed_sums;
+      m_rows.sums_of(x_fixed, std::vector<double>(m_links.number_of_guided_faces(), 0.), fixed_sums);
+      b -= m_rows.row_sums(fixed_sums);
+    }
     bool choose_periods = false; // a slot with a row whose integer is not prescribed
     for(const std::vector<int>& free : m_rows.free_slots)
       for(int l : free)
         choose_periods = choose_periods || !prescribed[l];
     Eigen::VectorXd lambda;
     internal::Integer_choice_energies energies;
+    energies.want_relaxed = decided;
     if(choose_periods)
       lambda = internal::solve_choosing_integers(
         m_system, m_rows, m_lattices, b, unit, prescribed, holonomy, periods, energies,
@@ -475,15 +488,35 @@ public:
     if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::energy_gradient_t>::value)
       write_energy_gradient(lambda, CGAL::parameters::get_parameter(np, tc_np::energy_gradient));
     internal::Constraint_sums sums;
-    const Eigen::VectorXd xe = internal::checked_connection(
+    Eigen::VectorXd xe = internal::checked_connection(
       m_rows, [&](const Eigen::VectorXd& r) { return m_system.solve(m_rows, r); }, b, lambda, sums);
+    if(decided) {
+      xe += x_fixed;
+      internal::Constraint_sums with_fixed;
+      m_rows.sums_of(xe, sums.slack, with_fixed);
+      sums = std::move(with_fixed);
+    }
     internal::write_connection(m_tm, m_mesh, m_rows, xe, x);
     internal::fill_report(m_rows, sums, m_loop_holonomy, k, periods, prescribed, holonomy, n, report);
     const double minimised = report.energy + report.guidance_energy;
-    report.integers_proven_optimal = energies.proven;
-    report.rounding_energy = choose_periods ? energies.rounding_energy : minimised;
+    const double fixed_energy = decided ? internal::decided_energy(m_rows, x_fixed) : 0.;
+    report.rounding_energy = choose_periods ? energies.rounding_energy + fixed_energy : minimised;
     // the bound is exact arithmetic on the enumeration's costs: rounding may put it a hair above the energy
-    report.energy_lower_bound = energies.proven ? minimised : (std::min)(energies.lower_bound, minimised);
+    report.energy_lower_bound =
+      energies.proven ? minimised : (std::min)(energies.lower_bound + fixed_energy, minimised);
+    if(decided) {
+      // the choices where a decided integer differs from its rounding (see decided_links_margin())
+      double relaxed_energy = minimised;
+      Eigen::VectorXd relaxed_lambda = lambda;
+      if(choose_periods) {
+        relaxed_lambda = m_system.solve(m_rows, energies.relaxed_rhs);
+        relaxed_energy = energies.relaxed_rhs.dot(relaxed_lambda) + fixed_energy;
+      }
+      const double others = relaxed_energy + internal::decided_links_margin(m_rows, relaxed_lambda, x_fixed, unit);
+      energies.proven = energies.proven && others >= minimised * (1 - 1e-12);
+      report.energy_lower_bound = (std::min)(report.energy_lower_bound, others);
+    }
+    report.integers_proven_optimal = energies.proven;
     notify(progress, Phase::solve, 1);
     return report;
   }

@@ -76,6 +76,8 @@ public:
     const std::size_t nl = rows.topology().loops.size();
     for(std::size_t j = 0; j < links.links.size(); ++j) {
       const std::size_t l = nl + j;
+      if(rows.row_of_slot[l] < 0) // a decided link: no row (set_constraints() then factors again)
+        continue;
       m_factored_links.push_back({key_of(links, j), rows.row_of_slot[l],
                                   std::vector<int>(rows.slot_edges.begin() + rows.slot_edge_start[l],
                                                    rows.slot_edges.begin() + rows.slot_edge_start[l + 1])});
@@ -89,7 +91,6 @@ public:
   {
     Constraint_update update;
     const Mesh_topology& t = rows.topology();
-    const Mesh_geometry& geometry = rows.geometry();
     const std::size_t nl = t.loops.size();
     const Eigen::Index k = Eigen::Index(rows.free_rows.size()), first = rows.rows - k;
 
@@ -155,7 +156,7 @@ public:
       Eigen::VectorXd column = Eigen::VectorXd::Zero(rows.rows);
       for(int code : row.codes) {
         const int edge = index_of_code(code);
-        const double v = sign_of_code(code) / geometry.weight[edge];
+        const double v = sign_of_code(code) * rows.inverse_weight[std::size_t(edge)];
         const std::array<int, 2> ends = rows.edge_nodes[edge];
         if(ends[0] != ends[1]) {
           if(rows.row_of_node[ends[1]] >= 0) column[rows.row_of_node[ends[1]]] += v;
@@ -345,7 +346,7 @@ private:
     for(const auto& edge : on_edge)
       for(const auto& a : edge.second)
         for(const auto& b : edge.second)
-          M_EE(a.first, b.first) += a.second * b.second / rows.geometry().weight[edge.first];
+          M_EE(a.first, b.first) += a.second * b.second * rows.inverse_weight[std::size_t(edge.first)];
     for(Eigen::Index a = 0; a < ne; ++a)
       for(Eigen::Index b = 0; b < ne; ++b)
         M_EE(a, b) += slack_coupling(m_rows[a].key, m_rows[b].key, mu);

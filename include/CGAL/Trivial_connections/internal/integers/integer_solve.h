@@ -29,12 +29,16 @@ namespace internal {
   `energies`: the energy of the solve with the integers rounded one by one and a lower bound on its energy over
   every choice of them (Solve_report::rounding_energy, energy_lower_bound), and whether the choice is proven
   optimal. `notify(fraction)` is called before (0) and after (1) the choice.
+  With `want_relaxed`, `relaxed_rhs` gets the b whose solve has every free integer relaxed to a real number
+  (its multipliers vanish on the free rows: b_F less the forward pass's y there).
 */
 struct Integer_choice_energies
 {
   double rounding_energy = 0;
   double lower_bound = 0;
   bool proven = true;
+  bool want_relaxed = false;
+  Eigen::VectorXd relaxed_rhs;
 };
 
 template <class SolverTraits, class Notify>
@@ -52,6 +56,12 @@ Eigen::VectorXd solve_choosing_integers(Prefactored_system<SolverTraits>& system
                                                         prescribed, holonomy, (std::max)(1e5, 5. * double(rows.rows)),
                                                         periods);
   notify(1.);
+  if(energies.want_relaxed) {
+    energies.relaxed_rhs = b;
+    for(std::size_t c = 0; c < rows.free_slots.size(); ++c)
+      for(std::size_t a = 0; a < rows.free_slots[c].size(); ++a)
+        energies.relaxed_rhs[rows.row_of_slot[std::size_t(rows.free_slots[c][a])]] -= forward.y[c][Eigen::Index(a)];
+  }
   const std::vector<Eigen::VectorXd> t = loop_right_hand_sides(rows.free_slots, forward.y, unit, prescribed, periods);
   add_chosen_periods(rows, periods, prescribed, unit, b);
   const Eigen::VectorXd lambda = system.backward(rows, forward, t, b);

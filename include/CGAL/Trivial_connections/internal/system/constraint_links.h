@@ -72,6 +72,10 @@ inline void check_disjoint_face_sets(int nf, const std::vector<int>& constrained
   faces, so their rows are independent of each other and of the cycle rows.
   Guided faces (soft guidance) are linked like constrained ones; each has a slack, its mismatch d_g, which
   enters its links' rows with weight 1 / mu (see the user manual).
+  Pins that touch (user targets on faces sharing an edge) are linked first, by a spanning forest of their shared
+  edges: each such link crosses one edge, and its integer is decided by rounding (`decided`), so that its row
+  fixes x_e and the edge leaves the system (see Constraint_rows). Only one face of each cluster of touching pins
+  is then chained with the others: the free integers grow with the clusters (feature curves), not with the pins.
 */
 struct Constraint_links
 {
@@ -87,6 +91,7 @@ struct Constraint_links
     int component;
     std::vector<int> crossings; // corner halfedges, as a loop's (released once the rows have coded them)
     std::size_t length = 0;
+    bool decided = false;       // between touching pins, across one edge: the integer is rounded, no row
   };
 
   std::vector<Constrained_face> faces; // aligned boundary faces, then user targets, then guided faces
@@ -161,7 +166,9 @@ struct Constraint_links
         units[t.component_of_face[f]].push_back(add_face(f, -1, soft));
       }
     };
+    const int first_user = int(faces.size());
     add_user_faces(user_faces, false);
+    link_touching_pins(m, t, first_user, constraint_of_face);
     first_guided = int(faces.size());
     add_user_faces(guided, true);
     has_user_constraints = !user_faces.empty() || !guided.empty();
@@ -170,12 +177,25 @@ struct Constraint_links
       return;
 
     const Dual_tree_order tree(t.parent_corner, t.face_order);
+    for(std::size_t a = cluster_parent.size(); a < faces.size(); ++a) // guided faces: clusters of their own
+      cluster_parent.push_back(int(a));
+    cluster_seen.assign(faces.size(), 0);
     for(std::size_t c = 0; c < units.size(); ++c) {
       std::vector<int>& u = units[c];
       if(u.empty())
         continue;
       std::sort(u.begin(), u.end(),
                 [&](int a, int b) { return tree.preorder[faces[a].face] < tree.preorder[faces[b].face]; });
+      // one face per cluster of touching pins (the first in preorder): the others are linked to it already
+      u.erase(std::remove_if(u.begin(), u.end(),
+                             [&](int a) {
+                               const int root = cluster_root(a);
+                               if(cluster_seen[std::size_t(root)])
+                                 return true;
+                               cluster_seen[std::size_t(root)] = 1;
+                               return false;
+                             }),
+              u.end());
       // the field starts from a constrained face (its target is exact); a component with guided faces only
       // is rotated towards its guides
       for(int a : u)
@@ -190,6 +210,11 @@ struct Constraint_links
         links.push_back({u[k - 1], u[k], int(c), std::move(crossings)});
       }
     }
+    for(Link& link : decided_links)
+      links.push_back(std::move(link));
+    std::vector<Link>().swap(decided_links);
+    std::vector<int>().swap(cluster_parent);
+    std::vector<char>().swap(cluster_seen);
     // per guided face, the links at it: the slack s_g enters +1 in a link from it, -1 in a link to it
     slack_start.assign(faces.size() - std::size_t(first_guided) + 1, 0);
     for(const Link& link : links)
@@ -208,6 +233,11 @@ struct Constraint_links
 
   std::size_t number_of_guided_faces() const { return faces.size() - std::size_t(first_guided); }
 
+  bool has_decided_links() const
+  {
+    return std::any_of(links.begin(), links.end(), [](const Link& link) { return link.decided; });
+  }
+
   // For link j, calls visit(link, value) for the entries of C C^T / mu in its row: C has one column per
   // guided face, +1 in the links from it and -1 in the links to it
   template <class Visit>
@@ -225,6 +255,48 @@ struct Constraint_links
     }
   }
 
+private:
+  // The spanning forest of the edges shared by two user targets (from `first_user` on, in `faces`): one decided
+  // link per forest edge, from the face met first. Clusters are kept in a union-find (cluster_root()).
+  template <class TriangleMesh>
+  void link_touching_pins(const Mesh_arrays<TriangleMesh>& m, const Mesh_topology& t, int first_user,
+                          const std::vector<int>& constraint_of_face)
+  {
+    cluster_parent.resize(faces.size());
+    for(std::size_t a = 0; a < faces.size(); ++a)
+      cluster_parent[a] = int(a);
+    for(int a = first_user; a < int(faces.size()); ++a) {
+      const int f = faces[std::size_t(a)].face;
+      for(int i = 3 * f; i < 3 * f + 3; ++i) {
+        const int o = m.opposite_corner[i];
+        if(o < 0)
+          continue;
+        const int b = constraint_of_face[Mesh_arrays<TriangleMesh>::face_of(o)];
+        if(b < first_user || b <= a) // each shared edge once, from its lower end
+          continue;
+        const int ra = cluster_root(a), rb = cluster_root(b);
+        if(ra == rb)
+          continue;
+        cluster_parent[std::size_t(rb)] = ra;
+        Link link{a, b, t.component_of_face[f], {i}};
+        link.decided = true;
+        decided_links.push_back(std::move(link));
+      }
+    }
+  }
+
+  int cluster_root(int a)
+  {
+    while(cluster_parent[std::size_t(a)] != a)
+      a = cluster_parent[std::size_t(a)] = cluster_parent[std::size_t(cluster_parent[std::size_t(a)])];
+    return a;
+  }
+
+  std::vector<int> cluster_parent;
+  std::vector<char> cluster_seen;
+  std::vector<Link> decided_links; // appended to `links` after the chains
+
+public:
   // the crossings are coded by the constraint rows, which keep them: only the lengths stay here
   void release_crossings()
   {

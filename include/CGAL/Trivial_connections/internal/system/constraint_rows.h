@@ -11,6 +11,8 @@
 #include <CGAL/Trivial_connections/internal/system/constraint_links.h>
 #include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
 
+#include <CGAL/assertions.h>
+
 #include <Eigen/Core>
 
 #include <array>
@@ -39,6 +41,10 @@ struct Constraint_sums
   of the directional constraints. "Slots" number everything that carries an integer: the loops of the
   tree-cotree decomposition (boundary loops, whose row is their node's, then generators), then the links.
   A slot's crossings are coded e (x_e) or ~e (-x_e).
+  A decided link (between touching pins, see Constraint_links) has no row: its integer is chosen by rounding,
+  which fixes x_e on the one edge it crosses, and that edge leaves the system: its column of A is dropped
+  (`inverse_weight` 0), and the fixed x_e moves to the right-hand side. M keeps its pattern (the entries become
+  0), so the fill-reducing order of the node rows holds whatever the pins.
   Reads the geometry, the topology and the links it was built from, which must outlive it.
 */
 class Constraint_rows
@@ -51,6 +57,8 @@ public:
   std::vector<std::vector<int>> free_slots;  // per component: slots with a row (free integers)
   std::vector<int> slot_edge_start, slot_edges; // per slot (CSR): its coded crossings
   std::vector<int> border_corners;            // corner halfedges on a border edge
+  std::vector<double> inverse_weight;         // per interior edge: 1 / w_e, 0 on an edge a decided link fixes
+  std::vector<int> decided_slots;             // slots of the decided links (no row)
   // per interior edge, the nodes of its canonical corner's source and target (compute_edge_nodes())
   std::vector<std::array<int, 2>> edge_nodes;
   Eigen::Index rows = 0;    // of the factored system
@@ -78,6 +86,10 @@ public:
     free_slots.assign(t.components.size(), {});
     for(std::size_t l = 0; l < slots; ++l) {
       const int component = l < nl ? t.loops[l].component : links.links[l - nl].component;
+      if(l >= nl && links.links[l - nl].decided) {
+        decided_slots.push_back(int(l));
+        continue;
+      }
       row_of_slot[l] = l < nl && t.loops[l].kind == Loop_kind::boundary ? row_of_node[t.loops[l].node] : count++;
       if(row_of_slot[l] >= 0) {
         free_slots[component].push_back(int(l));
@@ -107,12 +119,18 @@ public:
     }
     links.release_crossings();
     rows = count;
+    inverse_weight.resize(std::size_t(geometry.number_of_interior_edges()));
+    for(std::size_t e = 0; e < inverse_weight.size(); ++e)
+      inverse_weight[e] = 1 / geometry.weight[e];
+    for(int l : decided_slots)
+      inverse_weight[std::size_t(index_of_code(slot_edges[std::size_t(slot_edge_start[l])]))] = 0;
   }
 
   // after the links changed (set_constraints() on a kept factorization): `row_of_link[j]` is link j's row, in
   // the factor or >= rows outside it; `outside` rows lie outside. Releases the links' crossings once coded.
   void set_link_rows(Constraint_links& links, const std::vector<int>& row_of_link, Eigen::Index outside_rows)
   {
+    CGAL_precondition(!links.has_decided_links() && decided_slots.empty());
     m_links = &links;
     const Mesh_topology& t = *m_topology;
     const std::size_t nl = t.loops.size();
@@ -170,6 +188,9 @@ public:
     return l >= m_topology->loops.size() || m_topology->loops[l].kind == Loop_kind::generator;
   }
 
+  // a slot whose row is made of its crossings (a decided link has none)
+  bool is_crossing_row(std::size_t l) const { return is_crossing_slot(l) && row_of_slot[l] >= 0; }
+
   const Mesh_geometry& geometry() const { return *m_geometry; }
   const Mesh_topology& topology() const { return *m_topology; }
   const Constraint_links& links() const { return *m_links; }
@@ -179,6 +200,15 @@ public:
   // generators and links that cross it.
   Eigen::VectorXd connection_of(const Eigen::VectorXd& lambda) const
   {
+    Eigen::VectorXd xe = transposed_product(lambda);
+    for(Eigen::Index e = 0; e < xe.size(); ++e)
+      xe[e] *= inverse_weight[std::size_t(e)];
+    return xe;
+  }
+
+  // A^T lambda, per interior edge (w_e x_e of x = W^-1 A^T lambda): the decided links, which have no row, left out
+  Eigen::VectorXd transposed_product(const Eigen::VectorXd& lambda) const
+  {
     const Mesh_topology& t = *m_topology;
     const int ne = m_geometry->number_of_interior_edges();
     std::vector<double> multiplier(std::size_t(t.number_of_nodes), 0.);
@@ -187,14 +217,14 @@ public:
         multiplier[node] = lambda[row_of_node[node]];
     Eigen::VectorXd xe = Eigen::VectorXd::Zero(ne); // first the generators' (and links') part, then the stars'
     for(std::size_t l = 0; l < row_of_slot.size(); ++l)
-      if(is_crossing_slot(l)) {
+      if(is_crossing_row(l)) {
         const double g = lambda[row_of_slot[l]];
         for(int p = slot_edge_start[l]; p < slot_edge_start[l + 1]; ++p)
           xe[index_of_code(slot_edges[p])] += sign_of_code(slot_edges[p]) * g;
       }
     for(int e = 0; e < ne; ++e) {
       const int a = edge_nodes[e][0], c = edge_nodes[e][1];
-      xe[e] = (xe[e] + multiplier[c] - multiplier[a]) / m_geometry->weight[e];
+      xe[e] += multiplier[c] - multiplier[a];
     }
     return xe;
   }

@@ -31,6 +31,7 @@ using Row_permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic,
   meanwhile on another thread) and every interior edge adds its 1/w_e to four entries. The generator and
   link rows (last) gather their crossings, Gustavson-style, and the links the couplings C C^T / mu of the
   guided faces they share. Needs no fill-reducing order, so it can be formed while that order is computed.
+  An edge fixed by a decided link adds its 0 (Constraint_rows::inverse_weight): the pattern stays the mesh's.
 */
 template <class TriangleMesh>
 Eigen::SparseMatrix<double> system_in_row_order(const Mesh_arrays<TriangleMesh>& m, const Constraint_rows& system,
@@ -52,7 +53,7 @@ Eigen::SparseMatrix<double> system_in_row_order(const Mesh_arrays<TriangleMesh>&
   const std::size_t slots = row_of_slot.size();
   std::vector<int> crossing_start(std::size_t(ne) + 1, 0);
   for(std::size_t l = 0; l < slots; ++l)
-    if(system.is_crossing_slot(l))
+    if(system.is_crossing_row(l))
       for(int p = system.slot_edge_start[l]; p < system.slot_edge_start[l + 1]; ++p)
         ++crossing_start[std::size_t(index_of_code(system.slot_edges[p])) + 1];
   for(int e = 0; e < ne; ++e)
@@ -61,7 +62,7 @@ Eigen::SparseMatrix<double> system_in_row_order(const Mesh_arrays<TriangleMesh>&
   {
     std::vector<int> next(crossing_start.begin(), crossing_start.end() - 1);
     for(std::size_t l = 0; l < slots; ++l)
-      if(system.is_crossing_slot(l))
+      if(system.is_crossing_row(l))
         for(int p = system.slot_edge_start[l]; p < system.slot_edge_start[l + 1]; ++p) {
           const int code = system.slot_edges[p];
           crossings[next[index_of_code(code)]++] = {row_of_slot[l], sign_of_code(code)};
@@ -83,13 +84,13 @@ Eigen::SparseMatrix<double> system_in_row_order(const Mesh_arrays<TriangleMesh>&
       sum[r] += v;
     };
     for(std::size_t l = 0; l < slots; ++l) {
-      if(!system.is_crossing_slot(l))
+      if(!system.is_crossing_row(l))
         continue;
       const int g = row_of_slot[l];
       pattern.clear();
       for(int p = system.slot_edge_start[l]; p < system.slot_edge_start[l + 1]; ++p) {
         const int code = system.slot_edges[p], e = index_of_code(code);
-        const double v = sign_of_code(code) / geometry.weight[e];
+        const double v = sign_of_code(code) * system.inverse_weight[std::size_t(e)];
         const std::array<int, 2> ends = nodes_of_edge(e);
         const int a = ends[0], b = ends[1];
         if(a != b) {
@@ -174,7 +175,7 @@ Eigen::SparseMatrix<double> system_in_row_order(const Mesh_arrays<TriangleMesh>&
     const int a = ends[0], b = ends[1];
     if(a == b)
       continue;
-    const double v = 1 / geometry.weight[e];
+    const double v = system.inverse_weight[std::size_t(e)];
     const int ra = row_of_node[a], rb = row_of_node[b];
     if(ra >= 0) entry(ra, ra) += v;
     if(rb >= 0) entry(rb, rb) += v;

@@ -1,0 +1,94 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_DECIDED_LINKS_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_DECIDED_LINKS_H
+
+#include <CGAL/Trivial_connections/internal/system/constraint_rows.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  The integers of the decided links (between touching pins, across one edge e each) and the connection they fix.
+  A decided link's row reads H + s x_e = 2 pi p / n (s = +-1): its integer is the rounding of H n / 2 pi, which
+  makes |x_e| <= pi / n, the smallest turn across e that meets both pins. Writes the integers into `periods`;
+  returns x per interior edge, fixed on the decided links' edges and 0 elsewhere.
+*/
+inline Eigen::VectorXd decided_connection(const Constraint_rows& rows, const std::vector<double>& holonomy, double unit,
+                                          std::vector<std::int64_t>& periods)
+{
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(rows.geometry().number_of_interior_edges());
+  for(int l : rows.decided_slots) {
+    const int code = rows.slot_edges[std::size_t(rows.slot_edge_start[std::size_t(l)])];
+    const double p = std::round(holonomy[std::size_t(l)] / unit);
+    periods[std::size_t(l)] = std::int64_t(p);
+    x[index_of_code(code)] = sign_of_code(code) * (unit * p - holonomy[std::size_t(l)]);
+  }
+  return x;
+}
+
+// sum_e w_e x_e^2 over the edges the decided links fix
+inline double decided_energy(const Constraint_rows& rows, const Eigen::VectorXd& x_fixed)
+{
+  double energy = 0;
+  for(int l : rows.decided_slots) {
+    const int e = index_of_code(rows.slot_edges[std::size_t(rows.slot_edge_start[std::size_t(l)])]);
+    energy += rows.geometry().weight[std::size_t(e)] * x_fixed[e] * x_fixed[e];
+  }
+  return energy;
+}
+
+/*
+  What every other choice of the decided integers costs at least, above the energy E_r of the solve with the free
+  integers (loops, links between clusters) relaxed to real numbers and the decided ones rounded; `lambda`: the
+  multipliers of that relaxed solve, `x_fixed`: from decided_connection().
+  Why it holds: let the decided links be rows of the full system, z the integers (free ones m, decided ones d),
+  G = (2 pi / n)^2 P^T M^-1 P their metric. Changing d by s != 0 (and m by anything) costs, over E_r, at least
+  2 g^T s + s^T (G / G_mm) s, where g = (2 pi / n) mu is the gradient in d at the relaxed point (mu the decided
+  rows' multipliers, w_e x_e - (A^T lambda)_e up to the sign of the crossing) and G / G_mm the Schur complement
+  of the free block. G / G_mm = (2 pi / n)^2 ((M / M_NN)_dd)^-1 and (M / M_NN)_dd <= M_dd = diag(1 / w_e) (each
+  decided row crosses one edge, distinct ones), so G / G_mm >= (2 pi / n)^2 diag(w_e), and the cost separates per
+  link: at least sum_e t0_e + min_e (t1_e - t0_e), with t(s) = (2 pi / n)^2 w_e s^2 + 2 g_e s, t0 its minimum
+  over the integers and t1 over the nonzero ones.
+*/
+inline double decided_links_margin(const Constraint_rows& rows, const Eigen::VectorXd& lambda,
+                                   const Eigen::VectorXd& x_fixed, double unit)
+{
+  if(rows.decided_slots.empty())
+    return std::numeric_limits<double>::infinity();
+  const Eigen::VectorXd product = rows.transposed_product(lambda);
+  double sum_t0 = 0, step = std::numeric_limits<double>::infinity();
+  for(int l : rows.decided_slots) {
+    const int code = rows.slot_edges[std::size_t(rows.slot_edge_start[std::size_t(l)])], e = index_of_code(code);
+    const double w = rows.geometry().weight[std::size_t(e)];
+    const double g = unit * sign_of_code(code) * (w * x_fixed[e] - product[e]);
+    const double a = unit * unit * w;
+    auto t = [&](double s) { return a * s * s + 2 * g * s; };
+    const double s_min = -g / a, below = std::floor(s_min), above = below + 1;
+    double t0 = (std::min)({0., t(below), t(above)}), t1 = (std::min)(t(-1.), t(1.));
+    for(double s : {below, above})
+      if(s != 0)
+        t1 = (std::min)(t1, t(s));
+    sum_t0 += t0;
+    step = (std::min)(step, t1 - t0);
+  }
+  return sum_t0 + step;
+}
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_DECIDED_LINKS_H

@@ -311,9 +311,11 @@ void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& 
     progress.begin("placement");
     in.fixed = in.singularities;
     Singularities placed;
-    // the holes' indices of --boundary-indices fix the index sums of their components
-    const auto base =
-      P::loop_periods(boundary_loop_periods(o, in, solver), P::align_with_boundary(o.align_boundary, P::symmetry_order(o.n)));
+    // the holes' indices of --boundary-indices fix the index sums of their components; the constrained faces are
+    // held at their directions in the smooth field
+    const auto base = P::loop_periods(boundary_loop_periods(o, in, solver),
+                                      P::align_with_boundary(o.align_boundary, P::face_directions(in.directions,
+                                                                                                  P::symmetry_order(o.n))));
     auto place = [&](const auto& np) {
       if(o.align_curvature)
         design.placement = TC::place_singularities(solver, std::back_inserter(placed),

@@ -376,7 +376,7 @@ public:
   virtual std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> loops() const = 0;
   virtual TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide,
                                      double strength, const Singularities& fixed, const Loop_periods* periods,
-                                     Singularities& placed) const = 0;
+                                     const std::vector<Kernel::Vector_3>* directions, Singularities& placed) const = 0;
   virtual std::vector<Kernel::Vector_3> curvature_guide(std::vector<std::pair<double, double>>& curvatures) const = 0;
   virtual std::vector<std::size_t> spread(const std::vector<Kernel::Vector_3>& guide, std::size_t count) const = 0;
   virtual TC::Refinement_report<vertex_descriptor> refine(const Singularities& start, int n,
@@ -585,7 +585,7 @@ public:
 
   TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide, double strength,
                              const Singularities& fixed, const Loop_periods* periods,
-                             Singularities& placed) const override
+                             const std::vector<Kernel::Vector_3>* directions, Singularities& placed) const override
   {
     namespace P = TC::parameters;
     const auto kept = descriptors(fixed);
@@ -594,13 +594,23 @@ public:
     const auto np = P::symmetry_order(n, P::align_with_boundary(align_boundary, P::fixed_singularities(
                                                                   kept, P::loop_periods(periods ? *periods : none))));
     TC::Placement_report report;
-    if(guide != nullptr) {
-      auto guide_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
-        [guide](face_descriptor f) { return (*guide)[std::size_t(f)]; });
-      report = TC::place_singularities(*m_solver, std::back_inserter(out),
-                                       P::alignment_guide(guide_map, P::alignment_strength(strength, np)));
+    auto place_with = [&](const auto& with) {
+      if(guide != nullptr) {
+        auto guide_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+          [guide](face_descriptor f) { return (*guide)[std::size_t(f)]; });
+        return TC::place_singularities(*m_solver, std::back_inserter(out),
+                                       P::alignment_guide(guide_map, P::alignment_strength(strength, with)));
+      }
+      return TC::place_singularities(*m_solver, std::back_inserter(out), with);
+    };
+    // the constrained faces' directions, held in the smooth field (without them, a solver with constrained faces
+    // refuses as solve() does)
+    if(directions != nullptr) {
+      auto target_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+        [directions](face_descriptor f) { return (*directions)[std::size_t(f)]; });
+      report = place_with(P::face_directions(target_map, np));
     } else
-      report = TC::place_singularities(*m_solver, std::back_inserter(out), np);
+      report = place_with(np);
     for(const auto& [v, k] : out)
       placed.emplace_back(std::size_t(v), k);
     return report;
@@ -799,13 +809,15 @@ public:
   }
 
   py::tuple place_singularities(int n, bool align_boundary, const py::object& alignment_guide, double strength,
-                                const py::object& fixed, const py::object& loop_periods)
+                                const py::object& fixed, const py::object& loop_periods, const py::object& directions)
   {
     const Singularities kept = singularities_of(fixed);
     const Optional_inputs in = optional_inputs(alignment_guide, loop_periods);
+    const Optional_inputs targets = optional_inputs(directions, py::none());
     Singularities placed;
     const TC::Placement_report report = reading([&] {
-      return m_solver->place(n, align_boundary, in.directions_or_null(), strength, kept, in.periods_or_null(), placed);
+      return m_solver->place(n, align_boundary, in.directions_or_null(), strength, kept, in.periods_or_null(),
+                             targets.directions_or_null(), placed);
     });
     py::dict d;
     d["n"] = report.symmetry_order;
@@ -821,6 +833,7 @@ public:
     d["fixed"] = report.fixed;
     d["units_removed"] = report.units_removed;
     d["units_added"] = report.units_added;
+    d["pinned"] = report.pinned;
     return py::make_tuple(singularity_dict(placed), d);
   }
 
@@ -1448,14 +1461,15 @@ Returns a Result. Releases the GIL: solves from several threads run concurrently
     .def("place_singularities", &Python_solver::place_singularities, py::kw_only(), py::arg("n") = 1,
          py::arg("align_boundary") = false, py::arg("alignment_guide") = py::none(),
          py::arg("alignment_strength") = 100.0, py::arg("fixed_singularities") = py::none(),
-         py::arg("loop_periods") = py::none(),
+         py::arg("loop_periods") = py::none(), py::arg("directions") = py::none(),
          R"(Automatic placement: the singularities of the globally smoothest n-direction field (Knoeppel et al. 2013).
 
 Returns (singularities, report): {vertex: Fraction}, which satisfies Poincare-Hopf on every closed component and
 can be given to solve() as it is, and a dict (field_energy, singularities_per_index, ...). alignment_guide: an
 (m, 3) array (or {face: vector}) of guide directions whose length weighs them (principal_curvature_guide()), for
 Knoeppel's aligned field, with alignment_strength. fixed_singularities: kept as they are, the automatic ones nearest
-give way. align_boundary, loop_periods: as for the solver and solve().)")
+give way. align_boundary, loop_periods: as for the solver and solve(). directions: as for solve(), required when
+the solver has constrained faces: the field is held at their directions (report["pinned"] counts them).)")
     .def("principal_curvature_guide", &Python_solver::principal_curvature_guide,
          "Per face, the direction of largest principal curvature times the anisotropy |k1 - k2| ((m, 3) array), "
          "and the two principal curvatures ((m, 2) array, larger absolute value first): a guide for n = 2 or 4.")

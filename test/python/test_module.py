@@ -684,6 +684,14 @@ def test_constraints_and_guidance():
         angle = math.atan2(np.cross(t, u) @ N[f], t @ u)
         assert abs((angle + np.pi / 4) % (np.pi / 2) - np.pi / 4) < 1e-9
     assert len(result.constraints) == len(pinned) - 1
+    # the placement holds the pinned faces at their directions: it needs them, as solve() does
+    with pytest.raises(tc.InvalidInput) as error:
+        solver.place_singularities(n=4)
+    assert error.value.code == "invalid_constraint" and "face_directions" in str(error.value)
+    placed, report = solver.place_singularities(n=4, directions=targets)
+    assert report["pinned"] == len(pinned) and sum(placed.values()) == 2
+    result = solver.solve(placed, n=4, directions=targets)
+    check_invariants(V, F, solver, placed, result, n=4, closed_components_chi=2, optimal=False)
     # other faces pinned on the same factorization: the new targets hold there
     update = solver.set_constraints(constrained_faces=[10, 20], guided_faces=[30, 40, 50])
     assert update["links"] >= 1

@@ -39,7 +39,7 @@ namespace features {
   1,303 chains). So the curves are the sharp edges connected through any vertex except the corners, and a corner is
   found from the shape of the sharp edges around a vertex, not from their number: the vertices on the sharp edges
   within corner_hops edges of it are not along one line (the second eigenvalue of their covariance over the first
-  exceeds corner_ratio, and that ratio is the largest among the vertices within corner_hops edges). A cube's corner
+  exceeds corner_ratio, and that ratio is the largest among its neighbours on sharp edges). A cube's corner
   (three arms) and a turn of 90 degrees are corners; a band along a straight crease is not.
 */
 
@@ -198,7 +198,7 @@ Curve_set detect_curves(const Mesh& m, const std::vector<Vec3>& N, double thresh
   for(int v : on_sharp) {
     if(!(ratio[v] > corner_ratio))
       continue;
-    vertices_within(m, g, {v}, corner_hops, false, mark, near);
+    vertices_within(m, g, {v}, 1, false, mark, near);
     bool maximum = true; // an exact tie goes to the vertex of smaller index
     for(int w : near)
       maximum = maximum && (w == v || ratio[w] < ratio[v] || (ratio[w] == ratio[v] && v < w));

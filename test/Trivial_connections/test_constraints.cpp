@@ -982,6 +982,23 @@ std::vector<int> face_cluster(const Mesh_view<Mesh>& view, int seed, int size)
   return out;
 }
 
+/// faces around vertex v, no two sharing an edge: pins that touch through v only (linked through its fan)
+template <class Mesh>
+std::vector<int> faces_touching_at(const Mesh_view<Mesh>& view, int v)
+{
+  std::vector<int> out;
+  std::vector<char> excluded(std::size_t(view.nf()), 0);
+  for(int f = 0; f < view.nf(); ++f) {
+    bool at_v = false;
+    for(int h : view.face_he[f]) at_v = at_v || view.tgt[h] == v;
+    if(!at_v || excluded[std::size_t(f)]) continue;
+    out.push_back(f);
+    for(int h : view.face_he[f])
+      if(view.interior_halfedge(h)) excluded[std::size_t(view.hface[view.opp[h]])] = 1;
+  }
+  return out;
+}
+
 /// the faces of `clusters` with the directions of `field` turned by `turn(i)` radians about the normal
 template <class Mesh, class Turn>
 Targets cluster_targets(const Mesh_view<Mesh>& view, const std::vector<std::vector<int>>& clusters,
@@ -1009,7 +1026,9 @@ TEST(Touching_pins, the_rounded_integers_are_the_best_of_every_choice)
   const Singularities none;
   TC::Trivial_connection_solver<Surface_mesh> free_solver(m);
   const auto unpinned = solve_constrained(view, free_solver, none, 4, Targets());
-  const std::vector<std::vector<int>> clusters = {face_cluster(view, 5, 4), face_cluster(view, 101, 4), {150}};
+  // pins touching along edges, pins touching at a vertex only, a lone pin
+  const std::vector<std::vector<int>> clusters = {face_cluster(view, 5, 4), faces_touching_at(view, 60), {150}};
+  ASSERT_GE(clusters[1].size(), 3u);
   for(int n : {1, 4}) {
     // directions within 15 degrees of a smooth field: rounding is right, and the bound proves it
     const Targets t = cluster_targets(view, clusters, unpinned.field, [](int i) { return 0.26 * std::sin(2.1 * i); });
@@ -1031,7 +1050,7 @@ TEST(Touching_pins, pins_that_disagree_keep_the_lower_bound_honest)
   const Singularities none;
   TC::Trivial_connection_solver<Surface_mesh> free_solver(m);
   const auto unpinned = solve_constrained(view, free_solver, none, 4, Targets());
-  const std::vector<std::vector<int>> clusters = {face_cluster(view, 5, 5), face_cluster(view, 101, 3)};
+  const std::vector<std::vector<int>> clusters = {face_cluster(view, 5, 5), faces_touching_at(view, 60), {101}};
   int proven = 0, unproven = 0;
   for(double spread : {0.3, 0.6, 0.75}) {
     const Targets t = cluster_targets(view, clusters, unpinned.field, [&](int i) { return spread * std::sin(1.7 * i + 0.4); });

@@ -461,12 +461,13 @@ public:
     const Progress_callback progress = progress_of(np);
     const double unit = 2 * CGAL_PI / n;
     notify(progress, Phase::solve, 0);
-    Eigen::VectorXd b = internal::right_hand_side(m_rows, k, periods, holonomy, n, m_gauss_bonnet_shares);
-    // the edges between touching pins are fixed by rounding: their x_e moves to the right-hand side
+    // the links between touching pins are decided by rounding; the edges they fix move to the right-hand side
     const bool decided = !m_rows.decided_slots.empty();
     Eigen::VectorXd x_fixed;
-    if(decided) {
+    if(decided)
       x_fixed = internal::decided_connection(m_rows, holonomy, unit, periods);
+    Eigen::VectorXd b = internal::right_hand_side(m_rows, k, periods, holonomy, n, m_gauss_bonnet_shares);
+    if(decided) {
       internal::Constraint_sums fixed_sums;
       m_rows.sums_of(x_fixed, std::vector<double>(m_links.number_of_guided_faces(), 0.), fixed_sums);
       b -= m_rows.row_sums(fixed_sums);

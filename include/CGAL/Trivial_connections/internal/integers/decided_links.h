@@ -21,19 +21,21 @@ namespace Trivial_connections {
 namespace internal {
 
 /*
-  The integers of the decided links (between touching pins, across one edge e each) and the connection they fix.
-  A decided link's row reads H + s x_e = 2 pi p / n (s = +-1): its integer is the rounding of H n / 2 pi, which
-  makes |x_e| <= pi / n, the smallest turn across e that meets both pins. Writes the integers into `periods`;
-  returns x per interior edge, fixed on the decided links' edges and 0 elsewhere.
+  The integers of the decided links (between touching pins) and the connection they fix. A decided link's row
+  reads H + sum_L x = 2 pi p / n: its integer is the rounding of H n / 2 pi, the smallest turn along the link
+  (|sum x| <= pi / n) that meets both pins. Writes the integers into `periods`; returns x per interior edge,
+  fixed on the edges of the links that cross one edge (H + s x_e = 2 pi p / n, s = +-1) and 0 elsewhere.
 */
 inline Eigen::VectorXd decided_connection(const Constraint_rows& rows, const std::vector<double>& holonomy, double unit,
                                           std::vector<std::int64_t>& periods)
 {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(rows.geometry().number_of_interior_edges());
   for(int l : rows.decided_slots) {
-    const int code = rows.slot_edges[std::size_t(rows.slot_edge_start[std::size_t(l)])];
     const double p = std::round(holonomy[std::size_t(l)] / unit);
     periods[std::size_t(l)] = std::int64_t(p);
+    if(rows.row_of_slot[std::size_t(l)] >= 0)
+      continue;
+    const int code = rows.slot_edges[std::size_t(rows.slot_edge_start[std::size_t(l)])];
     x[index_of_code(code)] = sign_of_code(code) * (unit * p - holonomy[std::size_t(l)]);
   }
   return x;
@@ -44,6 +46,8 @@ inline double decided_energy(const Constraint_rows& rows, const Eigen::VectorXd&
 {
   double energy = 0;
   for(int l : rows.decided_slots) {
+    if(rows.row_of_slot[std::size_t(l)] >= 0)
+      continue;
     const int e = index_of_code(rows.slot_edges[std::size_t(rows.slot_edge_start[std::size_t(l)])]);
     energy += rows.geometry().weight[std::size_t(e)] * x_fixed[e] * x_fixed[e];
   }
@@ -57,11 +61,14 @@ inline double decided_energy(const Constraint_rows& rows, const Eigen::VectorXd&
   Why it holds: let the decided links be rows of the full system, z the integers (free ones m, decided ones d),
   G = (2 pi / n)^2 P^T M^-1 P their metric. Changing d by s != 0 (and m by anything) costs, over E_r, at least
   2 g^T s + s^T (G / G_mm) s, where g = (2 pi / n) mu is the gradient in d at the relaxed point (mu the decided
-  rows' multipliers, w_e x_e - (A^T lambda)_e up to the sign of the crossing) and G / G_mm the Schur complement
-  of the free block. G / G_mm = (2 pi / n)^2 ((M / M_NN)_dd)^-1 and (M / M_NN)_dd <= M_dd = diag(1 / w_e) (each
-  decided row crosses one edge, distinct ones), so G / G_mm >= (2 pi / n)^2 diag(w_e), and the cost separates per
-  link: at least sum_e t0_e + min_e (t1_e - t0_e), with t(s) = (2 pi / n)^2 w_e s^2 + 2 g_e s, t0 its minimum
-  over the integers and t1 over the nonzero ones.
+  rows' multipliers: for a link across one edge, w_e x_e - (A^T lambda)_e up to the sign of the crossing; for a
+  fan link, its row's multiplier) and G / G_mm the Schur complement of the free block.
+  G / G_mm = (2 pi / n)^2 ((M / M_NN)_dd)^-1 and (M / M_NN)_dd <= M_dd <= D, the diagonal of M_dd's absolute row
+  sums (D - M_dd is diagonally dominant), so G / G_mm >= (2 pi / n)^2 D^-1 and the cost separates per link: at
+  least sum_j t0_j + min_j (t1_j - t0_j), with t(s) = (2 pi / n)^2 s^2 / D_jj + 2 g_j s, t0 its minimum over the
+  integers and t1 over the nonzero ones. A link across one edge shares it with no other decided link: its D_jj
+  is 1 / w_e; a fan link's D_jj is bounded by the sum over its crossings of 1 / w_e times the number of decided
+  links crossing e.
 */
 inline double decided_links_margin(const Constraint_rows& rows, const Eigen::VectorXd& lambda,
                                    const Eigen::VectorXd& x_fixed, double unit)
@@ -69,12 +76,29 @@ inline double decided_links_margin(const Constraint_rows& rows, const Eigen::Vec
   if(rows.decided_slots.empty())
     return std::numeric_limits<double>::infinity();
   const Eigen::VectorXd product = rows.transposed_product(lambda);
+  const std::vector<double>& weight = rows.geometry().weight;
+  std::vector<int> crossers(weight.size(), 0); // decided fan links per edge
+  for(int l : rows.decided_slots)
+    if(rows.row_of_slot[std::size_t(l)] >= 0)
+      for(int p = rows.slot_edge_start[std::size_t(l)]; p < rows.slot_edge_start[std::size_t(l) + 1]; ++p)
+        ++crossers[std::size_t(index_of_code(rows.slot_edges[std::size_t(p)]))];
   double sum_t0 = 0, step = std::numeric_limits<double>::infinity();
   for(int l : rows.decided_slots) {
-    const int code = rows.slot_edges[std::size_t(rows.slot_edge_start[std::size_t(l)])], e = index_of_code(code);
-    const double w = rows.geometry().weight[std::size_t(e)];
-    const double g = unit * sign_of_code(code) * (w * x_fixed[e] - product[e]);
-    const double a = unit * unit * w;
+    const int row = rows.row_of_slot[std::size_t(l)];
+    double g = 0, d = 0;
+    if(row < 0) {
+      const int code = rows.slot_edges[std::size_t(rows.slot_edge_start[std::size_t(l)])], e = index_of_code(code);
+      const double w = weight[std::size_t(e)];
+      g = unit * sign_of_code(code) * (w * x_fixed[e] - product[e]);
+      d = 1 / w;
+    } else {
+      g = unit * lambda[row];
+      for(int p = rows.slot_edge_start[std::size_t(l)]; p < rows.slot_edge_start[std::size_t(l) + 1]; ++p) {
+        const std::size_t e = std::size_t(index_of_code(rows.slot_edges[std::size_t(p)]));
+        d += crossers[e] / weight[e];
+      }
+    }
+    const double a = unit * unit / d;
     auto t = [&](double s) { return a * s * s + 2 * g * s; };
     const double s_min = -g / a, below = std::floor(s_min), above = below + 1;
     double t0 = (std::min)({0., t(below), t(above)}), t1 = (std::min)(t(-1.), t(1.));

@@ -72,10 +72,12 @@ inline void check_disjoint_face_sets(int nf, const std::vector<int>& constrained
   faces, so their rows are independent of each other and of the cycle rows.
   Guided faces (soft guidance) are linked like constrained ones; each has a slack, its mismatch d_g, which
   enters its links' rows with weight 1 / mu (see the user manual).
-  Pins that touch (user targets on faces sharing an edge) are linked first, by a spanning forest of their shared
-  edges: each such link crosses one edge, and its integer is decided by rounding (`decided`), so that its row
-  fixes x_e and the edge leaves the system (see Constraint_rows). Only one face of each cluster of touching pins
-  is then chained with the others: the free integers grow with the clusters (feature curves), not with the pins.
+  Pins that touch (user targets on faces sharing an edge or a vertex) are linked first, by a spanning forest of
+  the clusters they form: first across their shared edges, then through the fan of a shared vertex (the faces
+  between them around it). The integer of such a link is decided by rounding (`decided`): a link across one
+  edge fixes x_e, and the edge leaves the system; a fan link is a row with a prescribed integer, ordered in the
+  factor right after its vertex's rows (see Constraint_rows). Only one face of each cluster is then chained with
+  the others: the free integers grow with the clusters (feature curves, parts of them), not with the pins.
 */
 struct Constraint_links
 {
@@ -91,7 +93,7 @@ struct Constraint_links
     int component;
     std::vector<int> crossings; // corner halfedges, as a loop's (released once the rows have coded them)
     std::size_t length = 0;
-    bool decided = false;       // between touching pins, across one edge: the integer is rounded, no row
+    bool decided = false;       // between touching pins (one edge, or a vertex's fan): the integer is rounded
   };
 
   std::vector<Constrained_face> faces; // aligned boundary faces, then user targets, then guided faces
@@ -281,6 +283,64 @@ private:
         Link link{a, b, t.component_of_face[f], {i}};
         link.decided = true;
         decided_links.push_back(std::move(link));
+      }
+    }
+    // then through vertices: around each vertex of a pin, from one pin to the next of another cluster, crossing
+    // the faces between them (the corners entering the vertex, in the order of its fan)
+    using Mesh = Mesh_arrays<TriangleMesh>;
+    std::vector<std::pair<int, int>> pinned_corners; // (vertex, a corner entering it in a pin)
+    for(int a = first_user; a < int(faces.size()); ++a)
+      for(int i = 3 * faces[std::size_t(a)].face; i < 3 * faces[std::size_t(a)].face + 3; ++i)
+        pinned_corners.push_back({m.target_of(i), i});
+    std::sort(pinned_corners.begin(), pinned_corners.end());
+    auto pin_of = [&](int corner) {
+      const int a = constraint_of_face[Mesh::face_of(corner)];
+      return a >= first_user ? a : -1;
+    };
+    std::vector<int> fan, crossings;
+    for(std::size_t p = 0; p < pinned_corners.size();) {
+      std::size_t q = p;
+      bool several_clusters = false;
+      const int first_root = cluster_root(pin_of(pinned_corners[p].second));
+      for(; q < pinned_corners.size() && pinned_corners[q].first == pinned_corners[p].first; ++q)
+        several_clusters = several_clusters || cluster_root(pin_of(pinned_corners[q].second)) != first_root;
+      const int start = pinned_corners[p].second;
+      p = q;
+      if(!several_clusters)
+        continue;
+      // the fan as corners entering the vertex: rewound to its border when it is open, else from the pin
+      fan.clear();
+      int c = start;
+      bool closed = false;
+      while(!closed && m.opposite_corner[c] >= 0) {
+        c = Mesh::prev_corner(m.opposite_corner[c]);
+        closed = c == start;
+      }
+      const int first = c;
+      do {
+        fan.push_back(c);
+        const int o = m.opposite_corner[Mesh::next_corner(c)];
+        if(o < 0)
+          break;
+        c = o;
+      } while(c != first);
+      if(closed)
+        fan.push_back(first);
+      int last = -1;
+      crossings.clear();
+      for(std::size_t k = 0; k < fan.size(); ++k) {
+        const int b = pin_of(fan[k]);
+        if(b >= 0) {
+          if(last >= 0 && cluster_root(last) != cluster_root(b)) {
+            cluster_parent[std::size_t(cluster_root(b))] = cluster_root(last);
+            Link link{last, b, t.component_of_face[faces[std::size_t(b)].face], crossings};
+            link.decided = true;
+            decided_links.push_back(std::move(link));
+          }
+          last = b;
+          crossings.clear();
+        }
+        crossings.push_back(Mesh::next_corner(fan[k]));
       }
     }
   }

@@ -41,10 +41,12 @@ struct Constraint_sums
   of the directional constraints. "Slots" number everything that carries an integer: the loops of the
   tree-cotree decomposition (boundary loops, whose row is their node's, then generators), then the links.
   A slot's crossings are coded e (x_e) or ~e (-x_e).
-  A decided link (between touching pins, see Constraint_links) has no row: its integer is chosen by rounding,
-  which fixes x_e on the one edge it crosses, and that edge leaves the system: its column of A is dropped
+  A decided link (between touching pins, see Constraint_links) has its integer chosen by rounding. Across one
+  edge it has no row: the rounding fixes x_e there, and that edge leaves the system: its column of A is dropped
   (`inverse_weight` 0), and the fixed x_e moves to the right-hand side. M keeps its pattern (the entries become
-  0), so the fill-reducing order of the node rows holds whatever the pins.
+  0), so the fill-reducing order of the node rows holds whatever the pins. Through a vertex's fan it is a row
+  with a prescribed integer, placed in the factor right after the last of the nodes it touches: their columns
+  already join its neighbours, so it adds one short column and no fill elsewhere.
   Reads the geometry, the topology and the links it was built from, which must outlive it.
 */
 class Constraint_rows
@@ -58,7 +60,8 @@ public:
   std::vector<int> slot_edge_start, slot_edges; // per slot (CSR): its coded crossings
   std::vector<int> border_corners;            // corner halfedges on a border edge
   std::vector<double> inverse_weight;         // per interior edge: 1 / w_e, 0 on an edge a decided link fixes
-  std::vector<int> decided_slots;             // slots of the decided links (no row)
+  std::vector<int> decided_slots;             // slots of the decided links (a row only through a fan)
+  std::vector<int> decided_row_node_start, decided_row_nodes; // per decided row (CSR, in row order): its nodes
   // per interior edge, the nodes of its canonical corner's source and target (compute_edge_nodes())
   std::vector<std::array<int, 2>> edge_nodes;
   Eigen::Index rows = 0;    // of the factored system
@@ -88,6 +91,8 @@ public:
       const int component = l < nl ? t.loops[l].component : links.links[l - nl].component;
       if(l >= nl && links.links[l - nl].decided) {
         decided_slots.push_back(int(l));
+        if(links.links[l - nl].crossings.size() > 1)
+          row_of_slot[l] = count++;
         continue;
       }
       row_of_slot[l] = l < nl && t.loops[l].kind == Loop_kind::boundary ? row_of_node[t.loops[l].node] : count++;
@@ -117,13 +122,22 @@ public:
       for(int i : crossings_of(l))
         *out++ = coded_crossing(i);
     }
+    decided_row_node_start.assign(1, 0);
+    for(int l : decided_slots)
+      if(row_of_slot[std::size_t(l)] >= 0) {
+        for(int i : crossings_of(std::size_t(l)))
+          for(int v : {m.source_of(i), m.target_of(i)})
+            decided_row_nodes.push_back(t.node_of_vertex[v]);
+        decided_row_node_start.push_back(int(decided_row_nodes.size()));
+      }
     links.release_crossings();
     rows = count;
     inverse_weight.resize(std::size_t(geometry.number_of_interior_edges()));
     for(std::size_t e = 0; e < inverse_weight.size(); ++e)
       inverse_weight[e] = 1 / geometry.weight[e];
     for(int l : decided_slots)
-      inverse_weight[std::size_t(index_of_code(slot_edges[std::size_t(slot_edge_start[l])]))] = 0;
+      if(row_of_slot[std::size_t(l)] < 0)
+        inverse_weight[std::size_t(index_of_code(slot_edges[std::size_t(slot_edge_start[l])]))] = 0;
   }
 
   // after the links changed (set_constraints() on a kept factorization): `row_of_link[j]` is link j's row, in

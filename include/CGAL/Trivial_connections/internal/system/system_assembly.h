@@ -187,20 +187,51 @@ Eigen::SparseMatrix<double> system_in_row_order(const Mesh_arrays<TriangleMesh>&
   return M;
 }
 
-// The positions of the rows in the factor: the node rows in the fill-reducing order `node_order` (nodes),
-// then the free rows (loops and links), so that the metric of the integers is the trailing block of the factor.
+// The positions of the rows in the factor: the node rows in the fill-reducing order `node_order` (nodes), each
+// decided fan row right after the last of its nodes, then the free rows (loops and links), so that the metric
+// of the integers is the trailing block of the factor.
 inline Row_permutation loop_rows_last(const Constraint_rows& system, const std::vector<int>& node_order)
 {
   const Eigen::Index rows = system.rows;
   std::vector<char> is_loop_row(std::size_t(rows), 0);
   for(int r : system.free_rows)
     is_loop_row[r] = 1;
+  // per node, the decided rows that follow it (CSR); rows touching pinned nodes only come first
+  std::vector<int> rank(system.row_of_node.size(), -1), first_rows;
+  for(std::size_t k = 0; k < node_order.size(); ++k)
+    rank[std::size_t(node_order[k])] = int(k);
+  std::vector<std::pair<int, int>> anchored; // (rank of the last node, row)
+  {
+    std::size_t d = 0;
+    for(int l : system.decided_slots) {
+      const int r = system.row_of_slot[std::size_t(l)];
+      if(r < 0)
+        continue;
+      int last = -1;
+      for(int p = system.decided_row_node_start[d]; p < system.decided_row_node_start[d + 1]; ++p) {
+        const int node = system.decided_row_nodes[std::size_t(p)];
+        if(system.row_of_node[std::size_t(node)] >= 0)
+          last = (std::max)(last, rank[std::size_t(node)]);
+      }
+      ++d;
+      if(last < 0)
+        first_rows.push_back(r);
+      else
+        anchored.push_back({last, r});
+    }
+    std::sort(anchored.begin(), anchored.end());
+  }
   Row_permutation permutation(rows); // row -> position
   int position = 0;
-  for(int node : node_order) {
-    const int r = system.row_of_node[node];
+  for(int r : first_rows)
+    permutation.indices()[r] = position++;
+  std::size_t next_anchored = 0;
+  for(std::size_t k = 0; k < node_order.size(); ++k) {
+    const int r = system.row_of_node[std::size_t(node_order[k])];
     if(r >= 0 && !is_loop_row[r])
       permutation.indices()[r] = position++;
+    for(; next_anchored < anchored.size() && anchored[next_anchored].first == int(k); ++next_anchored)
+      permutation.indices()[anchored[next_anchored].second] = position++;
   }
   for(int r : system.free_rows)
     permutation.indices()[r] = position++;

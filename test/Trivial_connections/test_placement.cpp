@@ -901,6 +901,8 @@ TEST(Placement, pinned_cube_edges_give_eight_quarter_singularities_at_the_corner
   const TC::Solve_report r = solve_pinned(view, solver, p.singularities, 4, pins);
   EXPECT_LT(r.energy, 1e-8);
   EXPECT_LE(r.max_constraint_residual, 1e-9);
+  std::cout << "[ cube     ] " << pins.faces.size() << " pins; energy " << r.energy << ", largest constraint residual "
+            << r.max_constraint_residual << std::endl;
 
   // the directions are required, as by solve()
   std::vector<std::pair<Solver::vertex_descriptor, TC::Singularity_index>> out;
@@ -955,7 +957,8 @@ TEST(Placement, pinned_placement_lowers_the_energy_of_the_pinned_connection_on_f
   EXPECT_LT(after.energy, before.energy);
   std::cout << "[ fandisk  ] " << pins.faces.size() << " pins; energy with the free placement (" << unpinned.singularities.size()
             << " singularities) " << before.energy << ", with the pinned placement (" << pinned.singularities.size()
-            << ") " << after.energy << "; pinned placement " << seconds << " s" << std::endl;
+            << ") " << after.energy << " (lower bounds of the energy over the integers: " << before.energy_lower_bound
+            << ", " << after.energy_lower_bound << "); pinned placement " << seconds << " s" << std::endl;
 }
 
 TEST(Placement, pinned_placement_is_independent_of_vertex_and_face_numbering)

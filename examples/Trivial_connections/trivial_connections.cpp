@@ -33,6 +33,7 @@
 #include <CGAL/Trivial_connections/singularity_refinement.h>
 
 #include "trivial_connections_command_line.h"
+#include "trivial_connections_features.h"
 #include "trivial_connections_process.h"
 
 #include <algorithm>
@@ -99,6 +100,7 @@ struct Inputs
   std::vector<char> in_constraints; // by face of the file
   Singularities fixed;              // --auto with --singularities: the file's, kept
   Face_vectors curvature;           // --align-curvature: the guide on every face
+  Feature_pins features;            // --align-features: its pins are among the constrained faces
 };
 
 // What --auto, --align-curvature and --refine did
@@ -183,6 +185,8 @@ void read_inputs(const Options& o, Progress_printer& progress, Inputs& in, Timin
   if(!o.boundary_indices.empty())
     in.boundary_indices = TC::read_singularities(o.boundary_indices, in.order.vertices.size());
   read_face_directions(o, in);
+  if(o.align_features)
+    align_with_features(o, progress, in);
 }
 
 // The solver's errors about the constraints and guides name faces: name the file that has the face too.
@@ -368,6 +372,7 @@ std::string provenance(const Options& o)
          (o.align_curvature ? ", aligned with the curvature" : "") + (o.refine ? ", refined" : "") +
          (o.constraints.empty() ? std::string() : ", constraints '" + o.constraints + "'") +
          (o.align_boundary ? ", aligned with the boundary" : "") +
+         (o.align_features ? ", aligned with the features over " + fixed(o.feature_angle, 1) + " degrees" : "") +
          (o.guidance.empty() ? std::string()
                              : ", guidance '" + o.guidance + "' with weight " + std::to_string(o.guidance_weight)) +
          ", n = " + std::to_string(o.n) + ", weights " + o.weights_name + "\n";
@@ -429,6 +434,10 @@ void write_outputs(const Options& o, const Inputs& in, const Solver& solver, con
                        TC::write_singularities(os, lines);
                      }});
   }
+  if(!o.write_constraints.empty())
+    files.push_back({o.write_constraints, [&](std::ostream& os) { write_constraints_used(os << header, in); }});
+  if(!o.feature_lines.empty())
+    files.push_back({o.feature_lines, [&](std::ostream& os) { write_feature_lines_vtk(os, in, in.features); }});
   std::vector<TC::Streamline<Mesh>> streamlines;
   if(!o.streamlines.empty()) {
     // a line across the mesh crosses about sqrt(faces) faces: 50 times that bounds recurrent ones
@@ -507,13 +516,15 @@ void print_design_controls(std::ostream& out, const Options& o, const Inputs& in
         << o.guidance << ", weight " << o.guidance_weight << "; guidance energy " << report.guidance_energy
         << ", largest angle to a guide " << fixed(worst, 6) << " rad\n";
   }
-  if(in.constraints.empty() && !o.align_boundary && in.guides.empty())
+  if(in.constraints.empty() && !o.align_boundary && in.guides.empty() && in.features.pinned == 0)
     return;
   std::string parts;
   auto part = [&](const std::string& p) { parts += (parts.empty() ? "" : "; ") + p; };
   if(!in.constraints.empty())
     part(std::to_string(in.constraints.size()) + (in.constraints.size() == 1 ? " face" : " faces") + " from " +
          o.constraints);
+  if(in.features.pinned > 0)
+    part(std::to_string(in.features.pinned) + " beside feature curves");
   if(o.align_boundary)
     part("aligned with the boundary");
   if(!in.guides.empty())
@@ -612,6 +623,8 @@ void print_report(std::ostream& out, const Options& o, const Inputs& in, const S
   print_mesh(out, o, in, s.report, interior_edges);
   out << "factorization: " << factorization_backend(solver.solver_traits()) << "\n";
   print_design(out, o, design);
+  if(o.align_features)
+    out << feature_report_line(o, in.features);
   print_energy(out, o, in, s.report);
   print_design_controls(out, o, in, s.report);
   print_loops(out, o, s.report);

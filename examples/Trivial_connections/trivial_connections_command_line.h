@@ -11,6 +11,7 @@
 #define CGAL_TRIVIAL_CONNECTIONS_PROGRAM_COMMAND_LINE_H
 
 #include <CGAL/Trivial_connections/Progress.h>
+#include <CGAL/Trivial_connections/feature_alignment.h>
 #include <CGAL/Trivial_connections/parameters.h>
 #include <CGAL/version.h>
 
@@ -70,6 +71,15 @@ inline const char* const usage_text =
   "                        order) and a direction (projected onto the face) that the field must have\n"
   "                        there, as one of its N directions. Each extra constrained face of a component\n"
   "                        adds one free integer, chosen with the loop integers.\n"
+  "  --align-features [DEGREES]  pin every face beside a feature curve (edges whose faces' normals differ by\n"
+  "                        more than DEGREES, default 30; the value is taken only if it is a number) to the\n"
+  "                        curve's direction there (a line fitted to the curve, not each jagged edge). The\n"
+  "                        faces of --constraints keep their targets; with --align-boundary the boundary faces\n"
+  "                        follow the boundary. A mesh without sharp edge gets a note and no pin.\n"
+  "  --feature-lines OUT   the sharp edges of the feature curves as legacy VTK lines (with --align-features;\n"
+  "                        scripts/render_field.py --features OUT draws them)\n"
+  "  --write-constraints OUT  the directional constraints used (the file's and the features'), in the\n"
+  "                        --constraints format\n"
   "  --align-boundary      the field follows the boundary on every boundary face: along its border edge\n"
   "                        (the longer one when it has two); for N = 4, tangent and normal to it.\n"
   "  --guidance FILE       soft guidance, lines 'f x y z' as for --constraints: the solve minimises the\n"
@@ -156,6 +166,9 @@ struct Options
   bool automatic = false, align_curvature = false, refine = false, cancel_pairs = false;
   double alignment_strength = 100;
   std::string write_singularities;
+  bool align_features = false;
+  double feature_angle = CGAL::Trivial_connections::default_feature_angle_degrees; // --align-features DEGREES
+  std::string feature_lines, write_constraints;
 };
 
 using String_field = std::string Options::*;
@@ -212,6 +225,23 @@ inline void parse_streamline_seeds(Options& o, const std::string& text)
   o.streamline_seeds = std::stoul(text);
 }
 
+// Whether the whole text is a number as strtod reads it ("30", "12.5", "-4", "nan", "1e2"), for the optional value
+// of --align-features
+inline bool is_number(const std::string& text)
+{
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size();
+}
+
+inline void parse_feature_angle(Options& o, const std::string& text)
+{
+  char* end = nullptr;
+  o.feature_angle = std::strtod(text.c_str(), &end);
+  if(text.empty() || end != text.c_str() + text.size() || !(o.feature_angle >= 0 && o.feature_angle <= 180))
+    throw Usage_error("--align-features expects an angle in degrees between 0 and 180, got '" + text + "'");
+}
+
 // An option that takes a value: kept as given in `field`, or read by `parse`.
 struct Valued_option
 {
@@ -221,8 +251,10 @@ struct Valued_option
 };
 
 // The options that take a value. Each may be given once, as `--name value` or `--name=value`.
-inline const std::array<Valued_option, 16> valued_options = {{
+inline const std::array<Valued_option, 18> valued_options = {{
   {"--write-singularities", &Options::write_singularities, nullptr},
+  {"--write-constraints", &Options::write_constraints, nullptr},
+  {"--feature-lines", &Options::feature_lines, nullptr},
   {"--alignment-strength", nullptr, parse_alignment_strength},
   {"--singularities", &Options::singularities, nullptr},
   {"--boundary-indices", &Options::boundary_indices, nullptr},
@@ -253,7 +285,8 @@ inline bool same_file(const std::string& a, const std::string& b)
 inline void check_outputs(const Options& o)
 {
   std::vector<const std::string*> outputs = {&o.connection, &o.field};
-  for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points, &o.streamlines, &o.write_singularities})
+  for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points, &o.streamlines, &o.write_singularities,
+                                  &o.feature_lines, &o.write_constraints})
     if(!extra->empty())
       outputs.push_back(extra);
   for(std::size_t a = 0; a < outputs.size(); ++a)
@@ -341,6 +374,16 @@ inline Options parse_arguments(int argc, char** argv)
       flag = true;
       continue;
     }
+    if(a == "--align-features" || a.compare(0, 17, "--align-features=") == 0) {
+      if(o.align_features)
+        throw Usage_error("option --align-features given twice");
+      o.align_features = true;
+      if(a.size() > 16) // --align-features=DEGREES
+        parse_feature_angle(o, a.substr(17));
+      else if(i + 1 < args.size() && is_number(args[i + 1])) // an optional value: only a number is taken
+        parse_feature_angle(o, args[++i]);
+      continue;
+    }
     if(a.size() > 1 && a[0] == '-' && a != "-") {
       read_valued_option(args, i, seen, o);
     } else {
@@ -359,6 +402,8 @@ inline Options parse_arguments(int argc, char** argv)
     throw Usage_error("--align-curvature and --guidance cannot be combined (both choose the guided faces)");
   if(o.cancel_pairs && !o.refine)
     throw Usage_error("--cancel-pairs is an option of --refine");
+  if(!o.feature_lines.empty() && !o.align_features)
+    throw Usage_error("--feature-lines is an option of --align-features");
   const std::string stem = std::filesystem::path(o.mesh).stem().string();
   if(o.connection.empty())
     o.connection = stem + ".connection.txt";

@@ -2,7 +2,8 @@
 """Renders a direction field computed by trivial_connections to a PNG picture (headless).
 
 Input: the legacy VTK files the program writes with --vtk FIELD.vtk (mesh, per face the n directions
-direction_0 ... direction_{n-1}, per vertex singularity_index) and optionally --streamlines S.vtk.
+direction_0 ... direction_{n-1}, per vertex singularity_index) and optionally --streamlines S.vtk and
+--features F.vtk (the sharp edges of --align-features, written by --feature-lines: drawn as orange lines).
 
 What is drawn:
   * the mesh, shaded per face (two-sided Lambert lighting from the camera side plus ambient), with a
@@ -310,20 +311,24 @@ def render(a):
     st = {"faces": len(tris), "visible_faces": len(vis_faces), "streamline_segments": 0,
           "visible_streamline_segments": 0, "glyphs": 0}
 
+    def draw_lines(Q, lines, colour, width):
+        """Draws the visible parts of polylines; returns (segments, visible segments)."""
+        if not lines:
+            return 0, 0
+        cat = np.concatenate(lines)
+        line_id = np.repeat(np.arange(len(lines)), [len(c) for c in lines])
+        qx, qy, qz = cam.project(Q[cat])
+        vis = visible(qx, qy, qz, depth, owner, grad, tol)
+        seg = line_id[1:] == line_id[:-1]           # consecutive points of the same polyline
+        seg_vis = np.flatnonzero(seg & vis[1:] & vis[:-1])
+        runs = np.split(seg_vis, np.flatnonzero(np.diff(seg_vis) != 1) + 1) if len(seg_vis) else []
+        xy = np.column_stack([qx, qy])
+        ax.add_collection(LineCollection([xy[r[0]:r[-1] + 2] for r in runs], colors=colour,
+                                         linewidths=width, capstyle="round", joinstyle="round", zorder=2))
+        return int(seg.sum()), len(seg_vis)
+
     if stream is not None:
-        Q, lines = stream
-        if lines:
-            cat = np.concatenate(lines)
-            line_id = np.repeat(np.arange(len(lines)), [len(c) for c in lines])
-            qx, qy, qz = cam.project(Q[cat])
-            vis = visible(qx, qy, qz, depth, owner, grad, tol)
-            seg = line_id[1:] == line_id[:-1]           # consecutive points of the same polyline
-            seg_vis = np.flatnonzero(seg & vis[1:] & vis[:-1])
-            st["streamline_segments"], st["visible_streamline_segments"] = int(seg.sum()), len(seg_vis)
-            runs = np.split(seg_vis, np.flatnonzero(np.diff(seg_vis) != 1) + 1) if len(seg_vis) else []
-            xy = np.column_stack([qx, qy])
-            ax.add_collection(LineCollection([xy[r[0]:r[-1] + 2] for r in runs], colors="#1c1c28",
-                                             linewidths=lw, capstyle="round", joinstyle="round"))
+        st["streamline_segments"], st["visible_streamline_segments"] = draw_lines(*stream, "#1c1c28", lw)
     else:
         # one glyph per cell of a screen grid sized for K glyphs: even density, visible faces only
         cover = max(int((owner >= 0).sum()), 1)
@@ -352,6 +357,9 @@ def render(a):
             ax.add_collection(LineCollection(segs, colors="#1c1c28", linewidths=lw))
         st["glyphs"] = len(f)
 
+    if a.features:   # the feature curves (trivial_connections --feature-lines), over the field
+        st["feature_segments"], st["visible_feature_segments"] = draw_lines(*load_streamlines(a.features),
+                                                                            "#e8770e", 2.2 * lw)
     si = np.flatnonzero(np.abs(sing) > 1e-9)
     sx, sy, sz = cam.project(V[si])
     svis = visible(sx, sy, sz, depth, owner, grad, tol)
@@ -390,6 +398,8 @@ def main():
     ap.add_argument("field", help="field file written by trivial_connections --vtk")
     ap.add_argument("--streamlines", metavar="S.vtk",
                     help="streamlines written by --streamlines (else glyphs are drawn)")
+    ap.add_argument("--features", metavar="F.vtk",
+                    help="feature curves written by --feature-lines, drawn as orange lines")
     ap.add_argument("-o", "--output", required=True, metavar="OUT.png", help="the picture to write")
     ap.add_argument("--view", nargs=2, type=float, default=(35.0, 25.0), metavar=("AZIMUTH", "ELEVATION"),
                     help="camera angles in degrees (default 35 25)")

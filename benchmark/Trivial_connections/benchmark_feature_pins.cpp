@@ -5,6 +5,7 @@
 // without pins measured in the same run, in the library and in the program as a whole process.
 //
 //   trivial_connections_feature_pins_benchmark [--benchmark_filter=REGEX]
+//   trivial_connections_feature_pins_benchmark --write-pins MESH OUT.txt [features|band|50k]   (the pins only)
 //
 // Meshes: CGAL's fandisk (13k faces), fandisk_large (32k) and fandisk_large split 1-to-4 by edge midpoints once
 // (mid1, 127k) and twice (mid2, 507k); the splits are made on first use in the benchmark mesh cache
@@ -540,6 +541,22 @@ void program_run(benchmark::State& state, const Spec& spec, const std::string& k
 
 int main(int argc, char** argv)
 {
+  // the pins of any mesh, for the comparison with Directional (scripts/compare_directional.sh)
+  if(argc >= 4 && std::string(argv[1]) == "--write-pins") {
+    Mesh mesh;
+    if(!CGAL::IO::read_polygon_mesh(argv[2], mesh) || num_faces(mesh) == 0) {
+      std::cerr << "cannot read " << argv[2] << "\n";
+      return 1;
+    }
+    const Pins pins = make_pins(mesh, argc >= 5 ? argv[4] : "features");
+    const std::string error = write_pins(mesh, pins, argv[3]);
+    std::cout << pins.faces.size() << " pins of " << num_faces(mesh) << " faces, " << pins.features.number_of_sharp_edges
+              << " sharp edges, " << pins.features.disagreeing_pairs << " of " << pins.features.neighbouring_pairs
+              << " neighbouring pairs disagree by more than 5 degrees\n";
+    if(!error.empty())
+      std::cerr << error << "\n";
+    return error.empty() ? 0 : 1;
+  }
   for(const Spec& spec : specs()) {
     std::vector<std::string> kinds = {"features", "band"};
     if(spec.splits == 2)

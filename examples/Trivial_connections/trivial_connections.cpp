@@ -506,6 +506,20 @@ void print_energy(std::ostream& out, const Options& o, const Inputs& in, const T
   out << "\n";
 }
 
+
+// whether the integers (loops, links) are proven optimal, else how far below the optimum may be
+std::string integers_verdict(const TC::Solve_report& report)
+{
+  if(report.integers_proven_optimal)
+    return "proven optimal";
+  const double minimised = report.energy + report.guidance_energy;
+  std::ostringstream text;
+  text << "not proven optimal (no choice gives less than " << std::setprecision(10) << report.energy_lower_bound
+       << ": the optimum is at most " << std::setprecision(3)
+       << 100 * (minimised - report.energy_lower_bound) / minimised << " % below this energy)";
+  return text.str();
+}
+
 void print_design_controls(std::ostream& out, const Options& o, const Inputs& in, const TC::Solve_report& report)
 {
   if(!in.guides.empty()) {
@@ -529,9 +543,16 @@ void print_design_controls(std::ostream& out, const Options& o, const Inputs& in
     part("aligned with the boundary");
   if(!in.guides.empty())
     part(std::to_string(in.guides.size()) + " guided");
+  std::size_t decided = 0;
+  for(const TC::Constraint_report& c : report.constraints)
+    decided += c.decided ? 1 : 0;
+  const std::size_t chosen = report.constraints.size() - decided;
   out << "constraints: " << parts << "; " << report.constraints.size()
-      << (report.constraints.size() == 1 ? " path" : " paths")
-      << " between constrained or guided faces, their integers chosen with the loops'\n";
+      << (report.constraints.size() == 1 ? " link" : " links") << " between constrained or guided faces: " << decided
+      << " between touching faces (the short way), " << chosen << " with integers chosen with the loops'";
+  if(report.loops.empty())
+    out << "; integers " << integers_verdict(report);
+  out << "\n";
 }
 
 void print_loops(std::ostream& out, const Options& o, const TC::Solve_report& report)
@@ -543,15 +564,8 @@ void print_loops(std::ostream& out, const Options& o, const TC::Solve_report& re
   std::size_t boundary = 0, generators = 0;
   for(const TC::Loop_report& l : report.loops)
     (l.kind == TC::Loop_kind::boundary ? boundary : generators) += 1;
-  out << "loops: " << boundary << " boundary, " << generators << " generators; integers "
-      << (report.integers_proven_optimal ? "proven optimal" : "not proven optimal");
-  if(!report.integers_proven_optimal) {
-    const double minimised = report.energy + report.guidance_energy;
-    out << " (no choice gives less than " << std::setprecision(10) << report.energy_lower_bound
-        << ": the optimum is at most " << std::setprecision(3)
-        << 100 * (minimised - report.energy_lower_bound) / minimised << " % below this energy)";
-  }
-  out << "\n";
+  out << "loops: " << boundary << " boundary, " << generators << " generators; integers " << integers_verdict(report)
+      << "\n";
   const std::size_t max_loops = 20;
   for(std::size_t l = 0; l < report.loops.size() && l < max_loops; ++l) {
     const TC::Loop_report& r = report.loops[l];

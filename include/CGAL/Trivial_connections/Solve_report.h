@@ -54,10 +54,13 @@ struct Constraint_report
   std::size_t from_face = 0;   ///< face index (`faces(tm)` order) where the path starts
   std::size_t to_face = 0;     ///< face index where it ends
   std::size_t length = 0;   ///< number of edges the path crosses
-  std::int64_t period = 0;  ///< chosen by the solver, minimising the energy with the loop integers
+  std::int64_t period = 0;  ///< chosen by the solver, minimising the energy with the loop integers (or `decided`)
   /// `|T + theta_from - theta_to + X - 2 pi period / n - (d_to - d_from)|`, with `d` the mismatch of a guided
   /// end (0 for a constrained one)
   double residual = 0;
+  /// `true` for a link between two faces that touch (an edge or a vertex): its period is the rounding, the short
+  /// way from one target to the other, not a free integer (see the user manual)
+  bool decided = false;
 };
 
 /*!

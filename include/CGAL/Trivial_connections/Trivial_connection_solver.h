@@ -156,9 +156,12 @@ public:
     \cgalParamNBegin{progress} \cgalParamType{`Progress_callback`} \cgalParamDefault{none} \cgalParamNEnd
     \cgalParamNBegin{constrained_faces}
       \cgalParamDescription{faces on which the field must point in a direction given to each `solve()`
-        (`face_directions`). Per component, the constrained faces are linked by dual paths, one row each with a
-        free integer chosen with the loop integers (see the user manual). Changing the directions costs
-        back-substitutions only; `set_constraints()` changes the set of faces}
+        (`face_directions`). Faces that touch (share an edge or a vertex) form clusters: within a cluster each
+        link turns the short way between its two faces (its integer is the rounding, and it costs nothing: no
+        dense block grows with the number of pins); the clusters of a component are linked by dual paths, one
+        row each with a free integer chosen with the loop integers (see the user manual).
+        `Solve_report::integers_proven_optimal` and `energy_lower_bound` cover every choice of both. Changing
+        the directions costs back-substitutions only; `set_constraints()` changes the set of faces}
       \cgalParamType{a range of `face_descriptor`} \cgalParamDefault{none}
     \cgalParamNEnd
     \cgalParamNBegin{align_with_boundary}
@@ -362,10 +365,12 @@ public:
   Replaces the constrained and the guided faces by those of the named parameters `constrained_faces` and
   `guided_faces` (as for the constructor; an absent one means none). The boundary alignment and the guidance
   weight stay those given to the constructor. The mesh set-up, the geometry, the trees and the fill-reducing
-  order are kept. With the default backend and with CHOLMOD the factorization is kept too: the links that were
-  factored by the constructor (or by the last full rebuild) and are still there keep their rows, the others
-  are dropped from the dense block of the integers, and each new link costs one forward substitution through
-  the factor (see the user manual). With other backends the system is assembled and factored again.
+  order are kept. With the default backend and with CHOLMOD, and when neither the old nor the new constrained
+  faces touch one another, the factorization is kept too: the links that were factored by the constructor (or by
+  the last full rebuild) and are still there keep their rows, the others are dropped from the dense block of the
+  integers, and each new link costs one forward substitution through the factor (see the user manual).
+  Otherwise (touching faces change the system itself, or other backends) the system is assembled and factored
+  again, in the kept order: about the cost of the constructor's factorization, whatever the number of faces.
   \throws Invalid_input as the constructor for these parameters: the solver is then unchanged; and
   `solver_failure`, after which the solver is left without constrained or guided faces (but aligned if it was)
   \tparam NamedParameters a sequence of named parameters
@@ -506,14 +511,15 @@ public:
     report.energy_lower_bound =
       energies.proven ? minimised : (std::min)(energies.lower_bound + fixed_energy, minimised);
     if(decided) {
-      // the choices where a decided integer differs from its rounding (see decided_links_margin())
+      // the choices where a decided integer differs from its rounding (see decided_links_bound())
       double relaxed_energy = minimised;
       Eigen::VectorXd relaxed_lambda = lambda;
       if(choose_periods) {
         relaxed_lambda = m_system.solve(m_rows, energies.relaxed_rhs);
         relaxed_energy = energies.relaxed_rhs.dot(relaxed_lambda) + fixed_energy;
       }
-      const double others = relaxed_energy + internal::decided_links_margin(m_rows, relaxed_lambda, x_fixed, unit);
+      const double others =
+        internal::decided_links_bound(m_rows, relaxed_lambda, relaxed_energy, x_fixed, holonomy, periods, unit);
       energies.proven = energies.proven && others >= minimised * (1 - 1e-12);
       report.energy_lower_bound = (std::min)(report.energy_lower_bound, others);
     }

@@ -106,6 +106,7 @@ inline void fill_report(const Constraint_rows& rows, const Constraint_sums& sums
     r.to_face = std::size_t(links.faces[links.links[j].to].face);
     r.length = links.links[j].length;
     r.period = periods[l];
+    r.decided = links.links[j].decided;
     r.residual = std::abs(holonomy[l] + sums.loop[l] - unit * double(periods[l]));
     report.max_constraint_residual = (std::max)(report.max_constraint_residual, r.residual);
   }

@@ -55,23 +55,29 @@ inline double decided_energy(const Constraint_rows& rows, const Eigen::VectorXd&
 }
 
 /*
-  What every other choice of the decided integers costs at least, above the energy E_r of the solve with the free
-  integers (loops, links between clusters) relaxed to real numbers and the decided ones rounded; `lambda`: the
-  multipliers of that relaxed solve, `x_fixed`: from decided_connection().
-  Why it holds: let the decided links be rows of the full system, z the integers (free ones m, decided ones d),
-  G = (2 pi / n)^2 P^T M^-1 P their metric. Changing d by s != 0 (and m by anything) costs, over E_r, at least
-  2 g^T s + s^T (G / G_mm) s, where g = (2 pi / n) mu is the gradient in d at the relaxed point (mu the decided
-  rows' multipliers: for a link across one edge, w_e x_e - (A^T lambda)_e up to the sign of the crossing; for a
-  fan link, its row's multiplier) and G / G_mm the Schur complement of the free block.
-  G / G_mm = (2 pi / n)^2 ((M / M_NN)_dd)^-1 and (M / M_NN)_dd <= M_dd <= D, the diagonal of M_dd's absolute row
-  sums (D - M_dd is diagonally dominant), so G / G_mm >= (2 pi / n)^2 D^-1 and the cost separates per link: at
-  least sum_j t0_j + min_j (t1_j - t0_j), with t(s) = (2 pi / n)^2 s^2 / D_jj + 2 g_j s, t0 its minimum over the
-  integers and t1 over the nonzero ones. A link across one edge shares it with no other decided link: its D_jj
-  is 1 / w_e; a fan link's D_jj is bounded by the sum over its crossings of 1 / w_e times the number of decided
-  links crossing e.
+  A lower bound on the energy of every choice in which some decided integer differs from its rounding, the larger
+  of two bounds.
+  (1) Alone: a link whose sum sum_L x moves by a nonzero multiple of 2 pi / n from c_j = 2 pi p_j / n - H_j
+  (|c_j| <= pi / n) costs at least (2 pi / n - |c_j|)^2 / (sum_L 1 / w_e), the least energy of a connection with
+  that sum.
+  (2) Around the relaxed solve: E_r, the energy with the free integers (loops, links between clusters) relaxed to
+  real numbers and the decided ones rounded, `lambda` its multipliers. Let the decided links be rows of the full
+  system, z the integers (free ones m, decided ones d), G = (2 pi / n)^2 P^T M^-1 P their metric. Changing d by
+  s != 0 (and m by anything) costs, over E_r, at least 2 g^T s + s^T (G / G_mm) s, where g = (2 pi / n) mu is the
+  gradient in d at the relaxed point (mu the decided rows' multipliers: for a link across one edge,
+  w_e x_e - (A^T lambda)_e up to the sign of the crossing; for a fan link, its row's multiplier) and G / G_mm the
+  Schur complement of the free block. G / G_mm = (2 pi / n)^2 ((M / M_NN)_dd)^-1 and (M / M_NN)_dd <= M_dd <= D,
+  the diagonal of M_dd's absolute row sums (D - M_dd is diagonally dominant), so G / G_mm >= (2 pi / n)^2 D^-1 and
+  the cost separates per link: at least sum_j t0_j + min_j (t1_j - t0_j), with
+  t(s) = (2 pi / n)^2 s^2 / D_jj + 2 g_j s, t0 its minimum over the integers and t1 over the nonzero ones. A link
+  across one edge shares it with no other decided link: its D_jj is 1 / w_e; a fan link's D_jj is bounded by the
+  sum over its crossings of 1 / w_e times the number of decided links crossing e.
+  Both are weak when a link's neighbours hold it (then (M / M_NN)_jj is much less than M_jj): with many pins the
+  choice is rarely proven, and the report says so.
 */
-inline double decided_links_margin(const Constraint_rows& rows, const Eigen::VectorXd& lambda,
-                                   const Eigen::VectorXd& x_fixed, double unit)
+inline double decided_links_bound(const Constraint_rows& rows, const Eigen::VectorXd& lambda, double relaxed_energy,
+                                  const Eigen::VectorXd& x_fixed, const std::vector<double>& holonomy,
+                                  const std::vector<std::int64_t>& periods, double unit)
 {
   if(rows.decided_slots.empty())
     return std::numeric_limits<double>::infinity();
@@ -82,22 +88,25 @@ inline double decided_links_margin(const Constraint_rows& rows, const Eigen::Vec
     if(rows.row_of_slot[std::size_t(l)] >= 0)
       for(int p = rows.slot_edge_start[std::size_t(l)]; p < rows.slot_edge_start[std::size_t(l) + 1]; ++p)
         ++crossers[std::size_t(index_of_code(rows.slot_edges[std::size_t(p)]))];
-  double sum_t0 = 0, step = std::numeric_limits<double>::infinity();
+  double sum_t0 = 0, step = std::numeric_limits<double>::infinity(), alone = std::numeric_limits<double>::infinity();
   for(int l : rows.decided_slots) {
     const int row = rows.row_of_slot[std::size_t(l)];
-    double g = 0, d = 0;
+    double g = 0, d = 0, inverse_weights = 0;
     if(row < 0) {
       const int code = rows.slot_edges[std::size_t(rows.slot_edge_start[std::size_t(l)])], e = index_of_code(code);
       const double w = weight[std::size_t(e)];
       g = unit * sign_of_code(code) * (w * x_fixed[e] - product[e]);
-      d = 1 / w;
+      d = inverse_weights = 1 / w;
     } else {
       g = unit * lambda[row];
       for(int p = rows.slot_edge_start[std::size_t(l)]; p < rows.slot_edge_start[std::size_t(l) + 1]; ++p) {
         const std::size_t e = std::size_t(index_of_code(rows.slot_edges[std::size_t(p)]));
         d += crossers[e] / weight[e];
+        inverse_weights += 1 / weight[e];
       }
     }
+    const double c = std::abs(unit * double(periods[std::size_t(l)]) - holonomy[std::size_t(l)]);
+    alone = (std::min)(alone, (unit - c) * (unit - c) / inverse_weights);
     const double a = unit * unit / d;
     auto t = [&](double s) { return a * s * s + 2 * g * s; };
     const double s_min = -g / a, below = std::floor(s_min), above = below + 1;
@@ -108,7 +117,7 @@ inline double decided_links_margin(const Constraint_rows& rows, const Eigen::Vec
     sum_t0 += t0;
     step = (std::min)(step, t1 - t0);
   }
-  return sum_t0 + step;
+  return (std::max)(alone, relaxed_energy + sum_t0 + step);
 }
 
 } // namespace internal

@@ -9,7 +9,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 program="$1" python="$2" meshes="$3" out="$4"
 data="$root/test/Trivial_connections/data"
-for f in cow.off elk.off pig.off; do
+for f in cow.off elk.off pig.off fandisk.off; do
   [ -f "$meshes/$f" ] || { echo "make_figures.sh: $meshes/$f is missing (bash scripts/fetch_cgal_data.sh)" >&2; exit 1; }
 done
 mkdir -p "$out/work"
@@ -44,3 +44,7 @@ figure elk_vector "$meshes/elk.off" --streamlines "$work/elk_vector.streamlines.
   --streamline-seeds 100
 # boundary alignment: a cross field following the seven holes of the pig
 figure pig_aligned "$meshes/pig.off" --glyphs 1500 --size 900 600 -- --n 4 --align-boundary
+# feature alignment: a cross field on fandisk pinned along its sharp curves, singularities placed with the pins
+figure fandisk_features "$meshes/fandisk.off" --streamlines "$work/fandisk_features.streamlines.vtk" \
+  --features "$work/fandisk_features.features.vtk" --view 20 50 --size 900 600 -- \
+  --auto --n 4 --align-features --feature-lines "$work/fandisk_features.features.vtk" --streamline-seeds 60

@@ -23,6 +23,7 @@
 #include <CGAL/Trivial_connections/IO/singularities.h>
 #include <CGAL/Trivial_connections/IO/viewer_files.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
+#include <CGAL/Trivial_connections/feature_alignment.h>
 #include <CGAL/Trivial_connections/singularity_placement.h>
 #include <CGAL/Trivial_connections/singularity_refinement.h>
 #include <CGAL/Trivial_connections/streamlines.h>
@@ -703,6 +704,80 @@ private:
 
 namespace {
 
+// ---- sharp features (feature_alignment.h) ----------------------------------------------------------------
+
+// What feature_aligned_faces() found on a mesh: the faces beside the feature curves, in increasing face number,
+// and the direction of the curve on each
+struct Feature_pins
+{
+  TC::Feature_alignment_report report;
+  std::vector<std::size_t> faces;
+  std::vector<double> directions; // 3 per face of `faces`
+};
+
+Feature_pins feature_pins_of(const Mesh& mesh, double threshold, int n, int smoothing)
+{
+  Feature_pins out;
+  std::vector<double> xyz(3 * mesh.number_of_faces(), 0.);
+  std::vector<face_descriptor> faces;
+  out.report = TC::feature_aligned_faces(mesh, threshold, std::back_inserter(faces), Face_vector_map{xyz.data()},
+                                         TC::parameters::symmetry_order(n, TC::parameters::feature_smoothing(smoothing)));
+  out.faces.reserve(faces.size());
+  out.directions.reserve(3 * faces.size());
+  for(face_descriptor f : faces) {
+    out.faces.push_back(std::size_t(f));
+    out.directions.insert(out.directions.end(), xyz.begin() + 3 * std::ptrdiff_t(f), xyz.begin() + 3 * std::ptrdiff_t(f) + 3);
+  }
+  return out;
+}
+
+py::dict feature_report_dict(const TC::Feature_alignment_report& r)
+{
+  py::dict d;
+  d["threshold_degrees"] = r.threshold_degrees;
+  d["number_of_sharp_edges"] = r.number_of_sharp_edges;
+  d["number_of_curves"] = r.number_of_curves;
+  d["dropped_curves"] = r.dropped_curves;
+  d["dropped_edges"] = r.dropped_edges;
+  d["number_of_pinned_faces"] = r.number_of_pinned_faces;
+  d["faces_with_several_edges"] = r.faces_with_several_edges;
+  d["neighbouring_pairs"] = r.neighbouring_pairs;
+  d["disagreeing_pairs"] = r.disagreeing_pairs;
+  d["max_disagreement_degrees"] = r.max_disagreement_degrees;
+  return d;
+}
+
+// Solver(align_features=...): off (None, False), the default threshold (True) or a threshold in degrees
+struct Feature_options
+{
+  bool on = false;
+  double threshold = TC::default_feature_angle_degrees;
+  int n = 4;
+  int smoothing = TC::default_feature_smoothing;
+};
+
+Feature_options feature_options_of(const py::object& align, int n, int smoothing)
+{
+  Feature_options o;
+  o.n = n;
+  o.smoothing = smoothing;
+  if(align.is_none())
+    return o;
+  if(py::isinstance<py::bool_>(align)) {
+    o.on = align.cast<bool>();
+    return o;
+  }
+  if(!PyFloat_Check(align.ptr()) && !PyIndex_Check(align.ptr()) &&
+     !(py::hasattr(align, "__float__") && !py::isinstance<py::str>(align)))
+    throw py::type_error("align_features must be True, False, None or a threshold in degrees, got " +
+                         std::string(py::repr(align)));
+  o.on = true;
+  o.threshold = align.cast<double>();
+  // checked here, before the solver is built (the library's message and code: invalid_argument)
+  TC::internal::features::check_threshold(o.threshold);
+  return o;
+}
+
 // ---- the Python classes ---------------------------------------------------------------------------------
 
 struct Result
@@ -761,7 +836,8 @@ public:
   // `mesh` keeps its mesh until the solver is built and the mesh complete: on an error before, its destructor waits
   // for the mesh's construction before freeing it
   Python_solver(Mesh_of_arrays mesh, const std::string& weights, const std::string& backend,
-                const py::object& constrained, const py::object& guided, double guidance_weight, bool align_boundary)
+                const py::object& constrained, const py::object& guided, double guidance_weight, bool align_boundary,
+                const Feature_options& features = Feature_options())
   {
     Options o;
     if(weights == "unit")
@@ -773,8 +849,15 @@ public:
     o.guidance_weight = guidance_weight;
     o.align_boundary = align_boundary;
     check_backend(backend);
+    m_align_boundary = align_boundary;
     py::gil_scoped_release unlocked;
     const auto start = std::chrono::steady_clock::now();
+    if(features.on) { // the feature pins need the whole mesh (from arrays, it is still being built)
+      mesh.wait_for_mesh();
+      m_features.emplace();
+      m_features->all = feature_pins_of(*mesh.mesh, features.threshold, features.n, features.smoothing);
+      o.constrained = merge_feature_pins(*mesh.mesh, o.constrained, o.guided, *m_features);
+    }
     m_solver = make_solver(mesh, o, backend); // the mesh complete when it returns
     m_solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     m_mesh = std::move(mesh.mesh);
@@ -785,20 +868,28 @@ public:
   {
     const auto s = singularities_of(singularities);
     const Optional_inputs in = optional_inputs(directions, loop_periods);
-    Solve_output out = reading(
-      [&] { return m_solver->solve(s, n, in.directions_or_null(), in.periods_or_null(), all_directions); });
+    Solve_output out = reading([&] {
+      const auto targets = with_feature_targets(in.directions);
+      return m_solver->solve(s, n, targets ? &*targets : nullptr, in.periods_or_null(), all_directions);
+    });
     return result_of(std::move(out), n);
   }
 
   py::dict set_constraints(const py::object& constrained, const py::object& guided)
   {
-    const auto c = faces_of(constrained, m_mesh->number_of_faces(), "constrained_faces");
+    auto c = faces_of(constrained, m_mesh->number_of_faces(), "constrained_faces");
     const auto g = faces_of(guided, m_mesh->number_of_faces(), "guided_faces");
     TC::Constraint_update u;
     {
       py::gil_scoped_release unlocked;
       std::unique_lock<std::shared_mutex> writing(m_mutex);
-      u = m_solver->set_constraints(c, g);
+      if(m_features) { // merged again with the new faces; kept as they were when the solver refuses them
+        Features merged = *m_features;
+        c = merge_feature_pins(*m_mesh, c, g, merged);
+        u = m_solver->set_constraints(c, g);
+        m_features = std::move(merged);
+      } else
+        u = m_solver->set_constraints(c, g);
     }
     py::dict d;
     d["refactored"] = u.refactored;
@@ -816,8 +907,9 @@ public:
     const Optional_inputs targets = optional_inputs(directions, py::none());
     Singularities placed;
     const TC::Placement_report report = reading([&] {
+      const auto pinned = with_feature_targets(targets.directions);
       return m_solver->place(n, align_boundary, in.directions_or_null(), strength, kept, in.periods_or_null(),
-                             targets.directions_or_null(), placed);
+                             pinned ? &*pinned : nullptr, placed);
     });
     py::dict d;
     d["n"] = report.symmetry_order;
@@ -876,7 +968,9 @@ public:
         fixed.push_back(vertex_number(v));
     // it solves again and again on the solver: as a solve, beside other solves
     const TC::Refinement_report<vertex_descriptor> r = reading([&] {
-      return m_solver->refine(s, n, in.directions_or_null(), in.periods_or_null(), fixed, cancel_pairs, maximum_trials);
+      const auto targets = with_feature_targets(in.directions);
+      return m_solver->refine(s, n, targets ? &*targets : nullptr, in.periods_or_null(), fixed, cancel_pairs,
+                              maximum_trials);
     });
     Singularities refined;
     for(const auto& [v, k] : r.singularities)
@@ -1023,7 +1117,101 @@ public:
     return m_edges_array;
   }
 
+  // Solver.feature_pins: (faces, directions) of the feature pins the solver holds, or None
+  py::object feature_pins() const
+  {
+    std::vector<std::int64_t> faces;
+    std::vector<double> xyz;
+    const bool on = reading([&] {
+      if(!m_features)
+        return false;
+      for(std::size_t i : m_features->pinned) {
+        faces.push_back(std::int64_t(m_features->all.faces[i]));
+        xyz.insert(xyz.end(), m_features->all.directions.begin() + 3 * std::ptrdiff_t(i),
+                   m_features->all.directions.begin() + 3 * std::ptrdiff_t(i) + 3);
+      }
+      return true;
+    });
+    if(!on)
+      return py::none();
+    const py::ssize_t k = py::ssize_t(faces.size());
+    return py::make_tuple(owning_array(std::move(faces), {k}), owning_array(std::move(xyz), {k, 3}));
+  }
+
+  // Solver.feature_alignment: the report of feature_aligned_faces() and what the merge did, or None
+  py::object feature_alignment() const
+  {
+    std::optional<Features> f = reading([&] { return m_features; });
+    if(!f)
+      return py::none();
+    py::dict d = feature_report_dict(f->all.report);
+    d["pinned"] = f->pinned.size();
+    d["named_by_user"] = f->named_by_user;
+    d["on_guided_faces"] = f->on_guided_faces;
+    d["on_aligned_boundary"] = f->on_aligned_boundary;
+    return d;
+  }
+
 private:
+  // The feature pins of Solver(align_features=...): all the faces beside the feature curves, and which of them the
+  // solver holds (the others are named by the user's constrained or guided faces, or on an aligned boundary)
+  struct Features
+  {
+    Feature_pins all;
+    std::vector<std::size_t> pinned; // entries of all.faces given to the solver
+    std::size_t named_by_user = 0, on_guided_faces = 0, on_aligned_boundary = 0;
+  };
+
+  // The constrained faces of the solver: the user's `constrained`, then the feature pins on the faces that are
+  // neither constrained nor guided by the user (the user wins, as the program's --constraints), and, with
+  // align_boundary, not on the boundary (the solver refuses targets there; the field follows the boundary).
+  // `features.pinned` and its counts are set.
+  std::vector<face_descriptor> merge_feature_pins(const Mesh& mesh, const std::vector<face_descriptor>& constrained,
+                                                  const std::vector<face_descriptor>& guided, Features& features) const
+  {
+    std::vector<char> taken(mesh.number_of_faces(), 0);
+    for(face_descriptor f : constrained)
+      taken[std::size_t(f)] = 1;
+    for(face_descriptor f : guided)
+      taken[std::size_t(f)] = 2;
+    features.pinned.clear();
+    features.named_by_user = features.on_guided_faces = features.on_aligned_boundary = 0;
+    std::vector<face_descriptor> out = constrained;
+    for(std::size_t i = 0; i < features.all.faces.size(); ++i) {
+      const face_descriptor f(Mesh::size_type(features.all.faces[i]));
+      if(taken[std::size_t(f)]) {
+        ++(taken[std::size_t(f)] == 1 ? features.named_by_user : features.on_guided_faces);
+        continue;
+      }
+      bool on_boundary = false;
+      for(auto h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh))
+        on_boundary = on_boundary || mesh.is_border(mesh.opposite(h));
+      if(m_align_boundary && on_boundary) {
+        ++features.on_aligned_boundary;
+        continue;
+      }
+      features.pinned.push_back(i);
+      out.push_back(f);
+    }
+    return out;
+  }
+
+  // The targets of a call (the user's directions, or none) with the feature pins' directions on their faces
+  // (those faces are not the user's: their rows are not read otherwise). Under the solver's lock.
+  std::optional<std::vector<Kernel::Vector_3>> with_feature_targets(
+    const std::optional<std::vector<Kernel::Vector_3>>& user) const
+  {
+    std::optional<std::vector<Kernel::Vector_3>> out = user;
+    if(!m_features || m_features->pinned.empty())
+      return out;
+    if(!out)
+      out.emplace(m_mesh->number_of_faces(), CGAL::NULL_VECTOR);
+    const std::vector<double>& d = m_features->all.directions;
+    for(std::size_t i : m_features->pinned)
+      (*out)[m_features->all.faces[i]] = Kernel::Vector_3(d[3 * i], d[3 * i + 1], d[3 * i + 2]);
+    return out;
+  }
+
   // x per halfedge from a Result of this solver (its edges are the mesh's interior edges, in order)
   std::vector<double> halfedge_angles(const Result& result) const
   {
@@ -1176,6 +1364,7 @@ private:
       d["length"] = c.length;
       d["period"] = c.period;
       d["residual"] = c.residual;
+      d["decided"] = c.decided;
       constraints.append(d);
     }
     r.constraints = constraints;
@@ -1201,6 +1390,8 @@ public:
 private:
   std::unique_ptr<Mesh> m_mesh; // before the solver, which refers to it
   std::unique_ptr<Solver_interface> m_solver;
+  bool m_align_boundary = false;
+  std::optional<Features> m_features; // Solver(align_features=...); changed by set_constraints() under m_mutex
   mutable py::object m_edges_array; // made on first use, with the GIL
   mutable std::shared_mutex m_mutex;
 };
@@ -1350,6 +1541,86 @@ constructor on it, with default options. Returns the seconds of each: {"soup_to_
     "completely or not at all. Raises InvalidInput (invalid_constraint) for a negative face, a face listed twice, a "
     "zero or non-finite direction, and io_error.");
 
+  m.attr("DEFAULT_FEATURE_ANGLE") = TC::default_feature_angle_degrees;
+  m.attr("DEFAULT_FEATURE_SMOOTHING") = TC::default_feature_smoothing;
+  m.def(
+    "feature_aligned_faces",
+    [](const py::object& V, const py::object& F, double threshold, int n, int smoothing) {
+      Mesh_of_arrays mesh = mesh_of_arrays(V, F);
+      Feature_pins p;
+      {
+        py::gil_scoped_release unlocked;
+        mesh.wait_for_mesh();
+        p = feature_pins_of(*mesh.mesh, threshold, n, smoothing);
+      }
+      std::vector<std::int64_t> faces(p.faces.begin(), p.faces.end());
+      const py::ssize_t k = py::ssize_t(faces.size());
+      return py::make_tuple(owning_array(std::move(faces), {k}), owning_array(std::move(p.directions), {k, 3}),
+                            feature_report_dict(p.report));
+    },
+    py::arg("V"), py::arg("F"), py::arg("threshold") = TC::default_feature_angle_degrees, py::kw_only(),
+    py::arg("n") = 4, py::arg("smoothing") = TC::default_feature_smoothing,
+    R"(Pins for a feature-aligned field: the faces beside the mesh's sharp feature curves and the curves' directions.
+
+Returns (faces, directions, report): faces a (k,) int64 array in increasing face number, directions a (k, 3)
+float64 array of unit vectors tangent to their faces, report a dict. An interior edge is sharp when the normals of
+its two faces make an angle over `threshold` degrees (default DEFAULT_FEATURE_ANGLE, 30); sharp edges are joined
+into feature curves through the vertices that are not corners, and isolated short curves are dropped (see
+feature_curves()). Every face with an edge on a kept curve is pinned to the curve's direction there: the
+least-squares line through the curve's vertices within `smoothing` sharp edges (default
+DEFAULT_FEATURE_SMOOTHING, 3; 0: each edge its own direction), so that a jagged crease gives pins that agree.
+A face beside several curve edges takes their mean modulo 2 pi / n (for n = 4 perpendicular edges agree).
+Give faces as constrained_faces and directions as solve(directions={face: vector}) (or use
+Solver(align_features=...), which does it, as the program's --align-features). Faces on the boundary are included:
+drop them when the solver aligns with the boundary (it refuses targets there).
+report: threshold_degrees, number_of_sharp_edges, number_of_curves, dropped_curves, dropped_edges,
+number_of_pinned_faces, faces_with_several_edges, neighbouring_pairs (pinned faces sharing an edge),
+disagreeing_pairs (those whose directions, moved across the edge, differ by more than 5 degrees modulo 2 pi / n)
+and max_disagreement_degrees. A mesh without sharp edges gives no face and a report of zeros.
+Raises InvalidInput (invalid_argument, a ValueError) for a threshold that is negative, over 180 or NaN, n < 1 or
+smoothing < 0, and for a mesh the package refuses, as Solver().)");
+  m.def(
+    "feature_curves",
+    [](const py::object& V, const py::object& F, double threshold) {
+      Mesh_of_arrays mesh = mesh_of_arrays(V, F);
+      TC::Feature_curves<Mesh> c;
+      {
+        py::gil_scoped_release unlocked;
+        mesh.wait_for_mesh();
+        c = TC::feature_curves(*mesh.mesh, threshold);
+      }
+      py::list curves, lengths;
+      for(const auto& curve : c.curves) {
+        std::vector<std::int64_t> pairs;
+        pairs.reserve(2 * curve.halfedges.size());
+        for(halfedge_descriptor h : curve.halfedges) {
+          pairs.push_back(std::int64_t(mesh.mesh->source(h)));
+          pairs.push_back(std::int64_t(mesh.mesh->target(h)));
+        }
+        curves.append(owning_array(std::move(pairs), {py::ssize_t(curve.halfedges.size()), 2}));
+        lengths.append(curve.length);
+      }
+      py::dict report;
+      report["threshold_degrees"] = threshold;
+      report["number_of_sharp_edges"] = c.number_of_sharp_edges;
+      report["number_of_curves"] = c.curves.size();
+      report["dropped_curves"] = c.dropped_curves;
+      report["dropped_edges"] = c.dropped_edges;
+      report["lengths"] = lengths;
+      return py::make_tuple(curves, report);
+    },
+    py::arg("V"), py::arg("F"), py::arg("threshold") = TC::default_feature_angle_degrees,
+    R"(The feature curves of a triangle mesh: (curves, report).
+
+curves: one (k, 2) int64 array per kept curve, the (source, target) vertices of its sharp edges (breadth-first
+from one of them; which one and each edge's orientation depend on the numbering). An interior edge is sharp when
+the normals of its two faces make an angle over `threshold` degrees (default DEFAULT_FEATURE_ANGLE, 30; border
+edges never are). A curve is a set of sharp edges connected through vertices that are not corners (a corner: where
+three creases meet, or a crease turns by more than about 60 degrees). An isolated curve (touching no corner) with
+fewer than 2 edges and shorter than 3 mean edge lengths is dropped. report: threshold_degrees,
+number_of_sharp_edges (of kept and dropped curves), number_of_curves, dropped_curves, dropped_edges and lengths
+(of the kept curves, in their order). Raises InvalidInput as feature_aligned_faces().)");
+
   m.def(
     "write_streamlines",
     [](const std::string& path, const py::list& lines) {
@@ -1389,7 +1660,11 @@ constructor on it, with default options. Returns the seconds of each: {"soup_to_
     .def_readonly("energy_lower_bound", &Result::energy_lower_bound,
                   "no choice of the free integers gives less energy than this")
     .def_readonly("rounding_energy", &Result::rounding_energy, "the energy with the integers rounded one by one")
-    .def_readonly("constraints", &Result::constraints, "one dict per path joining two constrained faces")
+    .def_readonly("constraints", &Result::constraints,
+                  "one dict per link joining two constrained (or guided) faces: component, from_face, to_face, "
+                  "length (edges crossed), period (its integer), residual, decided (True for a link between two "
+                  "faces that touch, whose integer is the rounding, the short way from one target to the other, "
+                  "rather than a free integer of the lattice problem)")
     .def_readonly("guidance", &Result::guidance, "one dict per guided face: face, mismatch")
     .def_readonly("timings", &Result::timings,
                   "seconds in C++: solve (Trivial_connection_solver::solve), field (compute_field) and outputs "
@@ -1403,7 +1678,7 @@ constructor on it, with default options. Returns the seconds of each: {"soup_to_
   py::class_<Python_solver>(m, "Solver", R"(A prefactored trivial-connection solver for one triangle mesh.
 
 Solver(V, F, weights="hodge", backend="auto", constrained_faces=None, guided_faces=None,
-       guidance_weight=1.0, align_boundary=False)
+       guidance_weight=1.0, align_boundary=False, align_features=None, feature_smoothing=3, feature_n=4)
 
 V: (n, 3) array of real numbers (any float or integer dtype, any layout); F: (m, 3) array of vertex indices
 (any integer dtype). The mesh must be an oriented 2-manifold of triangles (boundaries allowed). Building the
@@ -1412,37 +1687,55 @@ weights: "hodge" (w_e = |e| / |e*|) or "unit". backend: "auto" (SimplicialLDLT o
 as the program), "ldlt" or "cholmod". constrained_faces / guided_faces: face numbers whose direction
 solve() prescribes (exactly) or draws the field towards (with weight guidance_weight).
 align_boundary: the field follows the boundary.
-Raises InvalidInput for a mesh the package refuses (code and where say why).)")
+align_features: True (threshold 30 degrees) or a threshold in degrees in [0, 180]: the faces beside the mesh's
+sharp feature curves are pinned to the curves' directions (feature_aligned_faces() with n=feature_n and
+smoothing=feature_smoothing), as the program's --align-features: the user's constrained_faces and guided_faces
+win on the faces they name, and with align_boundary the boundary faces are left to the boundary alignment.
+solve(), place_singularities() and refine_singularities() then take the feature pins' directions themselves
+(directions= is needed only for the user's own constrained and guided faces); set_constraints() merges the
+feature pins again with its new faces. feature_pins and feature_alignment say what was pinned. A mesh with no
+sharp edge pins nothing (feature_alignment["number_of_sharp_edges"] == 0), which is not an error.
+Raises InvalidInput for a mesh the package refuses (code and where say why), and (invalid_argument) for a
+threshold that is negative, over 180 or NaN, feature_n < 1 or feature_smoothing < 0.)")
     .def(py::init([](const py::object& V, const py::object& F, const std::string& weights, const std::string& backend,
-                     const py::object& constrained, const py::object& guided, double mu, bool align) {
+                     const py::object& constrained, const py::object& guided, double mu, bool align,
+                     const py::object& align_features, int feature_smoothing, int feature_n) {
+           const Feature_options features = feature_options_of(align_features, feature_n, feature_smoothing);
            const auto start = std::chrono::steady_clock::now();
            Mesh_of_arrays mesh = mesh_of_arrays(V, F);
            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-           auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
+           auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu,
+                                                         align, features);
            solver->m_mesh_seconds = seconds;
            return solver;
          }),
          py::arg("V"), py::arg("F"), py::kw_only(), py::arg("weights") = "hodge", py::arg("backend") = "auto",
          py::arg("constrained_faces") = py::none(), py::arg("guided_faces") = py::none(),
-         py::arg("guidance_weight") = 1.0, py::arg("align_boundary") = false)
+         py::arg("guidance_weight") = 1.0, py::arg("align_boundary") = false, py::arg("align_features") = py::none(),
+         py::arg("feature_smoothing") = TC::default_feature_smoothing, py::arg("feature_n") = 4)
     .def_static(
       "from_file",
       [](const std::string& path, bool triangulate, const std::string& weights, const std::string& backend,
-         const py::object& constrained, const py::object& guided, double mu, bool align) {
+         const py::object& constrained, const py::object& guided, double mu, bool align,
+         const py::object& align_features, int feature_smoothing, int feature_n) {
+        const Feature_options features = feature_options_of(align_features, feature_n, feature_smoothing);
         const auto start = std::chrono::steady_clock::now();
         Mesh_of_arrays mesh;
         mesh.mesh = mesh_of_file(path, triangulate);
         mesh.number_of_faces = mesh.mesh->number_of_faces();
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu, align);
+        auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu,
+                                                      align, features);
         solver->m_mesh_seconds = seconds;
         return solver;
       },
       py::arg("path"), py::arg("triangulate") = false, py::kw_only(), py::arg("weights") = "hodge",
       py::arg("backend") = "auto", py::arg("constrained_faces") = py::none(), py::arg("guided_faces") = py::none(),
-      py::arg("guidance_weight") = 1.0, py::arg("align_boundary") = false,
+      py::arg("guidance_weight") = 1.0, py::arg("align_boundary") = false, py::arg("align_features") = py::none(),
+      py::arg("feature_smoothing") = TC::default_feature_smoothing, py::arg("feature_n") = 4,
       "A solver for the mesh of an OFF, OBJ, PLY, STL or GOCAD file (the package's validating reader; "
-      "triangulate=True splits polygons). Options as Solver().")
+      "triangulate=True splits polygons). Options as Solver(), align_features included (the program's "
+      "--align-features [DEGREES]).")
     .def("solve", &Python_solver::solve, py::arg("singularities"), py::arg("n") = 1, py::arg("directions") = py::none(),
          py::arg("loop_periods") = py::none(), py::kw_only(), py::arg("all_directions") = true,
          R"(The trivial connection with exactly these singularities, and its field.
@@ -1457,7 +1750,17 @@ their time (most of a solve's for large n).
 Returns a Result. Releases the GIL: solves from several threads run concurrently.)")
     .def("set_constraints", &Python_solver::set_constraints, py::arg("constrained_faces") = py::none(),
          py::arg("guided_faces") = py::none(),
-         "Changes the constrained and guided faces (as the constructor's options); returns what it did.")
+         "Changes the constrained and guided faces (as the constructor's options); returns what it did. With "
+         "align_features, the feature pins are merged again with the new faces (the user's win).")
+    .def_property_readonly("feature_pins", &Python_solver::feature_pins,
+                           "With align_features: (faces, directions), a (k,) int64 and a (k, 3) float64 array, the "
+                           "feature pins the solver holds besides the user's constrained faces (increasing face "
+                           "number; unit vectors tangent to their faces). None without align_features.")
+    .def_property_readonly("feature_alignment", &Python_solver::feature_alignment,
+                           "With align_features: the report of feature_aligned_faces() (see there) and pinned (the "
+                           "faces in feature_pins), named_by_user (left to constrained_faces), on_guided_faces (left "
+                           "to guided_faces) and on_aligned_boundary (left to align_boundary). None without "
+                           "align_features.")
     .def("place_singularities", &Python_solver::place_singularities, py::kw_only(), py::arg("n") = 1,
          py::arg("align_boundary") = false, py::arg("alignment_guide") = py::none(),
          py::arg("alignment_strength") = 100.0, py::arg("fixed_singularities") = py::none(),

@@ -763,3 +763,277 @@ def test_face_direction_files(tmp_path):
         tc.write_face_directions(str(tmp_path / "missing" / "c.dir"), [1], [[1, 0, 0]])
     assert error.value.code == "io_error"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.dir", "c.dir", "far.dir", "twice.dir"]
+
+
+# ---- sharp features (issue 37): feature_curves(), feature_aligned_faces(), Solver(align_features=...) ----------
+
+
+def jittered_cube(k=6, jitter=0.25, seed=1, open_top=False):
+    """The unit cube, each face a k x k grid of squares split into two triangles (diagonals alternating), the
+    vertices inside each face moved at random in the face's plane (its twelve edges stay straight and sharp).
+    open_top: without the face z = 1 (a box with one boundary loop)."""
+    rng = np.random.default_rng(seed)
+    index, V, F = {}, [], []
+
+    def vertex(p):
+        key = tuple(int(round(c * k)) for c in p)
+        if key not in index:
+            index[key] = len(V)
+            V.append(np.array(p, float))
+        return index[key]
+
+    for axis in range(3):
+        for side in (0, 1):
+            if open_top and axis == 2 and side == 1:
+                continue
+            u, w = (axis + 1) % 3, (axis + 2) % 3
+
+            def point(i, j):
+                p = [0.0] * 3
+                p[axis], p[u], p[w] = side, i / k, j / k
+                return p
+
+            for i in range(k):
+                for j in range(k):
+                    a, b = vertex(point(i, j)), vertex(point(i + 1, j))
+                    c, d = vertex(point(i + 1, j + 1)), vertex(point(i, j + 1))
+                    two = [(a, b, c), (a, c, d)] if (i + j) % 2 == 0 else [(a, b, d), (b, c, d)]
+                    F += [(x, z, y) for x, y, z in two] if side == 0 else two  # outward normals
+    V = np.array(V)
+    for key, i in index.items():
+        inside = [0 < c < k for c in key]
+        if sum(inside) == 2:  # inside a face: moved in its plane
+            V[i] += np.where(inside, rng.uniform(-jitter, jitter, 3) / k, 0)
+    return V, np.array(F)
+
+
+def cube_corners(V):
+    return [i for i, p in enumerate(V) if np.all(np.abs(p - np.round(p)) < 1e-12)]
+
+
+def angle_to_targets_mod(V, F, field, faces, targets, n):
+    """Per face of `faces`, the angle from its target to the field, modulo 2 pi / n, in [-pi/n, pi/n)."""
+    N = face_normals(V, F)[faces]
+    t = unit(np.asarray(targets, float))
+    u = field[faces]
+    angle = np.arctan2(np.einsum("ij,ij->i", np.cross(t, u), N), np.einsum("ij,ij->i", t, u))
+    return (angle + np.pi / n) % (2 * np.pi / n) - np.pi / n
+
+
+def edge_axis(V, i, j):
+    """The coordinate axis along which the segment from V[i] to V[j] runs."""
+    return int(np.argmax(np.abs(V[j] - V[i])))
+
+
+def test_feature_curves_of_a_jittered_cube():
+    V, F = jittered_cube()
+    curves, report = tc.feature_curves(V, F)
+    assert report["number_of_curves"] == 12 and len(curves) == 12
+    assert report["number_of_sharp_edges"] == 12 * 6 and report["dropped_curves"] == 0
+    assert report["threshold_degrees"] == tc.DEFAULT_FEATURE_ANGLE == 30
+    assert np.allclose(report["lengths"], 1.0)
+    corners = set(cube_corners(V))
+    seen = set()
+    for c in curves:  # six edges along one edge of the cube, from one corner to another
+        assert c.dtype == np.int64 and c.shape == (6, 2)
+        P = V[c]
+        axis = {edge_axis(V, i, j) for i, j in c}
+        assert len(axis) == 1
+        other = [a for a in range(3) if a not in axis]
+        assert np.all(np.abs(P[:, :, other] - np.round(P[:, :, other])) < 1e-12)  # on the cube's edge
+        ends = [v for v in c.ravel() if list(c.ravel()).count(v) == 1]
+        assert set(ends) <= corners and len(ends) == 2
+        seen.add(tuple(sorted(ends)))
+    assert len(seen) == 12
+    # a higher threshold than the dihedral angle's 90 degrees: nothing is sharp, which is not an error
+    curves, report = tc.feature_curves(V, F, 95)
+    assert curves == [] and report["number_of_sharp_edges"] == 0
+
+
+def test_feature_aligned_faces_of_a_jittered_cube():
+    k = 6
+    V, F = jittered_cube(k)
+    faces, directions, report = tc.feature_aligned_faces(V, F)
+    assert faces.dtype == np.int64 and directions.shape == (len(faces), 3) and directions.dtype == np.float64
+    assert np.all(np.diff(faces) > 0)
+    # exactly the faces with an edge along one of the cube's twelve edges
+    beside = {}
+    for f, tri in enumerate(F):
+        for a, b in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])]:
+            on_edge = sum(abs(V[a][x] - round(V[a][x])) < 1e-12 and abs(V[b][x] - round(V[b][x])) < 1e-12
+                          for x in range(3))
+            if on_edge >= 2:  # both ends on two of the cube's planes: the edge runs along an edge of the cube
+                beside.setdefault(f, []).append(edge_axis(V, a, b))
+    assert sorted(beside) == faces.tolist()
+    assert report["number_of_pinned_faces"] == len(faces) and report["number_of_curves"] == 12
+    assert report["disagreeing_pairs"] == 0 and report["max_disagreement_degrees"] < 1e-9
+    N = face_normals(V, F)
+    assert np.allclose(np.linalg.norm(directions, axis=1), 1) and np.abs(np.einsum("ij,ij->i", directions, N[faces])).max() < 1e-12
+    for f, d in zip(faces, directions):  # along the cube's edge beside it (for n = 4, up to a quarter turn)
+        axes = beside[int(f)]
+        assert np.abs(d).max() > 1 - 1e-9 and (int(np.argmax(np.abs(d))) in axes or len(axes) > 1)
+    # the numbering does not matter: vertices and faces shuffled give the same pins
+    rng = np.random.default_rng(7)
+    pv, pf = rng.permutation(len(V)), rng.permutation(len(F))
+    inverse = np.empty_like(pv)
+    inverse[pv] = np.arange(len(V))
+    V2, F2 = V[pv], inverse[F[pf]]
+    faces2, directions2, report2 = tc.feature_aligned_faces(V2, F2)
+    assert sorted(pf[faces2].tolist()) == faces.tolist()
+    by_face = dict(zip(faces.tolist(), directions))
+    for f, d in zip(pf[faces2], directions2):
+        assert np.linalg.norm(np.cross(d, by_face[int(f)])) < 1e-9
+    assert report2["number_of_curves"] == 12
+
+
+def test_feature_aligned_cube_field():
+    V, F = jittered_cube()
+    solver = tc.Solver(V, F, align_features=True)
+    faces, directions = solver.feature_pins
+    report = solver.feature_alignment
+    assert report["pinned"] == len(faces) == report["number_of_pinned_faces"] and report["named_by_user"] == 0
+    # the placement under the pins: +1/4 at the eight corners, and a field of energy ~0 that follows the edges
+    placed, placement = solver.place_singularities(n=4)
+    assert placement["pinned"] == len(faces)
+    assert placed == {v: fractions.Fraction(1, 4) for v in cube_corners(V)}
+    result = solver.solve(placed, n=4)
+    check_invariants(V, F, solver, placed, result, n=4, closed_components_chi=2, optimal=False)
+    assert result.energy < 1e-12
+    assert np.abs(angle_to_targets_mod(V, F, result.field, faces, directions, 4)).max() < 1e-9
+    assert len(result.constraints) > 0 and all(isinstance(c["decided"], bool) for c in result.constraints)
+    assert any(c["decided"] for c in result.constraints)  # neighbouring pins: links decided by rounding
+    # refinement keeps the corners (no move lowers ~0)
+    refined, r = solver.refine_singularities(placed, n=4, maximum_trials=20)
+    assert refined == placed
+
+
+def test_feature_pins_merge_with_the_users():
+    V, F = jittered_cube()
+    faces, directions, _ = tc.feature_aligned_faces(V, F)
+    mine, guided = int(faces[0]), int(faces[1])
+    solver = tc.Solver(V, F, constrained_faces=[mine], guided_faces=[guided], align_features=30)
+    report = solver.feature_alignment
+    assert report["named_by_user"] == 1 and report["on_guided_faces"] == 1 and report["pinned"] == len(faces) - 2
+    assert mine not in solver.feature_pins[0] and guided not in solver.feature_pins[0]
+    # the user's direction wins on the face they name (a quarter-turn-free 30 degrees from the edge's)
+    N = face_normals(V, F)
+    d = directions[0]
+    turned = math.cos(math.pi / 6) * d + math.sin(math.pi / 6) * np.cross(N[mine], d)
+    s = {v: "1/4" for v in cube_corners(V)}
+    result = solver.solve(s, n=4, directions={mine: turned, guided: directions[1]})
+    assert abs(angle_to_targets_mod(V, F, result.field, [mine], [turned], 4)[0]) < 1e-9
+    pinned = solver.feature_pins[0]
+    assert np.abs(angle_to_targets_mod(V, F, result.field, pinned, solver.feature_pins[1], 4)).max() < 1e-9
+    # set_constraints() merges the feature pins again with the new faces
+    solver.set_constraints(constrained_faces=[int(faces[2]), int(faces[3]), int(faces[4])])
+    report = solver.feature_alignment
+    assert report["named_by_user"] == 3 and report["on_guided_faces"] == 0 and report["pinned"] == len(faces) - 3
+    with pytest.raises(tc.InvalidInput):  # the user's pinned faces still need their directions
+        solver.solve(s, n=4)
+    result = solver.solve(s, n=4, directions={int(f): directions[i] for i, f in enumerate(faces[2:5], 2)})
+    assert result.energy < 1e-12
+    # without align_features: no feature pins
+    assert tc.Solver(V, F).feature_pins is None and tc.Solver(V, F, align_features=False).feature_alignment is None
+
+
+def test_feature_pins_with_boundary_alignment():
+    # 8 sharp edges (the 4 of the rim are border edges, never sharp); with k odd, the top triangle beside each
+    # vertical edge also has an edge on the rim
+    V, F = jittered_cube(5, open_top=True)
+    all_faces, _, report = tc.feature_aligned_faces(V, F)
+    assert report["number_of_curves"] == 8
+    edge_count = {}
+    for tri in F:
+        for a, b in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])]:
+            edge_count[(min(a, b), max(a, b))] = edge_count.get((min(a, b), max(a, b)), 0) + 1
+
+    def on_boundary(f):
+        a, b, c = F[f]
+        return any(edge_count[(min(x, y), max(x, y))] == 1 for x, y in [(a, b), (b, c), (c, a)])
+
+    on_rim = [f for f in all_faces if on_boundary(f)]
+    assert len(on_rim) == 4
+    solver = tc.Solver(V, F, align_boundary=True, align_features=True)
+    report = solver.feature_alignment
+    assert report["on_aligned_boundary"] == 4 and report["pinned"] == len(all_faces) - 4
+    assert not any(on_boundary(f) for f in solver.feature_pins[0])
+    # without the boundary alignment they are pinned like the others
+    assert tc.Solver(V, F, align_features=True).feature_alignment["pinned"] == len(all_faces)
+    placed, _ = solver.place_singularities(n=4, align_boundary=True)
+    result = solver.solve(placed, n=4)
+    faces, directions = solver.feature_pins
+    assert np.abs(angle_to_targets_mod(V, F, result.field, faces, directions, 4)).max() < 1e-9
+    # a mesh with no sharp edge: a report of zeros, no pin, no error
+    V, F = bumpy_disk(8)
+    solver = tc.Solver(V, F, align_features=True)
+    assert solver.feature_alignment["number_of_sharp_edges"] == 0 and len(solver.feature_pins[0]) == 0
+    faces, directions, report = tc.feature_aligned_faces(V, F)
+    assert faces.shape == (0,) and directions.shape == (0, 3) and report["number_of_curves"] == 0
+    solver.solve({}, n=4)
+
+
+def test_bad_feature_arguments():
+    V, F = jittered_cube(3)
+    for threshold in [-1, 180.5, float("nan"), -math.inf]:
+        with pytest.raises(tc.InvalidInput) as error:
+            tc.feature_aligned_faces(V, F, threshold)
+        assert error.value.code == "invalid_argument" and "threshold" in str(error.value)
+        with pytest.raises(ValueError):
+            tc.feature_curves(V, F, threshold)
+        with pytest.raises(tc.InvalidInput) as error:
+            tc.Solver(V, F, align_features=threshold)
+        assert error.value.code == "invalid_argument"
+    for bad in ["30", [30]]:
+        with pytest.raises(TypeError):
+            tc.Solver(V, F, align_features=bad)
+        with pytest.raises(TypeError):
+            tc.feature_aligned_faces(V, F, bad)
+    with pytest.raises(tc.InvalidInput):
+        tc.feature_aligned_faces(V, F, n=0)
+    with pytest.raises(tc.InvalidInput):
+        tc.feature_aligned_faces(V, F, smoothing=-1)
+    with pytest.raises(tc.InvalidInput):
+        tc.Solver(V, F, align_features=True, feature_smoothing=-1)
+    with pytest.raises(tc.InvalidInput) as error:  # the mesh's errors as Solver()'s
+        tc.feature_aligned_faces(V, np.array([[0, 1, 99]]))
+    assert error.value.code == "invalid_vertex"
+    # the limits are thresholds: 0 and 180 are accepted
+    assert tc.feature_aligned_faces(V, F, 180)[2]["number_of_sharp_edges"] == 0
+    assert tc.feature_aligned_faces(V, F, 0)[2]["number_of_sharp_edges"] >= 12 * 3
+
+
+def cgal_mesh(name):
+    meshes = os.environ.get("TC_CGAL_MESHES") or os.path.join(os.path.dirname(__file__), "..", "..", ".cgal-data",
+                                                               "data", "meshes")
+    path = os.path.join(meshes, name)
+    if not os.path.exists(path):
+        pytest.skip(f"CGAL's data set not found ({name}; TC_CGAL_MESHES)")
+    return path
+
+
+def test_fandisk_follows_its_feature_pins():
+    solver = tc.Solver.from_file(cgal_mesh("fandisk.off"), align_features=True)
+    V, F = solver.vertices, solver.faces
+    faces, directions = solver.feature_pins
+    report = solver.feature_alignment
+    assert report["number_of_curves"] > 10 and len(faces) == report["number_of_pinned_faces"] > 1000
+    # every face beside a sharp edge (normals over 30 degrees apart) is pinned
+    N = face_normals(V, F)
+    sharp = set()
+    edge_faces = {}
+    for f, tri in enumerate(F):
+        for a, b in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])]:
+            edge_faces.setdefault((min(a, b), max(a, b)), []).append(f)
+    for pair in edge_faces.values():
+        if len(pair) == 2 and N[pair[0]] @ N[pair[1]] < math.cos(math.radians(30)):
+            sharp.update(pair)
+    assert sharp <= set(faces.tolist())
+    placed, _ = solver.place_singularities(n=4)
+    result = solver.solve(placed, n=4)
+    check_invariants(V, F, solver, placed, result, n=4, closed_components_chi=2, optimal=False)
+    assert np.abs(angle_to_targets_mod(V, F, result.field, faces, directions, 4)).max() < 1e-9
+    # the same pins by hand (feature_aligned_faces() and constrained_faces): the same field
+    f2, d2, _ = tc.feature_aligned_faces(V, F)
+    assert np.array_equal(f2, faces) and np.abs(d2 - directions).max() < 1e-12  # (F's rows may start elsewhere)
+    by_hand = tc.Solver(V, F, constrained_faces=f2).solve(placed, n=4, directions=dict(zip(f2.tolist(), d2)))
+    assert abs(by_hand.energy - result.energy) < 1e-9 * max(1.0, result.energy)

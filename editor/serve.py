@@ -19,7 +19,17 @@ BODY_TIMEOUT seconds, 409 saving over an existing file without "overwrite": true
   GET  /api/mesh         header {vertices, faces, n, chi, closed (per component), singularities (placed at start)};
                          arrays V <f4 (V, 3), F <u4 (F, 3), component <i4 (V,) (-1: no face), boundary <u4 (b, 2)
                          (boundary edges), angle_defect <f4 (V,) (2 pi minus the corner angles at the vertex)
-  POST /api/place        {n?, align_boundary?}: automatic placement -> header {n, singularities}
+  POST /api/place        {n?, align_boundary?, constraints?}: automatic placement -> header {n, singularities}: the
+                         singularities of the smoothest n-direction field that follows the constrained faces'
+                         directions (and the boundary, with align_boundary), as the module's place_singularities()
+  POST /api/features     {threshold?, n?, align_boundary?}: the pins of the sharp features (the module's
+                         feature_aligned_faces(): the faces beside the feature curves whose normals differ by more than
+                         `threshold` degrees, default 30, each pinned to the curve's direction) -> header {threshold,
+                         constraints: [[f, [x, y, z]]] (increasing f; with align_boundary, none on the boundary: the
+                         field follows the boundary there), on_aligned_boundary (the faces left out for it), report (the
+                         module's dict: number_of_sharp_edges, number_of_curves, disagreeing_pairs, ...)}. A
+                         threshold that is not a number is a 400, one outside [0, 180] a 422 (invalid_argument). The
+                         page adds them where the user has no pin of their own (the user's pins win)
   POST /api/solve        {SOLVE} -> header {n, energy, max_residual, timings, constraints}; array angle <f4 (F,):
                          one direction per face, as its angle counter-clockwise from the face's first edge (F[f, 0]
                          to F[f, 1]) about its normal (the page turns it by 2 pi / n for the others). constraints: the
@@ -43,16 +53,19 @@ BODY_TIMEOUT seconds, 409 saving over an existing file without "overwrite": true
                          {constraints: [[f, [x, y, z]]]}, in file order, checked by the library's readers against the
                          mesh (vertex and face numbers in range, no repeat)
 SOLVE: n (1 to 64, default --n); singularities [[vertex, "p/q" or integer]] (default []); constraints
-[[face, [x, y, z]]] (default []: at most MAX_CONSTRAINTS, faces in range and each once, directions three finite numbers, not
-all zero; the field points along the direction projected onto the face); align_boundary (default false: true follows
+[[face, [x, y, z]]] (default []: faces in range and each once, so at most one per face, directions three finite numbers,
+not all zero; the field points along the direction projected onto the face); align_boundary (default false: true follows
 the boundary, with a second solver made on first use; on a mesh without boundary it is the same solve).
 Paths (save, load): a non-empty relative path; with symbolic links resolved it must lie in the folder (403
 otherwise); to save, its directory must exist (404), it must not be the mesh (403) and, if it exists, it must be a
 regular file (400) and overwrite must be true (409); to load, it must be a regular file (404 if missing, 400
 otherwise, 413 above 64 MB). Nothing is written when a request is refused.
 Constraints and alignment: each solver (plain, aligned) keeps the constrained faces of its last request; a request
-with another set of faces calls set_constraints() first (whose cost grows with the set: ~1.5 s for 1000 faces
-spread over 89k), under a lock held until its solve is done, so concurrent requests each get their own answer.
+with another set of faces calls set_constraints() first (cheap: pins cost about what the faces they pin cost, and
+thousands are fine), under a lock held until its solve is done, so concurrent requests each get their own answer.
+Size: there is no limit on the number of pins other than one per face; the body of a request is limited to
+max_body bytes (MAX_BODY plus BODY_PER_FACE per face of the mesh: every face pinned with 17-digit numbers fits),
+because it is read whole into memory and parsed before anything is checked.
 """
 import argparse
 import collections
@@ -71,8 +84,8 @@ import traceback
 import numpy as np
 import trivial_connections as tc
 
-MAX_BODY = 1 << 20  # bytes of a request body (2000 constraints fit)
-MAX_CONSTRAINTS = 2000  # each pinned face adds a link to the dense block of the integers: 1000 cost ~1.5 s
+MAX_BODY = 1 << 20  # bytes of a request body, plus BODY_PER_FACE per face of the mesh (Session.max_body)
+BODY_PER_FACE = 128  # a pin [f, [x, y, z]] with 17-digit numbers takes ~80 bytes: every face can be pinned
 MAX_SEEDS = 100000
 DEFAULT_SEEDS = 3000
 RAY_STEPS = 500_000  # faces crossed by all the rays of a streamline request together, at most (~0.5 s at worst)
@@ -219,6 +232,13 @@ class Session:
         self.seeds = {}  # number of seeds asked -> the seed faces
         self.seeds_lock = threading.Lock()
         self.mesh_bytes = None
+        self.max_body = MAX_BODY + BODY_PER_FACE * len(self.F)
+        # the faces with an edge on the boundary (feature pins are left off them when the field follows it)
+        edges = np.sort(np.concatenate([self.F[:, [0, 1]], self.F[:, [1, 2]], self.F[:, [2, 0]]]), axis=1)
+        _, inverse, count = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
+        self.boundary_face = (count[inverse.ravel()] == 1).reshape(3, -1).any(axis=0)
+        self.features = {}  # (threshold, n) -> (faces, directions, report) of feature_aligned_faces()
+        self.features_lock = threading.Lock()
 
     def symmetry_order(self, request):
         """n of a request (a JSON object), checked"""
@@ -240,8 +260,6 @@ class Session:
         [[face, [x, y, z]]], checked: 400 for a malformed list, 422 for values the solver cannot take"""
         if not isinstance(items, list):
             raise ValueError(f"constraints must be a list of [face, [x, y, z]], got {shown(items)}")
-        if len(items) > MAX_CONSTRAINTS:
-            raise ValueError(f"at most {MAX_CONSTRAINTS} constraints, got {len(items)}")
         nf = len(self.F)
         faces = np.empty(len(items), np.int64)
         directions = np.empty((len(items), 3))
@@ -294,32 +312,75 @@ class Session:
                 self.aligned = Solver_state(tc.Solver.from_file(self.path, align_boundary=True))
             return self.aligned
 
+    def targets(self, faces, directions):
+        """the sorted constrained faces (a tuple) and the (F, 3) directions of a request's faces (None: no face)"""
+        key = tuple(np.sort(faces).tolist())
+        if not key:
+            return key, None
+        targets = np.zeros((len(self.F), 3))
+        targets[faces] = directions
+        return key, targets
+
+    @staticmethod
+    def use_constraints(state, key):
+        """gives the solver of `state` the constrained faces `key` if it has others (state.lock held)"""
+        if state.faces != key:
+            before, state.faces = state.faces, None
+            try:
+                state.solver.set_constraints(constrained_faces=list(key))
+            except tc.InvalidInput as e:
+                # a refusal leaves the solver as it was; a solver failure leaves it without constrained faces
+                state.faces = () if e.code == "solver_failure" else before
+                raise
+            state.faces = key
+
     def solve(self, p):
         """the Result of a Problem, and the solver that gave it"""
         state = self.state(p.align_boundary)
-        key = tuple(np.sort(p.faces).tolist())
-        directions = None
-        if key:
-            directions = np.zeros((len(self.F), 3))
-            directions[p.faces] = p.directions
+        key, directions = self.targets(p.faces, p.directions)
         with state.lock:
-            if state.faces != key:
-                before, state.faces = state.faces, None
-                try:
-                    state.solver.set_constraints(constrained_faces=list(key))
-                except tc.InvalidInput as e:
-                    # a refusal leaves the solver as it was; a solver failure leaves it without constrained faces
-                    state.faces = () if e.code == "solver_failure" else before
-                    raise
-                state.faces = key
+            self.use_constraints(state, key)
             # the page turns the field itself: not the n directions per face (3 n numbers each)
             result = state.solver.solve(p.singularities, n=p.n, directions=directions, all_directions=False)
             return result, state.solver
 
     def place_frame(self, request):
+        """the placement under the request's pins (its constraints held in the smooth field, as the program's
+        --auto with --constraints or --align-features), on the solver the request's solves use"""
         n = self.symmetry_order(request)
-        placed, _ = self.solver.place_singularities(n=n, align_boundary=self.align_boundary(request))
+        align = self.align_boundary(request)
+        faces, directions = self.constraints(request.get("constraints", []))
+        key, targets = self.targets(faces, directions)
+        state = self.state(align) if key else self.plain
+        with state.lock:
+            self.use_constraints(state, key)
+            placed, _ = state.solver.place_singularities(n=n, align_boundary=align, directions=targets)
         return frame({"n": n, "singularities": [[int(v), str(k)] for v, k in sorted(placed.items())]}, [])
+
+    def features_frame(self, request):
+        """the pins of the sharp features (feature_aligned_faces() of the module), cached per threshold and n"""
+        n = self.symmetry_order(request)
+        align = self.align_boundary(request)
+        threshold = request.get("threshold", tc.DEFAULT_FEATURE_ANGLE)
+        if type(threshold) not in (int, float):
+            raise ValueError(f"threshold must be a number of degrees, got {shown(threshold)}")
+        try:
+            threshold = float(threshold)
+        except OverflowError:  # an integer of hundreds of digits: out of range, as the library says
+            threshold = math.inf if threshold > 0 else -math.inf
+        with self.features_lock:
+            if (threshold, n) not in self.features:
+                if len(self.features) >= 8:
+                    self.features.clear()
+                self.features[threshold, n] = tc.feature_aligned_faces(self.V, self.F, threshold, n=n)
+            faces, directions, report = self.features[threshold, n]
+        keep = np.ones(len(faces), bool)
+        if align and self.has_boundary:
+            keep = ~self.boundary_face[faces]
+        header = {"threshold": threshold, "n": n, "on_aligned_boundary": int((~keep).sum()),
+                  "report": json_safe(report),
+                  "constraints": [[f, d] for f, d in zip(faces[keep].tolist(), directions[keep].tolist())]}
+        return frame(header, [])
 
     def mesh_frame(self):
         if self.mesh_bytes is not None:
@@ -528,9 +589,6 @@ class Session:
             s = tc.read_singularities(real, len(self.V))
             return frame({"singularities": [[int(v), str(k)] for v, k in s.items()]}, [])
         faces, directions = tc.read_face_directions(real, len(self.F))
-        if len(faces) > MAX_CONSTRAINTS:
-            raise Refusal(422, f"invalid_constraint: {len(faces)} constraints in {shown(request['path'])}, at most "
-                               f"{MAX_CONSTRAINTS}")
         return frame({"constraints": [[f, d] for f, d in zip(faces.tolist(), directions.tolist())]}, [])
 
 
@@ -564,7 +622,7 @@ class Handler(http.server.BaseHTTPRequestHandler):
     disable_nagle_algorithm = True  # no 40 ms wait for the client's delayed ACK between packets of a reply
     GETS = ("/", "/editor.js", "/api/mesh")
     POSTS = {"/api/solve": "solve_frame", "/api/place": "place_frame", "/api/streamlines": "streamlines_frame",
-             "/api/save": "save_frame", "/api/load": "load_frame"}
+             "/api/save": "save_frame", "/api/load": "load_frame", "/api/features": "features_frame"}
 
     def log_message(self, *args):
         pass
@@ -640,9 +698,10 @@ class Handler(http.server.BaseHTTPRequestHandler):
             self.close_connection = True
             return self.refuse(400, f"bad Content-Length: {shown(self.headers.get_all('Content-Length'))}")
         length = int(length)
-        if length > MAX_BODY:
+        limit = self.session.max_body
+        if length > limit:
             self.close_connection = True  # the body is not read: nothing more can be on this connection
-            return self.refuse(413, f"request body of {length} bytes (at most {MAX_BODY})")
+            return self.refuse(413, f"request body of {length} bytes (at most {limit})")
         self.connection.settimeout(BODY_TIMEOUT)
         try:
             data = self.rfile.read(length)

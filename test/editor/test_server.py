@@ -165,7 +165,8 @@ def test_bad_requests_get_a_4xx_and_the_session_keeps_working(server, body, code
 def test_huge_payloads_and_paths_outside(server):
     port, _ = server
     # refused on its Content-Length, before reading it
-    status, data = request(port, "POST", "/api/solve", b"{}", {"Content-Length": str(serve.MAX_BODY + 1)})
+    limit = serve.MAX_BODY + serve.BODY_PER_FACE * 8  # the octahedron's 8 faces
+    status, data = request(port, "POST", "/api/solve", b"{}", {"Content-Length": str(limit + 1)})
     assert status == 413 and b"at most" in data
     status, data = request(port, "POST", "/api/solve", b"{}", {"Content-Length": "-5"})
     assert status == 400
@@ -314,7 +315,7 @@ def test_constraint_sets_switch_and_each_request_gets_its_own(server):
     ([[2, [10**400, 0, 0]]], 422),            # too large for a float
     ([[2, [1, 0, 0]], [2, [0, 1, 0]]], 422),  # face 2 twice
     ([[0, [1, 1, 1]]], 422),                  # normal to face 0 (the library refuses it)
-    ([[0, [1, 0, 0]]] * (serve.MAX_CONSTRAINTS + 1), 400),
+    ([[0, [1, 0, 0]]] * 2001, 422),           # no cap on the number of pins, but each face once
 ])
 def test_bad_constraints_are_refused(server, constraints, code):
     port, folder = server
@@ -681,7 +682,7 @@ def test_save_on_a_file_system_without_hard_links(held, monkeypatch, refusal):
 # ---- malformed bodies, framings and methods: a reply, never a dropped connection (issue 36) ----------------------
 
 
-POSTS = ["/api/solve", "/api/place", "/api/streamlines", "/api/save", "/api/load"]
+POSTS = ["/api/solve", "/api/place", "/api/streamlines", "/api/save", "/api/load", "/api/features"]
 
 
 @pytest.mark.parametrize("body, part", [
@@ -722,6 +723,14 @@ def test_malformed_bodies_get_a_400_line(server, capfd, endpoint, body, part):
     ("/api/solve", {"singularities": [[0, "x/y"], [1, 1]]}, 422, b""),
     ("/api/solve", {"singularities": [[10**100, 1], [1, 1]]}, 422, b""),
     ("/api/streamlines", {"seeds": 1.5}, 400, b"seeds must be"),
+    ("/api/features", {"threshold": "30"}, 400, b"threshold must be a number"),
+    ("/api/features", {"threshold": True}, 400, b"threshold must be a number"),
+    ("/api/features", {"threshold": [30]}, 400, b"threshold must be a number"),
+    ("/api/features", {"threshold": -1}, 422, b"invalid_argument:"),
+    ("/api/features", {"threshold": 180.5}, 422, b"invalid_argument:"),
+    ("/api/features", {"threshold": 10**400}, 422, b"invalid_argument:"),  # too large for a float
+    ("/api/features", {"align_boundary": 1}, 400, b"align_boundary must be"),
+    ("/api/place", {"constraints": [[99, [1, 0, 0]]]}, 422, b"invalid_constraint:"),
     ("/api/save", {"kind": "singularities", "path": "x\ud800.sing"}, 400, b""),
     ("/api/load", {"kind": "singularities", "path": "x\udcff.sing"}, 404, b""),
 ])
@@ -856,3 +865,126 @@ def test_a_missing_bundle_is_a_404_line(server, capfd):
     assert status == 404 and one_line(data) and b"trivial_connections_editor" in data
     assert request(port, "GET", "/")[0] == 200
     assert "Traceback" not in capfd.readouterr().err
+
+
+# ---- issue 37: pins are cheap (no cap), the sharp features' pins, placement under pins --------------------------
+
+
+def box_file(folder, k=5, open_top=False):
+    """the unit cube, each face a k x k grid of squares split in two (the twelve edges sharp); open_top: without
+    its face z = 1 (a box with a boundary loop whose top triangles beside the vertical edges touch the rim)"""
+    index, V, F = {}, [], []
+
+    def vertex(p):
+        key = tuple(int(round(c * k)) for c in p)
+        if key not in index:
+            index[key] = len(V)
+            V.append(tuple(float(c) for c in p))
+        return index[key]
+
+    for axis in range(3):
+        for side in (0, 1):
+            if open_top and axis == 2 and side == 1:
+                continue
+            u, w = (axis + 1) % 3, (axis + 2) % 3
+
+            def point(i, j):
+                p = [0.0] * 3
+                p[axis], p[u], p[w] = side, i / k, j / k
+                return p
+
+            for i in range(k):
+                for j in range(k):
+                    a, b = vertex(point(i, j)), vertex(point(i + 1, j))
+                    c, d = vertex(point(i + 1, j + 1)), vertex(point(i, j + 1))
+                    two = [(a, b, c), (a, c, d)] if (i + j) % 2 == 0 else [(a, b, d), (b, c, d)]
+                    F += [(x, z, y) for x, y, z in two] if side == 0 else two
+    return off_file(os.path.join(folder, "open_box.off" if open_top else "box.off"), V, F)
+
+
+@pytest.fixture(scope="module")
+def box(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("box")
+    httpd = start(box_file(str(folder)), str(folder))
+    yield httpd.server_address[1], folder
+    httpd.shutdown()
+
+
+def corners_of(V):
+    return [i for i, p in enumerate(V) if np.all(np.abs(p - np.round(p)) < 1e-9)]
+
+
+def test_features_are_the_modules_pins_and_the_field_follows_them(box):
+    port, _ = box
+    V, F = mesh_of(port)
+    header, _ = answer(port, "/api/features", {"n": 4})
+    faces, directions, report = tc.feature_aligned_faces(V, F)  # the same mesh (the frame's V is float32-exact)
+    assert header["threshold"] == 30 and header["report"]["number_of_curves"] == 12 == report["number_of_curves"]
+    assert [f for f, _ in header["constraints"]] == faces.tolist() and header["on_aligned_boundary"] == 0
+    pins = header["constraints"]
+    assert np.allclose([d for _, d in pins], directions, atol=1e-7)
+    # the placement under those pins: the eight corners at +1/4, and a field that follows every pin
+    placed, _ = answer(port, "/api/place", {"n": 4, "constraints": pins})
+    singularities = placed["singularities"]
+    assert sorted(v for v, _ in singularities) == corners_of(V) and all(k == "1/4" for _, k in singularities)
+    h, arrays = answer(port, "/api/solve", {"n": 4, "singularities": singularities, "constraints": pins})
+    assert h["energy"] < 1e-9
+    for f, d in pins:
+        assert abs(turn_to(unit(arrays["field"][f].astype(float)), unit(np.array(d)), face_normal(V, F, f), 4)) < 2e-6
+    assert all(c["decided"] for c in h["constraints"])
+    # a higher threshold than the cube's 90 degrees: no pin, not an error
+    header, _ = answer(port, "/api/features", {"threshold": 95})
+    assert header["constraints"] == [] and header["report"]["number_of_sharp_edges"] == 0
+    # the placement without pins after a solve with them: the solver's pins are dropped, not an error
+    answer(port, "/api/place", {"n": 4})
+
+
+def test_features_with_boundary_alignment_leave_the_boundary_faces(tmp_path):
+    httpd = start(box_file(str(tmp_path), k=5, open_top=True), str(tmp_path))
+    try:
+        port = httpd.server_address[1]
+        V, F = mesh_of(port)
+        everything, _ = answer(port, "/api/features", {})
+        aligned, _ = answer(port, "/api/features", {"align_boundary": True})
+        assert aligned["on_aligned_boundary"] == 4
+        assert len(aligned["constraints"]) == len(everything["constraints"]) - 4
+        # the aligned solve takes the pins left (the boundary faces' pins would be refused)
+        placed, _ = answer(port, "/api/place", {"n": 4, "align_boundary": True, "constraints": aligned["constraints"]})
+        h, arrays = answer(port, "/api/solve", {"n": 4, "align_boundary": True, "singularities": placed["singularities"],
+                                                "constraints": aligned["constraints"]})
+        for f, d in aligned["constraints"]:
+            assert abs(turn_to(unit(arrays["field"][f].astype(float)), unit(np.array(d)), face_normal(V, F, f), 4)) < 2e-6
+        status, data = post(port, "/api/solve", {"n": 4, "align_boundary": True, "singularities": placed["singularities"],
+                                                 "constraints": everything["constraints"]})
+        assert status == 422 and data.startswith(b"invalid_constraint:")
+    finally:
+        httpd.shutdown()
+
+
+def test_thousands_of_pins_in_one_request(tmp_path):
+    """more pins than the old cap of 2,000: every face of a 20,000-face disk pinned (a body over 1 MB, within the
+    mesh's max_body), solved in a few seconds at most"""
+    httpd = start(disk_file(str(tmp_path), n=100), str(tmp_path))
+    try:
+        port = httpd.server_address[1]
+        V, F = mesh_of(port)
+        assert len(F) == 20000
+        rng = np.random.default_rng(3)
+        pins = [[f, d] for f, d in enumerate(rng.normal(size=(len(F), 3)).tolist())]
+        body = json.dumps({"n": 4, "singularities": [], "constraints": pins}).encode()
+        assert 1 << 20 < len(body) < httpd.RequestHandlerClass.session.max_body
+        status, data = request(port, "POST", "/api/solve", body)
+        assert status == 200, data[:200]
+        header, arrays = parse(data)
+        assert header["max_residual"] < 1e-9
+        field = field_of(port, arrays["angle"])
+        for f in rng.choice(len(F), 50, replace=False):
+            N = face_normal(V, F, f)
+            d = np.array(pins[f][1])
+            assert abs(turn_to(unit(field[f].astype(float)), unit(d - (d @ N) * N), N, 4)) < 1e-5  # float32 V
+        # and saved and loaded back whole
+        answer(port, "/api/save", {"kind": "constraints", "path": "all.dirs", "n": 4, "constraints": pins})
+        loaded, _ = answer(port, "/api/load", {"kind": "constraints", "path": "all.dirs"})
+        assert len(loaded["constraints"]) == len(F)
+    finally:
+        httpd.shutdown()

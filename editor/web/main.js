@@ -7,18 +7,20 @@ import { MeshBVH } from "three-mesh-bvh";
 import { FieldView } from "./field_view.js";
 import { add, indexText, parseFrame, parseIndex, post } from "./protocol.js";
 
-// ---- the state: n, singularities {vertex: [p, q]}, pinned directions {face: [x, y, z]}, boundary alignment -----
-const state = { n: 4, singularities: new Map(), constraints: new Map(), alignBoundary: false };
+// ---- the state: n, singularities {vertex: [p, q]}, pinned directions {face: [x, y, z]}, boundary alignment, the
+// sharp features' pins (null, or {threshold, pins: Map face -> the direction added to constraints}) -----------------
+const state = { n: 4, singularities: new Map(), constraints: new Map(), alignBoundary: false, features: null };
 const undoStack = [], redoStack = [];
 function snapshot() {
   return { n: state.n, singularities: new Map(state.singularities), constraints: new Map(state.constraints),
-           alignBoundary: state.alignBoundary };
+           alignBoundary: state.alignBoundary, features: state.features };
 }
 function restore(s) {
   state.n = s.n;
   state.singularities = new Map(s.singularities);
   state.constraints = new Map(s.constraints);
   state.alignBoundary = s.alignBoundary;
+  state.features = s.features;
   controlsShow();
 }
 // what every solve-like request carries
@@ -272,7 +274,8 @@ function travel(from, to) {
 async function placeFor(n) {
   let h;
   try {
-    ({ header: h } = await post("/api/place", { n, align_boundary: state.alignBoundary }));
+    ({ header: h } = await post("/api/place", { n, align_boundary: state.alignBoundary,
+                                                constraints: [...state.constraints] }));
   } catch (error) {
     say(error.message, true);
     controlsShow();
@@ -470,6 +473,8 @@ function controlsShow() {
   if (![...select.options].some(o => o.value === String(state.n))) select.add(new Option(String(state.n)));
   select.value = String(state.n);
   $("align").checked = state.alignBoundary;
+  $("features").checked = state.features !== null;
+  if (state.features) $("feature-angle").value = String(state.features.threshold);
 }
 // another n: the singularities of the old one are not multiples of 1/n in general, so the placement for the new
 $("n").onchange = e => placeFor(Number(e.target.value));
@@ -488,8 +493,55 @@ $("balance-move").onclick = () => balancingMove();
 $("clear-pins").onclick = () => edit(() => {
   if (!state.constraints.size) return false;
   state.constraints.clear();
-});
-$("align").onchange = e => edit(() => { state.alignBoundary = e.target.checked; });
+  state.features = null;
+}).then(controlsShow);
+// with the features' pins shown, they are asked for again: none on the boundary while the field follows it
+$("align").onchange = e => state.features ? alignFeatures(true, e.target.checked)
+                                          : edit(() => { state.alignBoundary = e.target.checked; });
+
+// the sharp features' pins (the server's feature_aligned_faces()), added where the user has no pin of their own, or
+// taken away (those still as the features set them); with the boundary alignment as `alignBoundary`: one edit
+async function alignFeatures(on, alignBoundary = state.alignBoundary) {
+  let h = null;
+  if (on) {
+    const threshold = Number($("feature-angle").value);
+    try {
+      ({ header: h } = await post("/api/features", { threshold: Number.isFinite(threshold) ? threshold : null,
+                                                     n: state.n, align_boundary: alignBoundary }));
+    } catch (error) {
+      say(error.message, true);
+      controlsShow();
+      return;
+    }
+  }
+  let kept = 0;
+  window.__editor.lastError = null;
+  await edit(() => {
+    if (state.features)
+      for (const [f, d] of state.features.pins) if (state.constraints.get(f) === d) state.constraints.delete(f);
+    state.features = null;
+    state.alignBoundary = alignBoundary;
+    if (h) {
+      const pins = new Map();
+      for (const [f, d] of h.constraints)
+        if (state.constraints.has(f)) ++kept; else { state.constraints.set(f, d); pins.set(f, d); }
+      state.features = { threshold: h.threshold, pins };
+    }
+  });
+  controlsShow();
+  window.__editor.features = h && h.report;
+  if (h && !window.__editor.lastError) {
+    const r = h.report;
+    say(r.number_of_sharp_edges === 0
+      ? `no edge is sharper than ${h.threshold}°: no face pinned`
+      : `features: ${r.number_of_sharp_edges} sharp edges, ${r.number_of_curves} curves, ` +
+        `${state.features.pins.size} faces pinned` + (kept ? `, ${kept} left to your pins` : "") +
+        (h.on_aligned_boundary ? `, ${h.on_aligned_boundary} left to the boundary alignment` : "") +
+        `; ${r.disagreeing_pairs} of ${r.neighbouring_pairs} neighbouring pins disagree by over 5°`);
+  }
+}
+$("features").onchange = e => alignFeatures(e.target.checked);
+$("feature-angle").onchange = () => { if (state.features) alignFeatures(true); };
 $("display").onchange = e => {
   display = e.target.value;
   fieldView.style = display;
@@ -563,7 +615,7 @@ async function start() {
   angleDefect = frame.arrays.angle_defect;
   window.__editor = {
     component: frame.arrays.component, solves: 0, state, edit, solve, balance, balancingMove, screenOf, screenOfFace,
-    placeFor, measure: false, latencies: [], faces: F.length / 3, idle: () => queue,
+    placeFor, alignFeatures, measure: false, latencies: [], faces: F.length / 3, idle: () => queue,
     get directions() { return fieldView.directions(); },
     singularities: () => [...state.singularities].map(([v, k]) => [v, indexText(k)]),
     constraints: () => [...state.constraints],

@@ -10,8 +10,9 @@
 // this file; PYTHONPATH: the module), not pixels. The screenshot of the last step goes to OUTDIR/editor.png; its
 // structure is checked: the mesh at the centre, and each visible singularity's marker, in its colour, at the pixel
 // where the camera projects its vertex. On BORDERED_MESH, copied to OUTDIR/held/held.off and served from that folder
-// as `cd DIR; trivial_connections-serve held.off` does (issue 36): boundary alignment on, a pin, then saves under the
-// mesh's own name and a hard link's, refused with the reason shown and the mesh untouched.
+// as `cd DIR; trivial_connections-serve held.off` does (issue 36): boundary alignment on, a pin, align with sharp
+// features on and off (issue 37), then saves under the mesh's own name and a hard link's, refused with the reason
+// shown and the mesh untouched.
 import { execFileSync } from "node:child_process";
 import { copyFileSync, existsSync, linkSync, mkdirSync, readdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import path from "node:path";
@@ -335,6 +336,25 @@ async function borderedMesh(browser) {
     await drag(page, p, { x: p.x - 10, y: p.y + 40 });
     await solved(page, before);
     await checkField(page, heldMesh, "bordered mesh: aligned, and a pin");
+
+    // align with sharp features (a low threshold: this mesh is smooth), the field aligned with the boundary: the
+    // server's pins added where the user has none (none on the boundary), the library's field follows them all;
+    // unchecked, they go and the user's pin stays
+    await page.fill("#feature-angle", "5");
+    before = await solves(page);
+    await page.check("#features");
+    await solved(page, before);
+    const added = await page.evaluate(() => window.__editor.state.features?.pins.size ?? 0);
+    if (!(added > 0)) fail(`align with sharp features pinned nothing: ${await page.textContent("#status")}`);
+    await checkField(page, heldMesh, `bordered mesh: aligned, a pin and ${added} feature pins`);
+    console.log(`status: ${await page.textContent("#status")}`);
+    before = await solves(page);
+    await page.uncheck("#features");
+    await solved(page, before);
+    const [pinsLeft, features] = await page.evaluate(() => [window.__editor.state.constraints.size,
+                                                            window.__editor.state.features]);
+    if (pinsLeft !== 1 || features !== null) fail(`features unchecked: ${pinsLeft} pins left, features ${features}`);
+    await checkField(page, heldMesh, "bordered mesh: the feature pins taken away");
 
     // the mesh's own name, and another name of its file: refused with the reason shown, never asked, never written
     const asked = [];

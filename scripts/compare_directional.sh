@@ -12,7 +12,8 @@
 # singularities as 'v p/4' lines (our --singularities format). Nothing of Directional is in this repository.
 # BUILD_DIR: a build with -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON (default /tmp/build_bench) holding the
 # program and trivial_connections_feature_pins_benchmark (which writes the pins: --write-pins).
-# Whole processes are timed by /usr/bin/time (wall seconds, maximum resident size). Prints a Markdown table.
+# Whole processes are timed by /usr/bin/time (wall seconds, maximum resident size; the median of TC_COMPARE_REPS
+# runs, default 3). Prints a Markdown table.
 set -euo pipefail
 peer=${1:?usage: compare_directional.sh PEER_BINARY [BUILD_DIR] [MESH.off ...]}
 build=${2:-/tmp/build_bench}
@@ -26,10 +27,15 @@ pinner="$build/benchmark/trivial_connections_feature_pins_benchmark"
 out=${TC_COMPARE_DIR:-/tmp/peers/runs}
 mkdir -p "$out"
 
-timed() { # LOG CMD...: runs CMD, stdout+stderr to LOG; prints "seconds max_rss_MB"
+reps=${TC_COMPARE_REPS:-3}
+timed() { # LOG CMD...: runs CMD $reps times, stdout+stderr to LOG; prints the median "seconds max_rss_MB"
   local log=$1; shift
-  /usr/bin/time -f '%e %M' -o "$log.time" "$@" > "$log" 2>&1
-  awk '{printf "%.2f %.0f", $1, $2 / 1024}' "$log.time"
+  : > "$log.times"
+  for _ in $(seq "$reps"); do
+    /usr/bin/time -f '%e %M' -o "$log.time" "$@" > "$log" 2>&1
+    cat "$log.time" >> "$log.times"
+  done
+  sort -n "$log.times" | awk '{t[NR] = $1; m[NR] = $2} END {h = int((NR + 1) / 2); printf "%.2f %.0f", t[h], m[h] / 1024}'
 }
 energy() { grep -o 'energy: [-+0-9.eE]*' "$1" | tail -1 | awk '{print $2}'; }
 
@@ -49,7 +55,7 @@ for mesh in "${meshes[@]}"; do
   read -r t_auto m_auto <<< "$(timed "$out/$name.ours_auto.log" "$program" "$mesh" --n 4 --auto \
     --constraints "$pins" --write-singularities "$out/$name.ours_auto.sing")"
   e_auto=$(energy "$out/$name.ours_auto.log")
-  nauto=$(grep -c . "$out/$name.ours_auto.sing" || true)
+  nauto=$(grep -vc "^#" "$out/$name.ours_auto.sing" || true)
   ratio=$(awk -v a="$e_auto" -v b="$e_with" 'BEGIN{printf "%.3f", a / b}')
   echo "| $name | $faces | $npins | ${t_peer} s, ${m_peer} MB | $nsing | $e_with, ${t_with} s | $nauto, $e_auto, ${t_auto} s, ${m_auto} MB | $ratio |"
 done

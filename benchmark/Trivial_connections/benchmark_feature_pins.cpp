@@ -15,7 +15,8 @@
 //   features  CGAL::Trivial_connections::feature_aligned_faces(mesh, 30 degrees, symmetry_order(4)): the faces
 //             beside the sharp feature curves, with the curve's fitted direction
 //   band      the feature faces and the faces within r vertex rings of them, r the smallest giving >= 5 % of the
-//             faces; a band face takes the direction of the face it was reached from, projected to its plane
+//             faces, the last ring cut at 10 % (in the order of the breadth-first growth); a band face takes the
+//             direction of the face it was reached from, projected to its plane
 //   50k       (mid2 only) the first 50,000 faces of the same breadth-first growth
 // Benchmarks:
 //   library/MESH/PINS  solver without pins: constructor, place_singularities(), solve(); then a new solver with
@@ -82,7 +83,7 @@ using tc_bench::seconds_since;
 
 constexpr int symmetry = 4;
 constexpr double feature_angle = 30;
-constexpr double band_fraction = 0.05;
+constexpr double band_fraction = 0.05, band_cap = 0.10;
 constexpr std::size_t many_pins = 50000;
 
 struct Spec
@@ -199,6 +200,8 @@ Pins make_pins(const Mesh& mesh, const std::string& kind)
   // breadth-first growth through shared vertices, ring by ring
   const std::size_t nf = num_faces(mesh);
   const std::size_t wanted = kind == "50k" ? many_pins : std::size_t(std::ceil(band_fraction * double(nf)));
+  // the last ring is cut where the band reaches `cap` faces (in the order of the growth)
+  const std::size_t cap = kind == "50k" ? many_pins : std::size_t(band_cap * double(nf));
   std::vector<char> in(nf, 0);
   std::vector<Face> order = feature;
   for(Face f : feature)
@@ -223,10 +226,10 @@ Pins make_pins(const Mesh& mesh, const std::string& kind)
           p.directions[std::size_t(g)] = d / std::sqrt(d.squared_length());
           next_ring.push_back(g);
           order.push_back(g);
-          if(kind == "50k" && order.size() == wanted)
+          if(order.size() == cap)
             break;
         }
-      if(kind == "50k" && order.size() == wanted)
+      if(order.size() == cap)
         break;
     }
     ring.swap(next_ring);

@@ -34,7 +34,8 @@ BODY_TIMEOUT seconds, 409 saving over an existing file without "overwrite": true
                          one direction per face, as its angle counter-clockwise from the face's first edge (F[f, 0]
                          to F[f, 1]) about its normal (the page turns it by 2 pi / n for the others). constraints: the
                          solve's report on the paths joining the request's constrained faces (to each other or to
-                         the aligned boundary): [{component, from_face, to_face, length, period, residual}]
+                         the aligned boundary): [{component, from_face, to_face, length, period, residual,
+                         decided (True: a link between touching pins, its integer by rounding)}]
   POST /api/streamlines  {SOLVE, seeds?} -> header {n, energy, lines, seeds, maximum_faces_per_ray, timings};
                          arrays points <f4 (k, 3), offsets <u4 (lines + 1,): line i is points[offsets[i]:offsets[i+1]].
                          seeds: the number of seed faces asked for (1 to 100000, default min(faces, 3000)), spread

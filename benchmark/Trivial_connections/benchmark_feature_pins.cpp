@@ -210,10 +210,11 @@ Pins make_pins(const Mesh& mesh, const std::string& kind)
   while(order.size() < wanted && !ring.empty()) {
     std::vector<Face> next_ring;
     ++p.rings;
-    for(Face f : ring) {
+    for(std::size_t i = 0; i < ring.size() && order.size() < cap; ++i) {
+      const Face f = ring[i];
       for(Vertex v : vertices_around_face(halfedge(f, mesh), mesh))
         for(Face g : faces_around_target(halfedge(v, mesh), mesh)) {
-          if(g == Mesh::null_face() || in[std::size_t(g)])
+          if(g == Mesh::null_face() || in[std::size_t(g)] || order.size() >= cap)
             continue;
           in[std::size_t(g)] = 1;
           const K::Vector_3 n = face_normal(mesh, g);
@@ -226,11 +227,7 @@ Pins make_pins(const Mesh& mesh, const std::string& kind)
           p.directions[std::size_t(g)] = d / std::sqrt(d.squared_length());
           next_ring.push_back(g);
           order.push_back(g);
-          if(order.size() == cap)
-            break;
         }
-      if(order.size() == cap)
-        break;
     }
     ring.swap(next_ring);
   }

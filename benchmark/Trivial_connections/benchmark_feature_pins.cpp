@@ -30,7 +30,8 @@
 //     factorization of the same mesh's Laplacian), r_build_reference = t_build / t_reference.
 //   set_constraints/MESH/PINS  a solver built without pins (t_build0), then set_constraints(constrained_faces)
 //     (t_set), place_singularities(face_directions) (t_place), solve (t_solve): r_set_solve = (t_set + t_solve) /
-//     t_build0, peak over the three above the solver without pins (r_peak = peak / peak of the constructor).
+//     t_build0, peak over the three above the solver without pins (r_peak = peak / peak of the constructor;
+//     peak_set_bytes, r_peak_set: up to the end of set_constraints()).
 //   program/MESH/PINS  `trivial_connections MESH.off --n 4 --auto` without and with `--constraints`, each a child
 //     process (fork + exec, wait4: wall time and its own maximum resident size): t_program0, t_program,
 //     r_program, rss0_bytes, rss_bytes, r_rss, program_energy0, program_energy (parsed from its output).
@@ -389,7 +390,7 @@ void set_constraints_run(benchmark::State& state, const Spec& spec, const std::s
   const Pins pins = make_pins(mesh, kind);
   auto x = mesh.add_property_map<Mesh::Halfedge_index, double>("h:x", 0.).first;
   const Direction_map directions{&pins.directions};
-  double t_build0 = 0, t_set = 0, t_place = 0, t_solve = 0, peak0 = -1, peak = -1;
+  double t_build0 = 0, t_set = 0, t_place = 0, t_solve = 0, peak0 = -1, peak_set = -1, peak = -1;
   TC::Solve_report r;
   TC::Constraint_update u;
   for(auto _ : state) {
@@ -402,6 +403,7 @@ void set_constraints_run(benchmark::State& state, const Spec& spec, const std::s
       t0 = Clock::now();
       u = solver.set_constraints(P::constrained_faces(pins.faces));
       t_set = seconds_since(t0);
+      peak_set = base >= 0 ? tc_bench::status_bytes("VmHWM") - base : -1;
       Singularities placed;
       t0 = Clock::now();
       TC::place_singularities(solver, std::back_inserter(placed),
@@ -428,7 +430,9 @@ void set_constraints_run(benchmark::State& state, const Spec& spec, const std::s
   k["r_set_solve"] = (t_set + t_solve) / t_build0;
   k["r_set_place_solve"] = (t_set + t_place + t_solve) / t_build0;
   k["peak0_bytes"] = peak0;
+  k["peak_set_bytes"] = peak_set;
   k["peak_bytes"] = peak;
+  k["r_peak_set"] = peak0 > 0 ? peak_set / peak0 : -1;
   k["r_peak"] = peak0 > 0 ? peak / peak0 : -1;
   k["refactored"] = u.refactored;
   k["energy"] = r.energy;

@@ -209,7 +209,10 @@ Solver build_solver(const Options& o, const Inputs& in, const TC::Progress_callb
 {
   Stopwatch stopwatch{time.setup};
   namespace P = TC::parameters;
-  const auto guides = P::guided_faces(in.guided_faces, P::guidance_weight(o.guidance_weight));
+  // the targets are known already: touching pins that disagree are left to the lattice (not rounded)
+  const auto guides = P::guided_faces(in.guided_faces, P::guidance_weight(o.guidance_weight,
+                                                                           P::face_directions(in.directions,
+                                                                                              P::symmetry_order(o.n))));
   const auto np = P::progress(progress, P::weighting(o.weighting, P::constrained_faces(in.constrained_faces,
                                                        P::align_with_boundary(o.align_boundary, guides))));
   return naming_the_direction_file(o, in, [&] { return Solver(in.mesh, np); });

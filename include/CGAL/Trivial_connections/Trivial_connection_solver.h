@@ -164,6 +164,13 @@ public:
         the directions costs back-substitutions only; `set_constraints()` changes the set of faces}
       \cgalParamType{a range of `face_descriptor`} \cgalParamDefault{none}
     \cgalParamNEnd
+    \cgalParamNBegin{face_directions}
+      \cgalParamDescription{optional, with `symmetry_order` (default 1): the targets of the constrained faces when
+        they are known already (as for `solve()`). Touching faces whose targets then disagree by more than a
+        quarter of 2 pi / n along their link are not linked the short way: their turn is left to the
+        closest-vector search, with the loop integers. Each `solve()` still takes its own directions}
+    \cgalParamNEnd
+    \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd
     \cgalParamNBegin{align_with_boundary}
       \cgalParamDescription{every boundary face gets the direction of its border edge as its target (of its
         longer border edge when it has two): vectors along the boundary for n = 1, tangent lines for n = 2,
@@ -185,8 +192,8 @@ public:
   \cgalNamedParamsEnd
   \throws Invalid_input `empty_mesh`, `not_triangle_mesh`, `non_manifold`, `non_finite_point`, `degenerate_face`,
           `invalid_constraint` (a constrained or guided face not of the mesh, listed twice, both constrained and
-          guided, or on an aligned boundary), `invalid_argument` (a guidance weight not positive and finite),
-          `solver_failure`
+          guided, or on an aligned boundary; a direction given that is zero, not finite or normal to its face),
+          `invalid_argument` (a guidance weight not positive and finite), `invalid_symmetry_order`, `solver_failure`
   */
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Trivial_connection_solver(const TriangleMesh& tm,
@@ -250,7 +257,11 @@ private:
     m_topology.build_trees(m_mesh, m_geometry.edge_of_corner, m_geometry.edge_corner);
     m_components = internal::component_reports(m_topology);
     build_loops();
-    m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, mu);
+    {
+      std::vector<double> angles;
+      const int n = read_link_targets(np, user_faces, angles);
+      m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, mu, angles, n);
+    }
     notify(Phase::trees, 1);
     notify(Phase::assembly, 0);
     m_rows = internal::Constraint_rows(m_mesh, m_geometry, m_topology, m_links);
@@ -375,7 +386,8 @@ public:
   `solver_failure`, after which the solver is left without constrained or guided faces (but aligned if it was)
   \tparam NamedParameters a sequence of named parameters
   \param np a sequence of named parameters: `constrained_faces` and `guided_faces` are read (ranges of
-         `face_descriptor`, as for the constructor), any other is ignored
+         `face_descriptor`, as for the constructor), and `face_directions` with `symmetry_order` as for the
+         constructor; any other is ignored
   \returns whether the system was factored again, and the number of links and forward substitutions
   */
   template <class NamedParameters = parameters::Default_named_parameters>
@@ -385,19 +397,22 @@ public:
     read_face_sets(np, user_faces, guided);
     Constraint_update update;
     try {
-      internal::Constraint_links links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight);
+      std::vector<double> angles;
+      const int n = read_link_targets(np, user_faces, angles);
+      internal::Constraint_links links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight,
+                                       angles, n);
       // touching pins fix edges, which changes M: only links without them go outside a kept factor
       if(m_system.loop_rows_in_factor() && m_rows.decided_slots.empty() && !links.has_decided_links()) {
         m_links = std::move(links);
         update = m_system.set_links(m_links, m_rows);
       } else {
-        rebuild(user_faces, guided);
+        rebuild(user_faces, guided, angles, n);
         update.refactored = true;
         update.links = m_links.links.size();
       }
       m_lattices = internal::reduced_loop_lattices(m_system.metrics());
     } catch(...) {
-      rebuild({}, {});
+      rebuild({}, {}, {}, 1);
       m_lattices = internal::reduced_loop_lattices(m_system.metrics());
       throw;
     }
@@ -639,6 +654,21 @@ private:
     internal::check_disjoint_face_sets(m_mesh.nf, user_faces, guided);
   }
 
+  // With `face_directions` when the faces are set (constructor, set_constraints()): the user targets' angles, in
+  // the order of `user_faces`, so that touching targets that disagree are left to the lattice; and n (default 1)
+  template <class NamedParameters>
+  int read_link_targets(const NamedParameters& np, const std::vector<int>& user_faces, std::vector<double>& angles) const
+  {
+    const int n = internal::checked_symmetry_order(
+      CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::symmetry_order), 1));
+    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::face_directions_t>::value) {
+      const auto& directions = CGAL::parameters::get_parameter(np, tc_np::face_directions);
+      for(int f : user_faces)
+        angles.push_back(internal::user_target_angle(m_mesh, m_traits, directions, f));
+    }
+    return n;
+  }
+
   // per constrained face, its target angle in its frame: the direction of its border halfedge when the boundary
   // is aligned, otherwise the user's vector (`face_directions`) projected onto the face
   template <class NamedParameters>
@@ -658,10 +688,12 @@ private:
   }
 
   // The system again for new constrained and guided faces, on the same mesh data and node order.
-  void rebuild(const std::vector<int>& user_faces, const std::vector<int>& guided)
+  void rebuild(const std::vector<int>& user_faces, const std::vector<int>& guided, const std::vector<double>& angles,
+               int n)
   {
     std::vector<int> order = m_system.node_order(m_rows, m_topology.number_of_nodes);
-    m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight);
+    m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight,
+                                         angles, n);
     std::vector<std::array<int, 2>> edge_nodes = std::move(m_rows.edge_nodes);
     m_rows = internal::Constraint_rows(m_mesh, m_geometry, m_topology, m_links);
     m_rows.edge_nodes = std::move(edge_nodes);

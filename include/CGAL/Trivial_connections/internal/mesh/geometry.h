@@ -188,6 +188,15 @@ struct Mesh_geometry
   }
 };
 
+// angle of a vector in the frame of face f (counter-clockwise from the direction of its corner halfedge 3f)
+template <class TriangleMesh>
+double angle_in_frame(const Mesh_arrays<TriangleMesh>& m, int f, const Vec3& v)
+{
+  Vec3 ex, ey;
+  Mesh_geometry::frame(m, f, ex, ey);
+  return std::atan2(dot(v, ey), dot(v, ex));
+}
+
 } // namespace internal
 } // namespace Trivial_connections
 } // namespace CGAL

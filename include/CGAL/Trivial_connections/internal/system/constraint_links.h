@@ -13,8 +13,10 @@
 #include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
 
 #include <CGAL/assertions.h>
+#include <CGAL/number_type_config.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -107,9 +109,13 @@ struct Constraint_links
 
   Constraint_links() = default;
 
+  // `user_angles` (optional, per user face): their targets' angles in their frames, known when the solver is
+  // built; then touching pins whose targets disagree by more than a quarter of 2 pi / n along their link are
+  // not linked by rounding (the lattice chooses between them)
   template <class TriangleMesh>
   Constraint_links(const Mesh_arrays<TriangleMesh>& m, const Mesh_topology& t, const std::vector<int>& user_faces,
-                   const std::vector<int>& guided, bool align, double mu)
+                   const std::vector<int>& guided, bool align, double mu,
+                   const std::vector<double>& user_angles = std::vector<double>(), int n = 1)
     : guidance_weight(mu)
   {
     using Mesh = Mesh_arrays<TriangleMesh>;
@@ -170,7 +176,7 @@ struct Constraint_links
     };
     const int first_user = int(faces.size());
     add_user_faces(user_faces, false);
-    link_touching_pins(m, t, first_user, constraint_of_face);
+    link_touching_pins(m, t, first_user, constraint_of_face, user_angles, n);
     first_guided = int(faces.size());
     add_user_faces(guided, true);
     has_user_constraints = !user_faces.empty() || !guided.empty();
@@ -258,15 +264,31 @@ struct Constraint_links
   }
 
 private:
-  // The spanning forest of the edges shared by two user targets (from `first_user` on, in `faces`): one decided
-  // link per forest edge, from the face met first. Clusters are kept in a union-find (cluster_root()).
+  // A spanning forest of the clusters of touching user targets (from `first_user` on, in `faces`): first the
+  // edges two of them share, then the fans of the vertices they share; one decided link per forest edge. The
+  // clusters are kept in a union-find (cluster_root()), read again when the clusters are chained.
   template <class TriangleMesh>
   void link_touching_pins(const Mesh_arrays<TriangleMesh>& m, const Mesh_topology& t, int first_user,
-                          const std::vector<int>& constraint_of_face)
+                          const std::vector<int>& constraint_of_face, const std::vector<double>& user_angles, int n)
   {
+    using Mesh = Mesh_arrays<TriangleMesh>;
     cluster_parent.resize(faces.size());
     for(std::size_t a = 0; a < faces.size(); ++a)
       cluster_parent[a] = int(a);
+    // with the targets known: whether the link a -> b across `crossings` turns by less than a quarter of 2 pi / n
+    // (H = theta_a - theta_b + the transport along it, as the link's row reads it), so that rounding is safe
+    auto direction = [&](int i) {
+      return angle_in_frame(m, Mesh::face_of(i), sub(m.points[m.target_of(i)], m.points[m.source_of(i)]));
+    };
+    auto agree = [&](int a, int b, const std::vector<int>& crossings) {
+      if(user_angles.empty())
+        return true;
+      double h = user_angles[std::size_t(a - first_user)] - user_angles[std::size_t(b - first_user)];
+      for(int i : crossings)
+        h += direction(m.opposite_corner[i]) + CGAL_PI - direction(i);
+      const double turns = h * n / (2 * CGAL_PI);
+      return std::abs(turns - std::round(turns)) <= 0.25;
+    };
     for(int a = first_user; a < int(faces.size()); ++a) {
       const int f = faces[std::size_t(a)].face;
       for(int i = 3 * f; i < 3 * f + 3; ++i) {
@@ -277,7 +299,7 @@ private:
         if(b < first_user || b <= a) // each shared edge once, from its lower end
           continue;
         const int ra = cluster_root(a), rb = cluster_root(b);
-        if(ra == rb)
+        if(ra == rb || !agree(a, b, {i}))
           continue;
         cluster_parent[std::size_t(rb)] = ra;
         Link link{a, b, t.component_of_face[f], {i}};
@@ -287,7 +309,6 @@ private:
     }
     // then through vertices: around each vertex of a pin, from one pin to the next of another cluster, crossing
     // the faces between them (the corners entering the vertex, in the order of its fan)
-    using Mesh = Mesh_arrays<TriangleMesh>;
     std::vector<std::pair<int, int>> pinned_corners; // (vertex, a corner entering it in a pin)
     for(int a = first_user; a < int(faces.size()); ++a)
       for(int i = 3 * faces[std::size_t(a)].face; i < 3 * faces[std::size_t(a)].face + 3; ++i)
@@ -331,7 +352,7 @@ private:
       for(std::size_t k = 0; k < fan.size(); ++k) {
         const int b = pin_of(fan[k]);
         if(b >= 0) {
-          if(last >= 0 && cluster_root(last) != cluster_root(b)) {
+          if(last >= 0 && cluster_root(last) != cluster_root(b) && agree(last, b, crossings)) {
             cluster_parent[std::size_t(cluster_root(b))] = cluster_root(last);
             Link link{last, b, t.component_of_face[faces[std::size_t(b)].face], crossings};
             link.decided = true;

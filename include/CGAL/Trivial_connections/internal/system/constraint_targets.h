@@ -21,15 +21,6 @@ namespace CGAL {
 namespace Trivial_connections {
 namespace internal {
 
-// angle of a vector in the frame of face f (counter-clockwise from the direction of its corner halfedge 3f)
-template <class TriangleMesh>
-double angle_in_frame(const Mesh_arrays<TriangleMesh>& m, int f, const Vec3& v)
-{
-  Vec3 ex, ey;
-  Mesh_geometry::frame(m, f, ex, ey);
-  return std::atan2(dot(v, ey), dot(v, ex));
-}
-
 // Per constrained face, its target angle in its frame where the boundary gives it (the direction of its
 // border halfedge when the boundary is aligned), 0 elsewhere.
 template <class TriangleMesh>
@@ -45,32 +36,37 @@ std::vector<double> boundary_target_angles(const Mesh_arrays<TriangleMesh>& m, c
   return angle;
 }
 
-// The target angles of the user's faces (targets and guides) from the directions of `face_directions`
-// (a readable property map face_descriptor -> GeomTraits::Vector_3), projected onto their face; checked.
+// The target angle of face f from the direction `face_directions` gives it (a readable property map
+// face_descriptor -> GeomTraits::Vector_3), projected onto the face; checked.
 template <class TriangleMesh, class GeomTraits, class DirectionMap>
-void set_user_target_angles(const Mesh_arrays<TriangleMesh>& m, const Constraint_links& links, const GeomTraits& traits,
-                            const DirectionMap& directions, std::vector<double>& angle)
+double user_target_angle(const Mesh_arrays<TriangleMesh>& m, const GeomTraits& traits, const DirectionMap& directions,
+                         int f)
 {
   typename GeomTraits::Compute_x_3 x = traits.compute_x_3_object();
   typename GeomTraits::Compute_y_3 y = traits.compute_y_3_object();
   typename GeomTraits::Compute_z_3 z = traits.compute_z_3_object();
-  for(std::size_t a = 0; a < links.faces.size(); ++a) {
-    if(links.faces[a].border_corner >= 0)
-      continue;
-    const int f = links.faces[a].face;
-    const typename GeomTraits::Vector_3 d = get(directions, m.face_descriptors[f]);
-    const Vec3 v = {{CGAL::to_double(x(d)), CGAL::to_double(y(d)), CGAL::to_double(z(d))}};
-    Vec3 ex, ey;
-    Mesh_geometry::frame(m, f, ex, ey);
-    const double along_x = dot(v, ex), along_y = dot(v, ey), length = norm(v);
-    // a vector within 1e-9 rad of the normal has no meaningful tangent direction
-    if(!std::isfinite(length) || !(std::hypot(along_x, along_y) > 1e-9 * length))
-      throw Invalid_input(Error_code::invalid_constraint,
-                          "the direction given for face " + std::to_string(f) +
-                            (std::isfinite(length) && length > 0 ? " is normal to the face" : " is zero or not finite"),
-                          std::size_t(f));
-    angle[a] = std::atan2(along_y, along_x);
-  }
+  const typename GeomTraits::Vector_3 d = get(directions, m.face_descriptors[f]);
+  const Vec3 v = {{CGAL::to_double(x(d)), CGAL::to_double(y(d)), CGAL::to_double(z(d))}};
+  Vec3 ex, ey;
+  Mesh_geometry::frame(m, f, ex, ey);
+  const double along_x = dot(v, ex), along_y = dot(v, ey), length = norm(v);
+  // a vector within 1e-9 rad of the normal has no meaningful tangent direction
+  if(!std::isfinite(length) || !(std::hypot(along_x, along_y) > 1e-9 * length))
+    throw Invalid_input(Error_code::invalid_constraint,
+                        "the direction given for face " + std::to_string(f) +
+                          (std::isfinite(length) && length > 0 ? " is normal to the face" : " is zero or not finite"),
+                        std::size_t(f));
+  return std::atan2(along_y, along_x);
+}
+
+// The target angles of the user's faces (targets and guides) from `face_directions` (see user_target_angle())
+template <class TriangleMesh, class GeomTraits, class DirectionMap>
+void set_user_target_angles(const Mesh_arrays<TriangleMesh>& m, const Constraint_links& links, const GeomTraits& traits,
+                            const DirectionMap& directions, std::vector<double>& angle)
+{
+  for(std::size_t a = 0; a < links.faces.size(); ++a)
+    if(links.faces[a].border_corner < 0)
+      angle[a] = user_target_angle(m, traits, directions, links.faces[a].face);
 }
 
 } // namespace internal

@@ -986,4 +986,52 @@ TEST(Placement, pinned_placement_is_independent_of_vertex_and_face_numbering)
   EXPECT_FALSE(sets[0].empty());
 }
 
+
+// The fields the placement reads with faces held (internal/placement/smoothest_field.h): the held faces keep their
+// values exactly and the free faces minimise the energy, that is (A u)_f = 0 there for the smoothest field (up to
+// its preconditioner's shift, 1e-9 of the spectrum) and ((A + s B) u - s B q)_f = 0 for the aligned one
+TEST(Placement, fields_with_held_faces_minimise_their_energy_over_the_free_faces)
+{
+  const Surface_mesh tm = to_surface_mesh(ellipsoid_soup(3, 1.3, 1.0, 0.7));
+  Solver solver(tm);
+  const int n = 4;
+  const auto& m = Access::mesh(solver);
+  const TC::internal::Smoothest_field_problem problem(m, Access::geometry(solver), Access::topology(solver), n);
+  std::vector<char> fixed(std::size_t(m.nf), 0);
+  std::vector<std::complex<double>> value(std::size_t(m.nf));
+  std::vector<std::complex<double>> q(std::size_t(m.nf));
+  for(int f = 0; f < m.nf; ++f) {
+    fixed[f] = f % 37 == 0;
+    value[f] = std::polar(1., 0.7 * f);
+    q[f] = std::polar(0.5 + 0.5 * std::sin(0.3 * f), 1.1 * f);
+  }
+  auto no_reading = [](const Eigen::VectorXcd&) { return std::vector<std::int64_t>(); };
+  const TC::internal::Smoothest_field smooth = TC::internal::smoothest_field(problem, fixed, value, no_reading);
+  EXPECT_EQ(smooth.iterations, 0);
+  const double strength = 100;
+  const TC::internal::Smoothest_field aligned = TC::internal::aligned_field(problem, q, strength, fixed, value);
+  double area = 0;
+  for(double a : problem.area)
+    area += a;
+  const double s = strength / area;
+  const Eigen::VectorXcd u = Eigen::Map<const Eigen::VectorXcd>(smooth.u.data(), m.nf);
+  const Eigen::VectorXcd v = Eigen::Map<const Eigen::VectorXcd>(aligned.u.data(), m.nf);
+  const Eigen::VectorXcd Au = problem.apply(u), Av = problem.apply(v);
+  double worst_smooth = 0, worst_aligned = 0, scale_smooth = 0, scale_aligned = 0;
+  for(int f = 0; f < m.nf; ++f) {
+    if(fixed[f]) {
+      EXPECT_EQ(u[f], value[f]) << "face " << f;
+      EXPECT_EQ(v[f], value[f]) << "face " << f;
+      continue;
+    }
+    const double d = problem.A.coeff(f, f).real();
+    worst_smooth = std::max(worst_smooth, std::abs(Au[f]));
+    scale_smooth = std::max(scale_smooth, d * std::abs(u[f]));
+    worst_aligned = std::max(worst_aligned, std::abs(Av[f] + s * problem.area[f] * (v[f] - q[f])));
+    scale_aligned = std::max(scale_aligned, d * std::abs(v[f]) + s * problem.area[f] * std::abs(q[f]));
+  }
+  EXPECT_LT(worst_smooth, 1e-7 * scale_smooth);
+  EXPECT_LT(worst_aligned, 1e-10 * scale_aligned);
+}
+
 } // namespace

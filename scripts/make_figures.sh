@@ -45,6 +45,6 @@ figure elk_vector "$meshes/elk.off" --streamlines "$work/elk_vector.streamlines.
 # boundary alignment: a cross field following the seven holes of the pig
 figure pig_aligned "$meshes/pig.off" --glyphs 1500 --size 900 600 -- --n 4 --align-boundary
 # feature alignment: a cross field on fandisk pinned along its sharp curves, singularities placed with the pins
-figure fandisk_features "$meshes/fandisk.off" --streamlines "$work/fandisk_features.streamlines.vtk" \
-  --features "$work/fandisk_features.features.vtk" --view 20 50 --size 900 600 -- \
-  --auto --n 4 --align-features --feature-lines "$work/fandisk_features.features.vtk" --streamline-seeds 60
+figure fandisk_feature_field "$meshes/fandisk.off" --streamlines "$work/fandisk_feature_field.streamlines.vtk" \
+  --features "$work/fandisk_feature_field.features.vtk" --view 20 50 --size 900 600 -- \
+  --auto --n 4 --align-features --feature-lines "$work/fandisk_feature_field.features.vtk" --streamline-seeds 60

@@ -385,8 +385,10 @@ public:
                                                           const Loop_periods* periods,
                                                           const std::vector<std::size_t>& fixed, bool cancel_pairs,
                                                           std::size_t trials) = 0;
+  // `known`: the targets known already (per face, zero where not known; empty: none), with their n
   virtual TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
-                                            const std::vector<face_descriptor>& guided) = 0;
+                                                const std::vector<face_descriptor>& guided,
+                                                const std::vector<Kernel::Vector_3>& known, int known_n) = 0;
   virtual const char* backend() const = 0;
   // the vertices of each interior edge, two per edge (smaller first), in the order of Result.connection
   virtual const std::vector<std::int64_t>& edge_vertices() const = 0;
@@ -488,6 +490,10 @@ struct Options
   std::vector<face_descriptor> constrained, guided;
   double guidance_weight = 1;
   bool align_boundary = false;
+  // the targets known when the solver is built (per face, zero where not known) and their n: touching pins that
+  // disagree are then left to the lattice rather than rounded
+  std::vector<Kernel::Vector_3> known_directions;
+  int known_n = 1;
 };
 
 template <class SolverTraits>
@@ -502,6 +508,9 @@ public:
     : m_mesh(*source.mesh), m_name(name)
   {
     const Mesh& mesh = *source.mesh;
+    const std::vector<Kernel::Vector_3>* known = o.known_directions.empty() ? nullptr : &o.known_directions;
+    auto known_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+      [known](face_descriptor f) { return known ? (*known)[std::size_t(f)] : CGAL::NULL_VECTOR; });
     const auto np = TC::parameters::weighting(
       o.weighting,
       TC::parameters::constrained_faces(
@@ -509,8 +518,11 @@ public:
         TC::parameters::guided_faces(
           o.guided, TC::parameters::guidance_weight(
                       o.guidance_weight, TC::parameters::align_with_boundary(
-                                           o.align_boundary, CGAL::parameters::vertex_point_map(
-                                                               Point_source{source.points, &mesh}))))));
+                                           o.align_boundary,
+                                           TC::parameters::face_directions(
+                                             known_map, TC::parameters::symmetry_order(
+                                                          o.known_n, CGAL::parameters::vertex_point_map(
+                                                                       Point_source{source.points, &mesh}))))))));
     if(source.arrays)
       m_solver = TC::internal::Solver_access<Solver>::make(mesh, std::move(*source.arrays), np);
     else
@@ -676,10 +688,15 @@ public:
   }
 
   TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
-                                    const std::vector<face_descriptor>& guided) override
+                                        const std::vector<face_descriptor>& guided,
+                                        const std::vector<Kernel::Vector_3>& known, int known_n) override
   {
-    return m_solver->set_constraints(
-      TC::parameters::constrained_faces(constrained, TC::parameters::guided_faces(guided)));
+    const std::vector<Kernel::Vector_3>* k = known.empty() ? nullptr : &known;
+    auto known_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+      [k](face_descriptor f) { return k ? (*k)[std::size_t(f)] : CGAL::NULL_VECTOR; });
+    return m_solver->set_constraints(TC::parameters::constrained_faces(
+      constrained, TC::parameters::guided_faces(
+                     guided, TC::parameters::face_directions(known_map, TC::parameters::symmetry_order(known_n)))));
   }
 
   const char* backend() const override { return m_name; }
@@ -857,6 +874,8 @@ public:
       m_features.emplace();
       m_features->all = feature_pins_of(*mesh.mesh, features.threshold, features.n, features.smoothing);
       o.constrained = merge_feature_pins(*mesh.mesh, o.constrained, o.guided, *m_features);
+      m_feature_n = features.n;
+      known_feature_directions(*mesh.mesh, *m_features, features.n, o);
     }
     m_solver = make_solver(mesh, o, backend); // the mesh complete when it returns
     m_solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -886,10 +905,12 @@ public:
       if(m_features) { // merged again with the new faces; kept as they were when the solver refuses them
         Features merged = *m_features;
         c = merge_feature_pins(*m_mesh, c, g, merged);
-        u = m_solver->set_constraints(c, g);
+        Options known;
+        known_feature_directions(*m_mesh, merged, m_feature_n, known);
+        u = m_solver->set_constraints(c, g, known.known_directions, known.known_n);
         m_features = std::move(merged);
       } else
-        u = m_solver->set_constraints(c, g);
+        u = m_solver->set_constraints(c, g, {}, 1);
     }
     py::dict d;
     d["refactored"] = u.refactored;
@@ -1196,6 +1217,17 @@ private:
     return out;
   }
 
+  // The feature pins' directions (zero elsewhere: the user's come with each solve) and their n, for the solver's
+  // constructor: touching feature pins that disagree are then left to the lattice, as in the program
+  static void known_feature_directions(const Mesh& mesh, const Features& features, int n, Options& o)
+  {
+    o.known_directions.assign(mesh.number_of_faces(), CGAL::NULL_VECTOR);
+    const std::vector<double>& d = features.all.directions;
+    for(std::size_t i : features.pinned)
+      o.known_directions[features.all.faces[i]] = Kernel::Vector_3(d[3 * i], d[3 * i + 1], d[3 * i + 2]);
+    o.known_n = n;
+  }
+
   // The targets of a call (the user's directions, or none) with the feature pins' directions on their faces
   // (those faces are not the user's: their rows are not read otherwise). Under the solver's lock.
   std::optional<std::vector<Kernel::Vector_3>> with_feature_targets(
@@ -1392,6 +1424,7 @@ private:
   std::unique_ptr<Solver_interface> m_solver;
   bool m_align_boundary = false;
   std::optional<Features> m_features; // Solver(align_features=...); changed by set_constraints() under m_mutex
+  int m_feature_n = 4;                 // the n of the feature pins (feature_n)
   mutable py::object m_edges_array; // made on first use, with the GIL
   mutable std::shared_mutex m_mutex;
 };

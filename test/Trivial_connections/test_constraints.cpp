@@ -823,6 +823,19 @@ Soup holed_soup()
   return s;
 }
 
+/// whether two of the faces share a vertex (then set_constraints() factors again)
+inline bool faces_touch(const Mesh_view<Surface_mesh>& view, const std::vector<int>& faces)
+{
+  std::set<int> seen;
+  for(int f : faces) {
+    std::set<int> mine;
+    for(int h : view.face_he[f]) mine.insert(view.tgt[h]);
+    for(int v : mine)
+      if(!seen.insert(v).second) return true;
+  }
+  return false;
+}
+
 template <class Traits>
 void expect_set_constraints_like_fresh_solvers(const Surface_mesh& m, bool factor_access);
 
@@ -860,9 +873,11 @@ void expect_set_constraints_like_fresh_solvers(const Surface_mesh& m, bool facto
       if(k > 0) {
         const TC::Constraint_update u = solver.set_constraints(TC::parameters::constrained_faces(
           face_descriptors(view, hard.faces), TC::parameters::guided_faces(face_descriptors(view, guides.faces))));
-        // only a backend that hides its factor refactors; the others pay one forward substitution per new link
-        EXPECT_EQ(u.refactored, !factor_access);
-        if(factor_access) {
+        // only a backend that hides its factor refactors, or touching pins (before or now: they change the system
+        // itself); otherwise one forward substitution per new link
+        const bool touching = faces_touch(view, sets[k - 1].first.faces) || faces_touch(view, hard.faces);
+        EXPECT_EQ(u.refactored, !factor_access || touching);
+        if(factor_access && !touching) {
           EXPECT_LE(u.new_forward_substitutions, u.links_outside_the_factor);
           EXPECT_LE(u.links_outside_the_factor, u.links);
           if(k == 4) EXPECT_EQ(u.new_forward_substitutions, 0u); // the constructor's faces again: nothing new
@@ -1050,8 +1065,10 @@ TEST(Touching_pins, the_rounded_integers_are_the_best_of_every_choice)
     const auto s = solve_constrained(view, solver, none, n, t);
     check_constrained(view, solver, none, n, t, false, s);
     expect_brute_force(view, solver, none, n, t, false, s.report, 1, 10);
-    EXPECT_TRUE(s.report.integers_proven_optimal);
-    EXPECT_NEAR(s.report.energy_lower_bound, s.report.energy, 1e-9 * std::max(1., s.report.energy));
+    EXPECT_LE(s.report.energy_lower_bound, s.report.energy);
+    std::size_t decided = 0;
+    for(const TC::Constraint_report& c : s.report.constraints) decided += c.decided ? 1 : 0;
+    EXPECT_GE(decided, t.faces.size() - 3); // all but the links between the (at most three) clusters
   }
 }
 

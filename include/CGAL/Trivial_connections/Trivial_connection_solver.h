@@ -43,6 +43,7 @@
 #include <cmath>
 #include <cstdint>
 #include <future>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -168,7 +169,8 @@ public:
       \cgalParamDescription{optional, with `symmetry_order` (default 1): the targets of the constrained faces when
         they are known already (as for `solve()`). Touching faces whose targets then disagree by more than a
         quarter of 2 pi / n along their link are not linked the short way: their turn is left to the
-        closest-vector search, with the loop integers. Each `solve()` still takes its own directions}
+        closest-vector search, with the loop integers. A zero vector means not known yet (that face is linked the
+        short way). Each `solve()` still takes its own directions}
     \cgalParamNEnd
     \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd
     \cgalParamNBegin{align_with_boundary}
@@ -663,8 +665,10 @@ private:
       CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::symmetry_order), 1));
     if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::face_directions_t>::value) {
       const auto& directions = CGAL::parameters::get_parameter(np, tc_np::face_directions);
-      for(int f : user_faces)
-        angles.push_back(internal::user_target_angle(m_mesh, m_traits, directions, f));
+      for(int f : user_faces) // a zero vector: not known yet (NaN: rounded like any touching pin)
+        angles.push_back(get(directions, m_mesh.face_descriptors[std::size_t(f)]) == CGAL::NULL_VECTOR
+                           ? std::numeric_limits<double>::quiet_NaN()
+                           : internal::user_target_angle(m_mesh, m_traits, directions, f));
     }
     return n;
   }

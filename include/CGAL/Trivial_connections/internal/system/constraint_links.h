@@ -109,8 +109,8 @@ struct Constraint_links
 
   Constraint_links() = default;
 
-  // `user_angles` (optional, per user face): their targets' angles in their frames, known when the solver is
-  // built; then touching pins whose targets disagree by more than a quarter of 2 pi / n along their link are
+  // `user_angles` (optional, per user face): their targets' angles in their frames when known as the solver is
+  // built (NaN: not known); then touching pins whose targets disagree by more than a quarter of 2 pi / n along their link are
   // not linked by rounding (the lattice chooses between them)
   template <class TriangleMesh>
   Constraint_links(const Mesh_arrays<TriangleMesh>& m, const Mesh_topology& t, const std::vector<int>& user_faces,
@@ -284,6 +284,8 @@ private:
       if(user_angles.empty())
         return true;
       double h = user_angles[std::size_t(a - first_user)] - user_angles[std::size_t(b - first_user)];
+      if(std::isnan(h)) // a target not known yet
+        return true;
       for(int i : crossings)
         h += direction(m.opposite_corner[i]) + CGAL_PI - direction(i);
       const double turns = h * n / (2 * CGAL_PI);

@@ -1064,7 +1064,7 @@ TEST(Touching_pins, the_rounded_integers_are_the_best_of_every_choice)
     SCOPED_TRACE("n = " + std::to_string(n));
     const auto s = solve_constrained(view, solver, none, n, t);
     check_constrained(view, solver, none, n, t, false, s);
-    expect_brute_force(view, solver, none, n, t, false, s.report, 1, 10);
+    expect_brute_force(view, solver, none, n, t, false, s.report, 1, 8);
     EXPECT_LE(s.report.energy_lower_bound, s.report.energy);
     std::size_t decided = 0;
     for(const TC::Constraint_report& c : s.report.constraints) decided += c.decided ? 1 : 0;

@@ -196,7 +196,8 @@ inline Row_permutation loop_rows_last(const Constraint_rows& system, const std::
   std::vector<char> is_loop_row(std::size_t(rows), 0);
   for(int r : system.free_rows)
     is_loop_row[r] = 1;
-  // per node, the decided rows that follow it (CSR); rows touching pinned nodes only come first
+  // each decided row after the last of its nodes in the order (its rank there); rows touching only pinned nodes,
+  // which have no row, come first
   std::vector<int> rank(system.row_of_node.size(), -1), first_rows;
   for(std::size_t k = 0; k < node_order.size(); ++k)
     rank[std::size_t(node_order[k])] = int(k);

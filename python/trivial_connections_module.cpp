@@ -496,6 +496,13 @@ struct Options
   int known_n = 1;
 };
 
+// Per face, the direction of `directions` (one per face), or the zero vector everywhere without them
+inline auto face_direction_map(const std::vector<Kernel::Vector_3>* directions)
+{
+  return boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
+    [directions](face_descriptor f) { return directions ? (*directions)[std::size_t(f)] : CGAL::NULL_VECTOR; });
+}
+
 template <class SolverTraits>
 class Solver_of : public Solver_interface
 {
@@ -508,9 +515,7 @@ public:
     : m_mesh(*source.mesh), m_name(name)
   {
     const Mesh& mesh = *source.mesh;
-    const std::vector<Kernel::Vector_3>* known = o.known_directions.empty() ? nullptr : &o.known_directions;
-    auto known_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
-      [known](face_descriptor f) { return known ? (*known)[std::size_t(f)] : CGAL::NULL_VECTOR; });
+    const auto known_map = face_direction_map(o.known_directions.empty() ? nullptr : &o.known_directions);
     const auto np = TC::parameters::weighting(
       o.weighting,
       TC::parameters::constrained_faces(
@@ -550,8 +555,7 @@ public:
     const Edge_connection_map halfedge_x{&m_mesh, &m_edge_slot, out.connection.data()};
     const Face_vector_map face_field{out.field.data()};
     // directions_of() gives one per face
-    auto target_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
-      [directions](face_descriptor f) { return directions ? (*directions)[std::size_t(f)] : CGAL::NULL_VECTOR; });
+    const auto target_map = face_direction_map(directions);
 
     using Clock = std::chrono::steady_clock;
     const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
@@ -658,8 +662,7 @@ public:
     auto halfedge_x = boost::make_function_property_map<halfedge_descriptor, double&>(
       [&x](halfedge_descriptor h) -> double& { return x[std::size_t(h)]; });
     // directions_of() gives one per face
-    auto target_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
-      [directions](face_descriptor f) { return directions ? (*directions)[std::size_t(f)] : CGAL::NULL_VECTOR; });
+    const auto target_map = face_direction_map(directions);
     std::vector<vertex_descriptor> fixed_vertices;
     for(std::size_t v : fixed)
       fixed_vertices.push_back(vertex_of(m_mesh, v));
@@ -691,9 +694,7 @@ public:
                                         const std::vector<face_descriptor>& guided,
                                         const std::vector<Kernel::Vector_3>& known, int known_n) override
   {
-    const std::vector<Kernel::Vector_3>* k = known.empty() ? nullptr : &known;
-    auto known_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
-      [k](face_descriptor f) { return k ? (*k)[std::size_t(f)] : CGAL::NULL_VECTOR; });
+    const auto known_map = face_direction_map(known.empty() ? nullptr : &known);
     return m_solver->set_constraints(TC::parameters::constrained_faces(
       constrained, TC::parameters::guided_faces(
                      guided, TC::parameters::face_directions(known_map, TC::parameters::symmetry_order(known_n)))));

@@ -980,8 +980,12 @@ public:
 
   py::tuple refine_singularities(const py::object& start, int n, const py::object& directions,
                                  const py::object& loop_periods, const py::object& fixed_vertices, bool cancel_pairs,
-                                 std::size_t maximum_trials)
+                                 const py::object& maximum_trials_or_none)
   {
+    // None: no budget, to a local minimum
+    const std::size_t maximum_trials = maximum_trials_or_none.is_none()
+                                         ? (std::numeric_limits<std::size_t>::max)()
+                                         : maximum_trials_or_none.cast<std::size_t>();
     const Singularities s = singularities_of(start);
     const Optional_inputs in = optional_inputs(directions, loop_periods);
     std::vector<std::size_t> fixed;
@@ -1011,7 +1015,13 @@ public:
     d["energy_after"] = r.energy_after;
     d["moves"] = moves;
     d["trials"] = r.trials;
+    d["rounds"] = r.rounds;
+    d["cancellations"] = r.cancellations;
+    d["singularities_before"] = r.singularities_before;
     d["local_minimum"] = r.local_minimum;
+    d["stop"] = r.stop == TC::Refinement_stop::local_minimum    ? "local_minimum"
+                : r.stop == TC::Refinement_stop::maximum_trials ? "maximum_trials"
+                                                                : "rejected_moves";
     return py::make_tuple(singularity_dict(refined), d);
   }
 
@@ -1814,9 +1824,12 @@ the solver has constrained faces: the field is held at their directions (report[
          "Up to count faces spread over the mesh, strongest guide first: guided_faces for set_constraints().")
     .def("refine_singularities", &Python_solver::refine_singularities, py::arg("singularities"), py::kw_only(),
          py::arg("n") = 1, py::arg("directions") = py::none(), py::arg("loop_periods") = py::none(),
-         py::arg("fixed_vertices") = py::none(), py::arg("cancel_pairs") = false, py::arg("maximum_trials") = 500,
-         "Moves singularities to neighbouring vertices while the trivial connection's energy drops (each trial a "
-         "solve on the prefactored solver). Returns (singularities, report) with energy_before, energy_after, moves.")
+         py::arg("fixed_vertices") = py::none(), py::arg("cancel_pairs") = false, py::arg("maximum_trials") = py::none(),
+         "Moves singularities to neighbouring vertices (and, with cancel_pairs, cancels opposite pairs) until no "
+         "single move or cancellation lowers the trivial connection's energy: a local minimum (maximum_trials: a "
+         "budget of solves; None: none). Returns (singularities, report) with energy_before, energy_after, moves, "
+         "cancellations, rounds, trials, singularities_before, local_minimum and stop ('local_minimum', "
+         "'maximum_trials' or 'rejected_moves').")
     .def("trace_streamlines", &Python_solver::trace_streamlines, py::arg("result"), py::arg("singularities"),
          py::arg("seed_faces") = py::none(), py::arg("maximum_faces_per_ray") = 0,
          "The streamlines of result's field from the barycentres of seed_faces (default: every face): a list of "

@@ -82,7 +82,7 @@ int main(int argc, char** argv)
   const auto refined = TC::refine_singularities(solver, cross, x, P::cancel_pairs(true, P::symmetry_order(4)));
   std::cout << "refinement: energy " << refined.energy_before << " -> " << refined.energy_after << ", "
             << refined.moves.size() << " moves in " << refined.trials << " trial solves"
-            << (refined.local_minimum ? " (a local minimum)" : " (budget spent)") << "\n";
+            << (refined.local_minimum ? " (a local minimum)" : " (stopped before a local minimum)") << "\n";
   ok = ok && refined.energy_after <= refined.energy_before && refined.report.max_vertex_residual < 1e-9;
 
   std::cout << (ok ? "OK" : "FAILED") << std::endl;

@@ -303,6 +303,18 @@ void align_with_curvature(const Options& o, Inputs& in, Solver& solver, Design& 
   });
 }
 
+std::string refinement_stop(TC::Refinement_stop stop)
+{
+  switch(stop) {
+  case TC::Refinement_stop::local_minimum:
+    return "a local minimum of the energy";
+  case TC::Refinement_stop::maximum_trials:
+    return "the budget of trials ran out";
+  default:
+    return "its best moves did not lower the energy once the integers were chosen again";
+  }
+}
+
 // --auto and --refine: the singularities the trivial connection gets
 void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& design, Progress_printer& progress,
                           Timings& time)
@@ -360,8 +372,8 @@ void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& 
     in.mesh.remove_property_map(x);
     in.singularities.assign(design.refinement->singularities.begin(), design.refinement->singularities.end());
     const auto& r = *design.refinement;
-    progress.end("refinement", std::to_string(r.moves.size()) + " moves in " + std::to_string(r.trials) + " trial solves" +
-                                 (r.local_minimum ? ", a local minimum" : ", the budget of trials ran out"));
+    progress.end("refinement", std::to_string(r.moves.size()) + " moves in " + std::to_string(r.trials) + " trial solves, " +
+                                 refinement_stop(r.stop));
   }
 }
 
@@ -605,8 +617,9 @@ void print_design(std::ostream& out, const Options& o, const Design& d)
   if(d.refinement) {
     const auto& r = *d.refinement;
     out << "refinement: energy " << std::setprecision(10) << r.energy_before << " -> " << r.energy_after << ", "
-        << r.moves.size() << " moves in " << r.trials << " trial solves"
-        << (r.local_minimum ? " (a local minimum)" : " (the budget of trials ran out)") << "\n";
+        << r.singularities_before << " -> " << r.singularities.size() << " singularities, " << r.moves.size()
+        << " moves (" << r.cancellations << " cancellations) in " << r.trials << " trial solves ("
+        << refinement_stop(r.stop) << ")\n";
   }
 }
 

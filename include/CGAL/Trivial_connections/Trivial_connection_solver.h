@@ -508,8 +508,10 @@ public:
     else
       lambda = m_system.solve(m_rows, b);
 
-    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::energy_gradient_t>::value)
+    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::energy_gradient_t>::value) {
       write_energy_gradient(lambda, CGAL::parameters::get_parameter(np, tc_np::energy_gradient));
+      m_multipliers = lambda;
+    }
     internal::Constraint_sums sums;
     Eigen::VectorXd xe = internal::checked_connection(
       m_rows, [&](const Eigen::VectorXd& r) { return m_system.solve(m_rows, r); }, b, lambda, sums);
@@ -723,6 +725,7 @@ private:
   internal::Constraint_rows m_rows;          // system/: the rows of A x = b
   internal::Prefactored_system<Solver_traits> m_system; // factorization/: M factored, its solves
   std::vector<internal::Reduced_lattice> m_lattices;    // integers/: per component, the reduced lattice of its integers
+  Eigen::VectorXd m_multipliers; // of the last solve that gave its energy gradient (the refinement reads them)
 };
 
 namespace internal {
@@ -737,6 +740,11 @@ struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverT
   static const Mesh_topology& topology(const Solver& s) { return s.m_topology; }
   // the constrained and guided faces (read-only: the placement holds the constrained ones)
   static const Constraint_links& links(const Solver& s) { return s.m_links; }
+  // the rows of the constraint system and its factorization (the refinement reads M^-1 from it)
+  static const Constraint_rows& rows(const Solver& s) { return s.m_rows; }
+  static Prefactored_system<typename Solver::Solver_traits>& system(Solver& s) { return s.m_system; }
+  // M^-1 b of the last solve() given an energy_gradient
+  static const Eigen::VectorXd& multipliers(const Solver& s) { return s.m_multipliers; }
   // a solver of tm from its arrays, made from the connectivity tm is built from (see Mesh_arrays); with a
   // vertex_point_map in np, nothing of tm is read until the constructor has returned
   template <class NamedParameters = parameters::Default_named_parameters>

@@ -170,7 +170,8 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(fixed_vertices)
 /// \param value whether pairs may cancel
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(cancel_pairs)
-/// `std::size_t`, default 500: the solves `refine_singularities()` may try
+/// `std::size_t`, default none: a budget of the solves `refine_singularities()` may try (without one it runs to a
+/// local minimum)
 /// \param value the budget of trial solves
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(maximum_trials)

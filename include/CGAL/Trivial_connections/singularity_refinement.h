@@ -10,6 +10,8 @@
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/parameters.h>
+#include <CGAL/Trivial_connections/internal/integers/closest_vector.h>
+#include <CGAL/Trivial_connections/internal/placement/move_energy.h>
 #include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
 
 #include <boost/property_map/vector_property_map.hpp>
@@ -17,6 +19,7 @@
 #include <algorithm>
 #include <type_traits>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -39,6 +42,17 @@ struct Singularity_move
 
 /*!
 \ingroup PkgTrivialConnectionsRef
+Why `refine_singularities()` stopped.
+*/
+enum class Refinement_stop
+{
+  local_minimum,  ///< no single move or cancellation lowers the energy (the integers of loops and links kept)
+  maximum_trials, ///< the budget of solves (`maximum_trials`) was spent
+  rejected_moves  ///< moves predicted to lower the energy did not once their integers were chosen again
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
 What `refine_singularities()` did.
 */
 template <class VertexDescriptor>
@@ -46,25 +60,40 @@ struct Refinement_report
 {
   /// the refined singularities, by increasing vertex index
   std::vector<std::pair<VertexDescriptor, Singularity_index>> singularities;
+  std::size_t singularities_before = 0; ///< the number of singularities of the starting set
   double energy_before = 0;  ///< minimised energy (`energy + guidance_energy`) of the starting set
   double energy_after = 0;   ///< and of the refined set (never more)
-  std::vector<Singularity_move<VertexDescriptor>> moves; ///< in the order made
+  std::vector<Singularity_move<VertexDescriptor>> moves; ///< in the order made (`energy`: after its round)
+  std::size_t cancellations = 0; ///< the moves among them that cancelled a unit of a pair
+  std::size_t rounds = 0;    ///< rounds of moves accepted together
   std::size_t trials = 0;    ///< solves tried (the first solve not counted)
-  bool local_minimum = false; ///< stopped because no candidate move lowered the energy (not the budget)
+  std::size_t column_solves = 0; ///< back-substitutions for entries of the inverse (see above)
+  bool local_minimum = false; ///< `stop == Refinement_stop::local_minimum`
+  Refinement_stop stop = Refinement_stop::local_minimum; ///< why it stopped
   Solve_report report;       ///< the solve of the refined set (its connection is the last one written)
 };
 
 /*!
 \ingroup PkgTrivialConnectionsRef
 
-Moves singularities to where they cost least: starting from a valid set (automatic or the user's), it
-repeatedly moves one singularity to a neighbouring interior vertex (or, with `cancel_pairs`, cancels a unit of a
-positive singularity against one of a negative singularity) when that lowers the minimised energy of the
-trivial connection (`energy + guidance_energy` of `solve()`, its integers chosen again for each trial). Each
-trial is one `solve()` on the prefactored solver (back-substitutions only). The candidates of a round are all
-moves of a free singularity to a free neighbour, tried in the order of their first-order change `k (g_w - g_v)`
-(`energy_gradient`), those that predict a decrease only; the first that lowers the energy is made. It stops at a
-local minimum (no candidate lowers the energy) or when the budget of trials is spent.
+Moves singularities to where they cost least: starting from a valid set (automatic or the user's), it moves
+singularities to neighbouring interior vertices (or, with `cancel_pairs`, cancels a unit of a positive
+singularity against one of a negative singularity) while that lowers the minimised energy of the trivial
+connection (`energy + guidance_energy` of `solve()`), until no single move or cancellation lowers it: a local
+minimum.
+
+Every candidate is scored exactly from one solve, its integers of loops and links kept: the energy is
+`b^T M^-1 b`, so moving `d = 2 pi u / n` of index from `v` to `w` changes it by
+`(u / n) (g_w - g_v) + d^2 (G_vv + G_ww - 2 G_vw)`, with `g` the energy gradient of the solve and `G = M^-1`.
+The entries of `G` between neighbours are on the pattern of the sparse factor, so one selected inversion of
+the factor (about the cost of the factorization) gives all of them; a cancellation between distant vertices
+costs a back-substitution when the bound `|G_vw| <= sqrt(G_vv G_ww)` does not already exclude it. A round
+applies the best-scored moves that lie apart (no two within one ring of each other), in one `solve()` that
+chooses the integers again; when that solve does not lower the energy, half of the moves are tried, down to
+a single one. The energy decreases at every round, so the refinement ends, at a local minimum unless a budget
+of solves is given. Solvers whose backend does not expose its factor (or after `set_constraints()` on a kept
+factorization) get the entries from back-substitutions, a column per vertex (kept up to about 256 MB).
+
 Poincare-Hopf is kept: a move keeps every component's index sum.
 
 \tparam Solver a `Trivial_connection_solver`
@@ -81,14 +110,16 @@ Poincare-Hopf is kept: a move keeps every component's index sum.
   \cgalParamNEnd
   \cgalParamNBegin{cancel_pairs}
     \cgalParamDescription{a pair of opposite singularities of a component may also cancel, one unit of 1/n each,
-      whatever their distance (candidates like the moves, by their first-order change `(g_w - g_v) / n`);
-      otherwise singularities never move onto each other}
+      whatever their distance; otherwise singularities never move onto each other}
     \cgalParamType{`bool`} \cgalParamDefault{`false`}
   \cgalParamNEnd
-  \cgalParamNBegin{maximum_trials} \cgalParamType{`std::size_t`} \cgalParamDefault{500} \cgalParamNEnd
+  \cgalParamNBegin{maximum_trials}
+    \cgalParamDescription{a budget of solves after the first; the refinement otherwise runs to a local minimum}
+    \cgalParamType{`std::size_t`} \cgalParamDefault{no budget}
+  \cgalParamNEnd
 \cgalNamedParamsEnd
 \throws Invalid_input as `solve()` for the starting set
-\returns the refined set, the energies before and after, the moves made
+\returns the refined set, the energies before and after, the moves made and why it stopped
 */
 template <class Solver, class SingularityRange, class HalfedgeAngleMap,
           class NamedParameters = parameters::Default_named_parameters>
@@ -104,8 +135,8 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   const int n = internal::checked_symmetry_order(
     CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::symmetry_order), 1));
   const bool cancel = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::cancel_pairs), false);
-  const std::size_t budget =
-    CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::maximum_trials), std::size_t(500));
+  const std::size_t budget = CGAL::parameters::choose_parameter(
+    CGAL::parameters::get_parameter(np, tc_np::maximum_trials), (std::numeric_limits<std::size_t>::max)());
 
   std::vector<char> fixed(std::size_t(m.nv), 0);
   if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::fixed_vertices_t>::value)
@@ -126,31 +157,27 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     return s;
   };
   using Gradient = boost::vector_property_map<double, typename std::decay_t<decltype(m)>::Vertex_index_map>;
-  auto solve = [&](const std::vector<std::int64_t>& kk, std::vector<double>& gradient, Solve_report& report) {
+  std::vector<double> gradient(std::size_t(m.nv), 0.);
+  auto solve = [&](const std::vector<std::pair<vertex_descriptor, Singularity_index>>& set,
+                   std::vector<double>& gradient_out, Solve_report& report) {
     Gradient map(std::size_t(m.nv), m.vertex_index);
-    report = solver.solve(as_set(kk), x, parameters::energy_gradient(map, np));
-    gradient.resize(std::size_t(m.nv));
+    report = solver.solve(set, x, parameters::energy_gradient(map, np));
     for(int v = 0; v < m.nv; ++v)
-      gradient[v] = map[m.vertex_descriptors[v]];
+      gradient_out[std::size_t(v)] = map[m.vertex_descriptors[v]];
     return report.energy + report.guidance_energy;
   };
 
   Refinement_report<vertex_descriptor> result;
-  std::vector<double> gradient;
   double energy = 0;
   {
     // the first solve checks the set (vertices, multiples of 1/n, Poincare-Hopf) before it is read
     std::vector<std::pair<vertex_descriptor, Singularity_index>> given;
     for(const auto& s : start)
       given.emplace_back(s.first, s.second);
-    Gradient map(std::size_t(m.nv), m.vertex_index);
-    result.report = solver.solve(given, x, parameters::energy_gradient(map, np));
+    energy = solve(given, gradient, result.report);
     for(const auto& s : given)
       k[std::size_t(get(m.vertex_index, s.first))] = s.second.times(n);
-    gradient.resize(std::size_t(m.nv));
-    for(int v = 0; v < m.nv; ++v)
-      gradient[v] = map[m.vertex_descriptors[v]];
-    energy = result.report.energy + result.report.guidance_energy;
+    result.singularities_before = given.size();
   }
   result.energy_before = energy;
 
@@ -161,16 +188,105 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     if(m.opposite_corner[i] < 0)
       neighbours[m.target_of(i)].push_back(m.source_of(i));
   }
+
+  // the rows of the vertices, as the energy gradient reads them, and M^-1 between them
+  const internal::Constraint_rows& rows = Access::rows(solver);
+  auto& system = Access::system(solver);
+  std::vector<int> row_of_vertex(std::size_t(m.nv), -1);
+  for(int v = 0; v < m.nv; ++v) {
+    const int node = t.node_of_vertex[v];
+    if(node >= 0 && !g.on_boundary[v])
+      row_of_vertex[std::size_t(v)] = rows.row_of_node[node];
+  }
+  internal::Move_energy inverse(std::move(row_of_vertex),
+                                rows.rows > 0 ? system.permutation().indices().data() : nullptr, rows.rows,
+                                system.selected_inverse(rows),
+                                [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
+
+  // The free integers (loops, links) the solves choose: a move may lower the energy only with some of them
+  // changed, by s. With l = their multipliers, G_F their block of M^-1 and p = l + d (G_Fw - G_Fv) the change
+  // is that of the move plus 2 u s.p + u^2 s^T G_F s (u = 2 pi / n): a closest vector problem, searched when
+  // its real minimum -p^T G_F^-1 p could make the move pay off. Each such integer costs a back-substitution
+  // (its column of M^-1), once: done while they are few (at most 64).
+  std::vector<int> free_rows;
+  for(const std::vector<int>& slots : rows.free_slots)
+    for(int l : slots) {
+      const bool prescribed = std::size_t(l) < result.report.loops.size() && result.report.loops[std::size_t(l)].prescribed;
+      if(!prescribed && rows.row_of_slot[std::size_t(l)] >= 0)
+        free_rows.push_back(rows.row_of_slot[std::size_t(l)]);
+    }
+  if(free_rows.size() > 64 || double(free_rows.size()) * double(rows.rows) > 32e6) // at most 256 MB of columns
+    free_rows.clear();
+  const double unit = 2 * CGAL_PI / n;
+  const Eigen::Index nf = Eigen::Index(free_rows.size());
+  Eigen::MatrixXd free_columns(rows.rows, nf); // M^-1 on the free rows
+  for(Eigen::Index a = 0; a < nf; ++a) {
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(rows.rows);
+    e[free_rows[std::size_t(a)]] = 1;
+    free_columns.col(a) = system.solve(rows, e);
+  }
+  Eigen::MatrixXd free_block(nf, nf);
+  for(Eigen::Index a = 0; a < nf; ++a)
+    free_block.row(a) = free_columns.row(free_rows[std::size_t(a)]);
+  free_block = (free_block + free_block.transpose()).eval() / 2;
+  const Eigen::LLT<Eigen::MatrixXd> free_factor(free_block);
+  const Eigen::MatrixXd free_block_inverse = free_factor.solve(Eigen::MatrixXd::Identity(nf, nf));
+  internal::Reduced_lattice free_lattice;
+  if(nf > 0)
+    free_lattice = internal::reduce_lattice(free_block, free_factor.matrixU(), internal::lattice_reduction_budget(nf));
+  std::size_t unproven = 0; // integer searches that were not proven optimal
+  // p for the move of d from v to w
+  using Free_vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 64, 1>; // on the stack
+  auto slopes = [&](int v, int w, double d) {
+    const Eigen::VectorXd& lambda = Access::multipliers(solver);
+    const int rv = inverse.row_of(v), rw = inverse.row_of(w);
+    Free_vector p(nf);
+    for(Eigen::Index a = 0; a < nf; ++a)
+      p[a] = lambda[free_rows[std::size_t(a)]] + d * ((rw >= 0 ? free_columns(rw, a) : 0.) - (rv >= 0 ? free_columns(rv, a) : 0.));
+    return p;
+  };
+  // what the integers could give at most: p^T G_F^-1 p, with s real
+  auto relaxed_gain = [&](int v, int w, double d) {
+    if(nf == 0)
+      return 0.;
+    const Free_vector p = slopes(v, w, d);
+    return p.dot(free_block_inverse * p);
+  };
+  // the energy change of that move with the integers kept (`kept`), or with the best of them
+  auto with_integers = [&](int v, int w, double d, double kept, double tolerance) {
+    if(nf == 0)
+      return kept;
+    const Free_vector p = slopes(v, w, d);
+    const Free_vector q = free_block_inverse * p;
+    if(kept - p.dot(q) >= -tolerance)
+      return kept;
+    const Eigen::VectorXd center = -q / unit; // the real minimiser (a search is rare: on the heap)
+    const internal::Closest_vector_result best = internal::closest_vector(free_lattice, free_block, center, {}, 1e5);
+    unproven += best.proven ? 0 : 1;
+    // u^2 ((s - c)^T G_F (s - c) - c^T G_F c), c = center
+    return (std::min)(kept, kept + unit * unit * (best.value - center.dot(free_block * center)));
+  };
+
   struct Candidate
   {
     int from, to;
     std::int64_t units;
-    double predicted;
+    double change; // of the energy, the integers kept
+    bool cancels;  // onto an opposite singularity
   };
-  std::vector<double> trial_gradient;
+  const double two_pi = 2 * CGAL_PI;
+  auto score = [&](int v, int w, std::int64_t units, double resistance) {
+    const double d = two_pi * double(units) / n;
+    return double(units) / n * (gradient[std::size_t(w)] - gradient[std::size_t(v)]) + d * d * resistance;
+  };
+  std::vector<double> trial_gradient(std::size_t(m.nv), 0.);
   Solve_report trial_report;
   bool last_trial_accepted = true;
-  while(result.trials < budget) {
+  std::vector<int> blocked(std::size_t(m.nv), -1); // the round that last blocked a vertex
+  result.stop = Refinement_stop::local_minimum;
+  for(int round = 0;; ++round) {
+    // changes below this are rounding: no cycling on ties
+    const double tolerance = 1e-10 * (std::max)(energy, 1e-300);
     std::vector<Candidate> candidates;
     for(int v = 0; v < m.nv; ++v) {
       if(k[v] == 0 || fixed[v])
@@ -178,9 +294,10 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       for(int w : neighbours[v]) {
         if(fixed[w] || g.on_boundary[w] || w == v || k[w] != 0)
           continue;
-        const double predicted = double(k[v]) / n * (gradient[w] - gradient[v]);
-        if(predicted < 0)
-          candidates.push_back({v, w, k[v], predicted});
+        const double change =
+          with_integers(v, w, two_pi * double(k[v]) / n, score(v, w, k[v], inverse.resistance(v, w)), tolerance);
+        if(change < -tolerance)
+          candidates.push_back({v, w, k[v], change, false});
       }
     }
     if(cancel) {
@@ -189,42 +306,73 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       for(int v = 0; v < m.nv; ++v)
         if(k[v] != 0 && !fixed[v])
           (k[v] > 0 ? positive : negative).push_back(v);
+      std::vector<double> root(std::size_t(m.nv), 0.); // sqrt(G_vv) of the singular vertices
+      for(int v = 0; v < m.nv; ++v)
+        if(k[v] != 0)
+          root[std::size_t(v)] = std::sqrt((std::max)(inverse.diagonal(v), 0.));
       for(int v : positive)
         for(int w : negative) {
           if(t.component_of_node[t.node_of_vertex[v]] != t.component_of_node[t.node_of_vertex[w]])
             continue;
-          const double predicted = (gradient[w] - gradient[v]) / n;
-          if(predicted < 0)
-            candidates.push_back({v, w, 1, predicted});
+          // a lower bound first: |G_vw| <= sqrt(G_vv G_ww), and every integer relaxed to a real number
+          const double bound = root[std::size_t(v)] - root[std::size_t(w)];
+          if(score(v, w, 1, bound * bound) - relaxed_gain(v, w, unit) >= -tolerance)
+            continue;
+          const double change = with_integers(v, w, unit, score(v, w, 1, inverse.resistance(v, w)), tolerance);
+          if(change < -tolerance)
+            candidates.push_back({v, w, 1, change, true});
         }
     }
+    if(candidates.empty())
+      break;
     std::stable_sort(candidates.begin(), candidates.end(),
-                     [](const Candidate& a, const Candidate& b) { return a.predicted < b.predicted; });
-    bool moved = false;
+                     [](const Candidate& a, const Candidate& b) { return a.change < b.change; });
+
+    // the moves of the round: best first, none within a ring of another
+    std::vector<Candidate> chosen;
+    auto free_here = [&](int v) { return blocked[std::size_t(v)] != round; };
     for(const Candidate& c : candidates) {
+      if(!free_here(c.from) || !free_here(c.to))
+        continue;
+      chosen.push_back(c);
+      for(int v : {c.from, c.to}) {
+        blocked[std::size_t(v)] = round;
+        for(int w : neighbours[v])
+          blocked[std::size_t(w)] = round;
+      }
+    }
+    bool accepted = false;
+    for(std::size_t size = chosen.size(); size > 0 && !accepted; size /= 2) {
       if(result.trials >= budget)
         break;
       std::vector<std::int64_t> kk(k);
-      kk[c.from] -= c.units;
-      kk[c.to] += c.units;
+      for(std::size_t i = 0; i < size; ++i) {
+        kk[std::size_t(chosen[i].from)] -= chosen[i].units;
+        kk[std::size_t(chosen[i].to)] += chosen[i].units;
+      }
       ++result.trials;
-      const double e = solve(kk, trial_gradient, trial_report);
-      last_trial_accepted = e < energy * (1 - 1e-12); // a strict decrease, beyond rounding: no cycling on ties
-      if(last_trial_accepted) {
-        k.swap(kk);
-        gradient.swap(trial_gradient);
-        result.report = trial_report;
-        energy = e;
+      const double e = solve(as_set(kk), trial_gradient, trial_report);
+      last_trial_accepted = accepted = e < energy * (1 - 1e-12);
+      if(!accepted)
+        continue;
+      k.swap(kk);
+      gradient.swap(trial_gradient);
+      result.report = trial_report;
+      energy = e;
+      ++result.rounds;
+      for(std::size_t i = 0; i < size; ++i) {
+        const Candidate& c = chosen[i];
         result.moves.push_back({m.vertex_descriptors[c.from], m.vertex_descriptors[c.to], Singularity_index(c.units, n), e});
-        moved = true;
-        break;
+        result.cancellations += c.cancels ? 1 : 0;
       }
     }
-    if(!moved) {
-      result.local_minimum = result.trials < budget || candidates.empty();
+    if(!accepted) {
+      result.stop = result.trials >= budget ? Refinement_stop::maximum_trials : Refinement_stop::rejected_moves;
       break;
     }
   }
+  result.local_minimum = result.stop == Refinement_stop::local_minimum;
+  result.column_solves = inverse.column_solves() + std::size_t(nf);
   result.energy_after = energy;
   result.singularities = as_set(k);
   // x holds the last trial's connection: solved again when that trial was rejected

@@ -10,6 +10,7 @@
 #include <CGAL/Trivial_connections/internal/factorization/bordered_rows.h>
 #include <CGAL/Trivial_connections/internal/factorization/checked_solve.h>
 #include <CGAL/Trivial_connections/internal/factorization/loop_metric.h>
+#include <CGAL/Trivial_connections/internal/factorization/selected_inverse.h>
 #include <CGAL/Trivial_connections/internal/factorization/sparse_factor.h>
 #include <CGAL/Trivial_connections/internal/system/constraint_links.h>
 #include <CGAL/Trivial_connections/internal/system/constraint_rows.h>
@@ -19,6 +20,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -128,6 +130,16 @@ public:
     if(m_bordered.active())
       return m_bordered.solve(m_factor, rows, m_metrics, b);
     return m_factor.solve(b);
+  }
+
+  // M^-1 on the pattern of the factor (positions: permutation()), or null when the factor cannot be read or
+  // rows live outside it (set_constraints() on a kept factorization)
+  std::unique_ptr<Selected_inverse> selected_inverse(const Constraint_rows& rows)
+  {
+    Unit_lower_factor f;
+    if(rows.rows == 0 || m_bordered.active() || !m_factor.read_factor(f) || f.n != int(rows.rows))
+      return nullptr;
+    return std::unique_ptr<Selected_inverse>(new Selected_inverse(std::move(f)));
   }
 
   // M^-1 b, checked and refined

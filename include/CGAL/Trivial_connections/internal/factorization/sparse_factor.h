@@ -9,6 +9,7 @@
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
 #include <CGAL/Trivial_connections/internal/factorization/ldlt_on_two_threads.h>
+#include <CGAL/Trivial_connections/internal/factorization/selected_inverse.h>
 #include <CGAL/Trivial_connections/internal/system/system_assembly.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 
@@ -120,6 +121,8 @@ public:
     return Trailing_schur_complement<SolverTraits>::read(m_solver, k, L, d);
   }
   bool substitutions_exposed() { return Substitutions::available(m_solver); }
+  // the factor as L D L^T (see Factor_reading)
+  bool read_factor(Unit_lower_factor& f) { return Factor_reading<SolverTraits>::read(m_solver, f); }
 
   // z <- L^-1 z, through the first `columns` columns when the backend has leading_columns, else all of them
   void forward(Eigen::VectorXd& z, Eigen::Index columns)

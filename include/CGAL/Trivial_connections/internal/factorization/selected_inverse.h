@@ -1,0 +1,210 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_SELECTED_INVERSE_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_SELECTED_INVERSE_H
+
+#include <CGAL/Trivial_connections/solver_traits.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  A factor M = L D L^T read out of a backend: L unit lower triangular, stored strictly lower by columns with
+  increasing rows (a supernodal factor brings the zeros of its dense blocks along), D its diagonal.
+*/
+struct Unit_lower_factor
+{
+  int n = 0;
+  std::vector<int> start, row;
+  std::vector<double> value, d;
+};
+
+// Reads the factor of the last factorization, in the order of the factored system; false when the backend
+// does not expose it (or permuted the system itself).
+template <class SolverTraits>
+struct Factor_reading
+{
+  static bool read(SolverTraits&, Unit_lower_factor&) { return false; }
+};
+
+template <int UpLo, class Index>
+struct Factor_reading<CGAL::Eigen_solver_traits<
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, UpLo, Eigen::NaturalOrdering<Index>>>>
+{
+  template <class Traits>
+  static bool read(Traits& traits, Unit_lower_factor& f)
+  {
+    const auto& solver = traits.solver();
+    if(solver.info() != Eigen::Success || solver.permutationP().size() != 0)
+      return false;
+    const auto& L = solver.matrixL().nestedExpression(); // strictly lower, rows increasing (up-looking)
+    if(!L.isCompressed())
+      return false;
+    f.n = int(L.cols());
+    f.start.assign(L.outerIndexPtr(), L.outerIndexPtr() + f.n + 1);
+    f.row.assign(L.innerIndexPtr(), L.innerIndexPtr() + L.nonZeros());
+    f.value.assign(L.valuePtr(), L.valuePtr() + L.nonZeros());
+    const Eigen::VectorXd d = solver.vectorD(); // a copy
+    f.d.assign(d.data(), d.data() + f.n);
+    return true;
+  }
+};
+
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+template <>
+struct Factor_reading<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization>>
+{
+  // L L^T with dense supernodes: column c of supernode s is L_cc, then the rows below it in the block
+  template <class Traits>
+  static bool read(Traits& traits, Unit_lower_factor& f)
+  {
+    const cholmod_factor* F = traits.solver().factor();
+    if(F == nullptr || !F->is_super || !F->is_ll || F->itype != CHOLMOD_INT || F->xtype != CHOLMOD_REAL)
+      return false;
+    const int* perm = static_cast<const int*>(F->Perm);
+    if(perm != nullptr)
+      for(std::size_t i = 0; i < F->n; ++i)
+        if(perm[i] != int(i))
+          return false;
+    const int* super = static_cast<const int*>(F->super);
+    const int* pi = static_cast<const int*>(F->pi);
+    const int* px = static_cast<const int*>(F->px);
+    const int* rows = static_cast<const int*>(F->s);
+    const double* x = static_cast<const double*>(F->x);
+    f.n = int(F->n);
+    f.start.assign(std::size_t(f.n) + 1, 0);
+    f.d.assign(std::size_t(f.n), 1.);
+    for(std::size_t s = 0; s < F->nsuper; ++s)
+      for(int c = super[s]; c < super[s + 1]; ++c)
+        f.start[std::size_t(c) + 1] = pi[s + 1] - pi[s] - (c - super[s]) - 1;
+    std::partial_sum(f.start.begin(), f.start.end(), f.start.begin());
+    f.row.resize(std::size_t(f.start.back()));
+    f.value.resize(std::size_t(f.start.back()));
+    std::vector<std::pair<int, double>> column;
+    for(std::size_t s = 0; s < F->nsuper; ++s) {
+      const int c0 = super[s], nrows = pi[s + 1] - pi[s];
+      for(int c = c0; c < super[s + 1]; ++c) {
+        const double* block = x + px[s] + std::size_t(c - c0) * std::size_t(nrows);
+        const double diagonal = block[c - c0];
+        if(!(diagonal > 0))
+          return false;
+        f.d[std::size_t(c)] = diagonal * diagonal;
+        column.clear();
+        for(int r = c - c0 + 1; r < nrows; ++r)
+          column.emplace_back(rows[pi[s] + r], block[r] / diagonal);
+        std::sort(column.begin(), column.end());
+        int p = f.start[std::size_t(c)];
+        for(const auto& e : column) {
+          f.row[std::size_t(p)] = e.first;
+          f.value[std::size_t(p++)] = e.second;
+        }
+      }
+    }
+    return true;
+  }
+};
+
+template <class Crossover>
+struct Factor_reading<Cost_based_solver_traits<Crossover>>
+{
+  static bool read(Cost_based_solver_traits<Crossover>& traits, Unit_lower_factor& f)
+  {
+    return on_backend(
+      traits, [&](auto& view) { return Factor_reading<Automatic_simplicial_traits>::read(view, f); },
+      [&](auto& view) { return Factor_reading<Cholmod_solver_traits>::read(view, f); }, false);
+  }
+};
+#endif
+
+/*
+  The entries of M^-1 on the pattern of L (Takahashi's recurrences), from the last column to the first:
+  Z_ij = -sum_{k in L_:j} Z_ik L_kj for i in L_:j, and Z_jj = 1/d_j - sum_{k in L_:j} L_kj Z_kj. The rows of a
+  column below any of its rows k are rows of column k (the filled graph is chordal), so every Z_ik needed is
+  on the pattern; a supernodal factor's padded rows are the exception, and there L_kj = 0, so the term is 0.
+  The cost is about the factorization's: sum over columns of their length squared.
+*/
+class Selected_inverse
+{
+public:
+  // takes the factor's storage (the pattern is kept, the values become those of M^-1)
+  explicit Selected_inverse(Unit_lower_factor&& f) : m_start(std::move(f.start)), m_row(std::move(f.row))
+  {
+    const int n = f.n;
+    std::vector<double>& l = f.value;
+    m_value.assign(l.size(), 0.);
+    m_diagonal.assign(std::size_t(n), 0.);
+    std::vector<double> sum;
+    for(int j = n - 1; j >= 0; --j) {
+      const int b = m_start[std::size_t(j)], e = m_start[std::size_t(j) + 1];
+      sum.assign(std::size_t(e - b), 0.);
+      for(int q = b; q < e; ++q) {
+        const int k = m_row[std::size_t(q)];
+        const double lk = l[std::size_t(q)];
+        sum[std::size_t(q - b)] += m_diagonal[std::size_t(k)] * lk;
+        // the rows i > k of column j against column k of Z: Z_ik enters Z_ij (times L_kj) and Z_kj (times L_ij)
+        const int kb = m_start[std::size_t(k)], ke = m_start[std::size_t(k) + 1];
+        if(q + 1 == e || kb == ke)
+          continue;
+        const bool search = std::ptrdiff_t(e - q) * 16 < std::ptrdiff_t(ke - kb);
+        int r = kb;
+        for(int p = q + 1; p < e; ++p) {
+          const int i = m_row[std::size_t(p)];
+          if(search)
+            r = int(std::lower_bound(m_row.begin() + r, m_row.begin() + ke, i) - m_row.begin());
+          else
+            while(r < ke && m_row[std::size_t(r)] < i)
+              ++r;
+          if(r == ke)
+            break;
+          if(m_row[std::size_t(r)] != i)
+            continue;
+          const double z = m_value[std::size_t(r)];
+          sum[std::size_t(p - b)] += z * lk;
+          sum[std::size_t(q - b)] += z * l[std::size_t(p)];
+        }
+      }
+      double diagonal = 1 / f.d[std::size_t(j)];
+      for(int q = b; q < e; ++q) {
+        m_value[std::size_t(q)] = -sum[std::size_t(q - b)];
+        diagonal += l[std::size_t(q)] * sum[std::size_t(q - b)];
+      }
+      m_diagonal[std::size_t(j)] = diagonal;
+    }
+  }
+
+  // (M^-1)_ij for positions i, j of the factored system; NaN when (i, j) is off the pattern
+  double entry(int i, int j) const
+  {
+    if(i == j)
+      return m_diagonal[std::size_t(i)];
+    if(i < j)
+      std::swap(i, j);
+    const auto b = m_row.begin() + m_start[std::size_t(j)], e = m_row.begin() + m_start[std::size_t(j) + 1];
+    const auto p = std::lower_bound(b, e, i);
+    return p != e && *p == i ? m_value[std::size_t(p - m_row.begin())] : std::numeric_limits<double>::quiet_NaN();
+  }
+
+private:
+  std::vector<int> m_start, m_row;
+  std::vector<double> m_value, m_diagonal;
+};
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_SELECTED_INVERSE_H

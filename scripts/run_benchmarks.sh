@@ -22,9 +22,10 @@
 #                  against their number, about 15 s, build-bench) into build-bench/integer-choice.json, and its
 #                  table as the section "Integer choice per dimension" at the end of FILE (replacing the one
 #                  there). Run it after the suite: the suite rewrites FILE without that section.
-#   --placement    instead of the suite: trivial_connections_placement_benchmark (automatic singularity placement
-#                  and one refinement trial, n = 4, against the suite's reference factorization; small: 52k-302k
-#                  faces, about 2 min per backend; large: ~1.2M faces, several minutes per mesh) into
+#   --placement    instead of the suite: trivial_connections_placement_benchmark (automatic singularity placement,
+#                  n = 4, against the suite's reference factorization, and for n = 1, 2, 4 the placement then the
+#                  refinement to a local minimum; small: femur (7.8k faces) and 52k-302k faces, about 1 min per
+#                  repetition and backend; large: ~1.2M faces, several minutes per mesh) into
 #                  build-bench/benchmark-results/placement-BACKEND-SIZE.json, and its table as the section
 #                  "Automatic placement" of FILE (replaced in place, the other sections kept as they are). The suite
 #                  also writes that section, from the same JSON files.
@@ -74,7 +75,7 @@ while [ $# -gt 0 ]; do
     --floor) FLOOR=1; shift ;;
     --python) PYTHON_BINDING=1; shift ;;
     --editor) EDITOR=1; shift ;;
-    -h|--help) sed -n '2,46p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,47p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done

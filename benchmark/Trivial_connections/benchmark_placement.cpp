@@ -1,17 +1,19 @@
 // Copyright (c) 2026 CGAL Trivial Connections contributors.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Automatic singularity placement (singularity_placement.h) and one refinement trial (singularity_refinement.h)
-// for n = 4, each measured next to the reference timed in the same run: analysis + numeric factorization of the
-// same mesh's vertex Laplacian (edge weights 1 / w_e, one vertex pinned per component) with the same sparse
-// backend, as in trivial_connections_benchmark (benchmark_meshes.h).
+// Automatic singularity placement (singularity_placement.h) and the refinement of the placed singularities to a
+// local minimum of the trivial connection's energy (singularity_refinement.h), each measured next to the reference
+// timed in the same run: analysis + numeric factorization of the same mesh's vertex Laplacian (edge weights 1 / w_e,
+// one vertex pinned per component) with the same sparse backend, as in trivial_connections_benchmark
+// (benchmark_meshes.h).
 //
 //   trivial_connections_placement_benchmark [--benchmark_filter=REGEX] [--benchmark_repetitions=N]
 //
 // Benchmarks are named BACKEND/placement/MESH (`ldlt`, and `cholmod` when CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
 // is defined: the backend of the solver and of the reference; the placement itself always factors its complex
 // face pencil with Eigen's SimplicialLDLT). Environment: TC_BENCH_SIZES and TC_BENCH_MESH_CACHE as for the suite
-// (small: CGAL meshes of 52k-89k faces, and of the 71k-302k subdivisions; large: ~1.2M faces; huge: ~5M faces).
+// (small: femur, 7.8k faces, genus 2, and the CGAL meshes of 52k-89k faces and their subdivisions of 71k-302k;
+// large: ~1.2M faces; huge: ~5M faces).
 //
 // Per mesh, in one run (seconds unless noted):
 //   t_build              the solver's constructor (the backend's factorization of the trivial-connection system)
@@ -20,10 +22,17 @@
 //   t_guide              principal_curvature_guide(solver, guide)
 //   t_place_aligned      place_singularities with alignment_guide(guide, symmetry_order(4))
 //   t_solve_aligned      solver.solve() with the aligned placement's singularities
-//   t_trial              one refinement trial as refine_singularities() makes it: one solve() on the prefactored
-//                        solver, with energy_gradient, of the placed set with one singularity moved to a
-//                        neighbouring interior vertex that is not singular; the median of up to 5 such moves
-//                        (different singularities); t_trial_min, t_trial_max their range
+//   then, for each n in {1, 2, 4} (suffix _nN), on the same prefactored solver, the refinement as users run it:
+//   t_place_nN           place_singularities(solver, out, symmetry_order(n)) (t_place_n4 is t_place)
+//   t_refine_nN          refine_singularities(solver, placed, x, cancel_pairs(true, symmetry_order(n))) from that
+//                        placement, to a local minimum (no budget): its first solve of the placed set included
+//   r_refine_over_place_nN = t_refine_nN / t_place_nN (issue 38's target: <= 1)
+//   r_refine_nN          t_refine_nN / t_reference
+//   singularities_before_nN, singularities_after_nN   Refinement_report::singularities_before, singularities.size()
+//   energy_before_nN, energy_after_nN                 Refinement_report::energy_before, energy_after
+//   rounds_nN, trials_nN, moves_nN, cancellations_nN, column_solves_nN   the same fields (moves: moves.size())
+//   local_minimum_nN     1 when it stopped at a local minimum, 0 otherwise; stop_nN: Refinement_stop (0 local
+//                        minimum, 1 maximum_trials, 2 rejected_moves)
 //   t_pencil_assembly, t_pencil_factorization, t_pencil_solve
 //                        where the placement's time goes, timed apart after the above through the library's
 //                        internal classes (internal/placement/smoothest_field.h, as place_singularities() uses
@@ -32,12 +41,12 @@
 //   t_reference          the reference factorization
 //   r_end_to_end = (t_build + t_place + t_solve) / t_reference (issue target: <= 3)
 //   r_end_to_end_aligned = (t_build + t_guide + t_place_aligned + t_solve_aligned) / t_reference
-//   r_place, r_place_aligned (guide included), r_trial (issue target: <= 0.1), r_pencil_factorization: / t_reference
+//   r_place, r_place_aligned (guide included), r_pencil_factorization: / t_reference
 //   singularities, singularities_aligned, eigensolver_iterations, eigensolver_iterations_aligned
 //   (Placement_report::iterations: the LOBPCG iterations of the smoothest field; 0 for an aligned field),
 //   field_energy (Placement_report), solve_energy (Solve_report::energy of the placed set: at most field_energy
-//   when the integers are optimal), trials (moves timed), faces, vertices, genus, peak_bytes_per_face
-//   (VmHWM above the resident size before the build, over build, placements and solves, per face).
+//   when the integers are optimal), faces, vertices, genus, peak_bytes_per_face (VmHWM above the resident size
+//   before the build, over build, placements and solves of n = 4, per face; the refinements come after it).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -78,14 +87,16 @@ using tc_bench::Reference_result;
 using tc_bench::Size;
 using tc_bench::seconds_since;
 
-constexpr int symmetry = 4;
-constexpr std::size_t maximum_timed_trials = 5;
+constexpr int symmetry = 4;                       // n of the placements timed apart (t_place, t_place_aligned, ...)
+constexpr int refined_orders[] = {1, 2, 4};       // n of the refinements (_nN counters)
 
-// the meshes of at least 50k faces: the suite's, and three more small ones of other genera
+// femur (issue 38's mesh for the refinement), and the meshes of at least 50k faces: the suite's, and three more
+// small ones of other genera
 const std::vector<Mesh_spec>& placement_specs()
 {
   static const std::vector<Mesh_spec> specs = [] {
     std::vector<Mesh_spec> s = {
+      {"femur", "femur.off", 0, Size::small},           // genus 2, 7.8k faces, ~566 singularities for n = 4
       {"armadillo", "armadillo.off", 0, Size::small},   // 52k faces
       {"cheese_loop1", "cheese.off", 1, Size::small},   // genus 133, 71k
       {"turbine_loop1", "turbine.off", 1, Size::small}, // genus 11, 74k
@@ -109,43 +120,13 @@ double median(std::vector<double> v)
   return v.size() % 2 ? v[h] : (v[h - 1] + v[h]) / 2;
 }
 
-// Up to maximum_timed_trials moves of the placed singularities, each to a neighbouring interior vertex that is
-// not singular (the moves refine_singularities() tries); with no singularity, a +1/n, -1/n pair on an edge.
-std::vector<Singularities> trial_sets(const Mesh& mesh, const Singularities& placed)
+// one refinement as users run it: the placement of order n, then refine_singularities() from it
+struct Refinement_run
 {
-  std::vector<Singularities> sets;
-  std::vector<char> singular(num_vertices(mesh), 0);
-  for(const auto& s : placed)
-    singular[std::size_t(s.first)] = 1;
-  auto free_interior = [&](Vertex w) { return !singular[std::size_t(w)] && !mesh.is_border(w, true); };
-  if(placed.empty()) {
-    for(Vertex v : vertices(mesh)) {
-      if(mesh.is_isolated(v) || !free_interior(v))
-        continue;
-      for(Vertex w : vertices_around_target(halfedge(v, mesh), mesh))
-        if(w != v && free_interior(w)) {
-          sets.push_back({{v, TC::Singularity_index(1, symmetry)}, {w, TC::Singularity_index(-1, symmetry)}});
-          return sets;
-        }
-    }
-    return sets;
-  }
-  const std::size_t count = std::min(maximum_timed_trials, placed.size());
-  for(std::size_t t = 0; t < count; ++t) {
-    const std::size_t i = t * placed.size() / count; // spread over the set
-    const Vertex v = placed[i].first;
-    if(mesh.is_border(v, true))
-      continue;
-    for(Vertex w : vertices_around_target(halfedge(v, mesh), mesh))
-      if(w != v && free_interior(w)) {
-        Singularities moved = placed;
-        moved[i].first = w;
-        sets.push_back(std::move(moved));
-        break;
-      }
-  }
-  return sets;
-}
+  int n = 0;
+  double t_place = 0, t_refine = 0;
+  TC::Refinement_report<Vertex> report;
+};
 
 template <class SolverTraits, class ReferenceSolver>
 void placement(benchmark::State& state, const Mesh_spec& spec)
@@ -161,12 +142,11 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
   }
   auto x = mesh.add_property_map<Mesh::Halfedge_index, double>("h:x", 0.).first;
   auto guide = mesh.add_property_map<Mesh::Face_index, K::Vector_3>("f:guide", K::Vector_3(0, 0, 0)).first;
-  auto gradient = mesh.add_property_map<Vertex, double>("v:gradient", 0.).first;
 
   double t_build = 0, t_place = 0, t_solve = 0, t_guide = 0, t_place_aligned = 0, t_solve_aligned = 0;
   double t_assembly = 0, t_factorization = 0, t_pencil_solve = 0, peak = -1;
   double field_energy = 0, solve_energy = 0;
-  std::vector<double> trials;
+  std::vector<Refinement_run> refinements;
   TC::Placement_report smooth, aligned;
   std::int64_t genus = 0;
   Reference_result ref;
@@ -205,13 +185,26 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
       t_solve_aligned = seconds_since(t0);
       peak = base >= 0 ? tc_bench::status_bytes("VmHWM") - base : -1;
 
-      // refinement trials: what refine_singularities() calls for each candidate move
-      trials.clear();
-      for(const Singularities& moved : trial_sets(mesh, placed)) {
+      // the refinement to a local minimum, from the placement of the same order (n = 4: the one timed above)
+      refinements.clear();
+      for(const int n : refined_orders) {
+        Refinement_run run;
+        run.n = n;
+        Singularities start;
+        if(n == symmetry) {
+          start = placed;
+          run.t_place = t_place;
+        } else {
+          tc_bench::stop_idle_blas_threads();
+          t0 = Clock::now();
+          TC::place_singularities(solver, std::back_inserter(start), P::symmetry_order(n));
+          run.t_place = seconds_since(t0);
+        }
+        tc_bench::stop_idle_blas_threads();
         t0 = Clock::now();
-        benchmark::DoNotOptimize(
-          solver.solve(moved, x, P::energy_gradient(gradient, P::symmetry_order(symmetry))).energy);
-        trials.push_back(seconds_since(t0));
+        run.report = TC::refine_singularities(solver, start, x, P::cancel_pairs(true, P::symmetry_order(n)));
+        run.t_refine = seconds_since(t0);
+        refinements.push_back(std::move(run));
       }
 
       // where the placement's time goes, timed apart
@@ -248,7 +241,6 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
   }
 
   const double nf = double(num_faces(mesh));
-  const double t_trial = median(trials);
   auto& k = state.counters;
   k["faces"] = nf;
   k["vertices"] = double(num_vertices(mesh));
@@ -261,10 +253,25 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
   k["t_guide"] = t_guide;
   k["t_place_aligned"] = t_place_aligned;
   k["t_solve_aligned"] = t_solve_aligned;
-  k["t_trial"] = t_trial;
-  k["t_trial_min"] = trials.empty() ? 0 : *std::min_element(trials.begin(), trials.end());
-  k["t_trial_max"] = trials.empty() ? 0 : *std::max_element(trials.begin(), trials.end());
-  k["trials"] = double(trials.size());
+  for(const Refinement_run& run : refinements) {
+    const std::string n = "_n" + std::to_string(run.n);
+    const TC::Refinement_report<Vertex>& r = run.report;
+    k["t_place" + n] = run.t_place;
+    k["t_refine" + n] = run.t_refine;
+    k["r_refine_over_place" + n] = run.t_place > 0 ? run.t_refine / run.t_place : -1;
+    k["r_refine" + n] = run.t_refine / ref.seconds;
+    k["singularities_before" + n] = double(r.singularities_before);
+    k["singularities_after" + n] = double(r.singularities.size());
+    k["energy_before" + n] = r.energy_before;
+    k["energy_after" + n] = r.energy_after;
+    k["rounds" + n] = double(r.rounds);
+    k["trials" + n] = double(r.trials);
+    k["moves" + n] = double(r.moves.size());
+    k["cancellations" + n] = double(r.cancellations);
+    k["column_solves" + n] = double(r.column_solves);
+    k["local_minimum" + n] = r.local_minimum ? 1 : 0;
+    k["stop" + n] = double(int(r.stop));
+  }
   k["t_pencil_assembly"] = t_assembly;
   k["t_pencil_factorization"] = t_factorization;
   k["t_pencil_solve"] = t_pencil_solve;
@@ -273,7 +280,6 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
   k["r_build"] = t_build / ref.seconds;
   k["r_place"] = t_place / ref.seconds;
   k["r_place_aligned"] = (t_guide + t_place_aligned) / ref.seconds;
-  k["r_trial"] = t_trial / ref.seconds;
   k["r_pencil_factorization"] = t_factorization / ref.seconds;
   k["singularities"] = double(smooth.number_of_singularities);
   k["singularities_aligned"] = double(aligned.number_of_singularities);
@@ -308,6 +314,7 @@ int main(int argc, char** argv)
 #endif
   benchmark::AddCustomContext("mesh_cache", tc_bench::mesh_cache_dir());
   benchmark::AddCustomContext("symmetry_order", std::to_string(symmetry));
+  benchmark::AddCustomContext("refined_orders", "1,2,4");
   benchmark::Initialize(&argc, argv);
   if(benchmark::ReportUnrecognizedArguments(argc, argv))
     return 1;

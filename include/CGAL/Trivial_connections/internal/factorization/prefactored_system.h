@@ -133,12 +133,15 @@ public:
   }
 
   // M^-1 on the pattern of the factor (positions: permutation()), or null when the factor cannot be read or
-  // rows live outside it (set_constraints() on a kept factorization)
-  std::unique_ptr<Selected_inverse> selected_inverse(const Constraint_rows& rows)
+  // rows live outside it (set_constraints() on a kept factorization); `factor`, when given, gets a copy of the
+  // factor read
+  std::unique_ptr<Selected_inverse> selected_inverse(const Constraint_rows& rows, Unit_lower_factor* factor = nullptr)
   {
     Unit_lower_factor f;
     if(rows.rows == 0 || m_bordered.active() || !m_factor.read_factor(f) || f.n != int(rows.rows))
       return nullptr;
+    if(factor)
+      *factor = f;
     return std::unique_ptr<Selected_inverse>(new Selected_inverse(std::move(f)));
   }
 

@@ -7,6 +7,7 @@
 #define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_SELECTED_INVERSE_H
 
 #include <CGAL/Trivial_connections/solver_traits.h>
+#include <CGAL/Trivial_connections/internal/concurrency.h>
 
 #include <Eigen/Core>
 
@@ -135,55 +136,37 @@ struct Factor_reading<Cost_based_solver_traits<Crossover>>
   Z_ij = -sum_{k in L_:j} Z_ik L_kj for i in L_:j, and Z_jj = 1/d_j - sum_{k in L_:j} L_kj Z_kj. The rows of a
   column below any of its rows k are rows of column k (the filled graph is chordal), so every Z_ik needed is
   on the pattern; a supernodal factor's padded rows are the exception, and there L_kj = 0, so the term is 0.
-  The cost is about the factorization's: sum over columns of their length squared.
+  The cost is about the factorization's: sum over columns of their length squared, on two threads.
 */
 class Selected_inverse
 {
 public:
   // takes the factor's storage (the pattern is kept, the values become those of M^-1)
-  explicit Selected_inverse(Unit_lower_factor&& f) : m_start(std::move(f.start)), m_row(std::move(f.row))
+  explicit Selected_inverse(Unit_lower_factor&& f)
+    : m_start(std::move(f.start)), m_row(std::move(f.row)), m_l(std::move(f.value)), m_d(std::move(f.d))
   {
     const int n = f.n;
-    std::vector<double>& l = f.value;
-    m_value.assign(l.size(), 0.);
+    m_value.assign(m_l.size(), 0.);
     m_diagonal.assign(std::size_t(n), 0.);
+    // A column needs those of its ancestors in the elimination tree only: two disjoint subtrees go on two
+    // threads once the rest (their ancestors and the small subtrees) is done.
+    const std::vector<char> owner = split_in_two_subtrees(n);
     std::vector<double> sum;
-    for(int j = n - 1; j >= 0; --j) {
-      const int b = m_start[std::size_t(j)], e = m_start[std::size_t(j) + 1];
-      sum.assign(std::size_t(e - b), 0.);
-      for(int q = b; q < e; ++q) {
-        const int k = m_row[std::size_t(q)];
-        const double lk = l[std::size_t(q)];
-        sum[std::size_t(q - b)] += m_diagonal[std::size_t(k)] * lk;
-        // the rows i > k of column j against column k of Z: Z_ik enters Z_ij (times L_kj) and Z_kj (times L_ij)
-        const int kb = m_start[std::size_t(k)], ke = m_start[std::size_t(k) + 1];
-        if(q + 1 == e || kb == ke)
-          continue;
-        const bool search = std::ptrdiff_t(e - q) * 16 < std::ptrdiff_t(ke - kb);
-        int r = kb;
-        for(int p = q + 1; p < e; ++p) {
-          const int i = m_row[std::size_t(p)];
-          if(search)
-            r = int(std::lower_bound(m_row.begin() + r, m_row.begin() + ke, i) - m_row.begin());
-          else
-            while(r < ke && m_row[std::size_t(r)] < i)
-              ++r;
-          if(r == ke)
-            break;
-          if(m_row[std::size_t(r)] != i)
-            continue;
-          const double z = m_value[std::size_t(r)];
-          sum[std::size_t(p - b)] += z * lk;
-          sum[std::size_t(q - b)] += z * l[std::size_t(p)];
-        }
-      }
-      double diagonal = 1 / f.d[std::size_t(j)];
-      for(int q = b; q < e; ++q) {
-        m_value[std::size_t(q)] = -sum[std::size_t(q - b)];
-        diagonal += l[std::size_t(q)] * sum[std::size_t(q - b)];
-      }
-      m_diagonal[std::size_t(j)] = diagonal;
-    }
+    for(int j = n - 1; j >= 0; --j)
+      if(owner[std::size_t(j)] == 0)
+        column(j, sum);
+    auto subtree = [&](char which) {
+      std::vector<double> scratch;
+      for(int j = n - 1; j >= 0; --j)
+        if(owner[std::size_t(j)] == which)
+          column(j, scratch);
+      return true;
+    };
+    auto second = concurrently([&] { return subtree(2); });
+    subtree(1);
+    second.get();
+    std::vector<double>().swap(m_l);
+    std::vector<double>().swap(m_d);
   }
 
   // (M^-1)_ij for positions i, j of the factored system; NaN when (i, j) is off the pattern
@@ -199,7 +182,92 @@ public:
   }
 
 private:
+  void column(int j, std::vector<double>& sum)
+  {
+    const int b = m_start[std::size_t(j)], e = m_start[std::size_t(j) + 1];
+    sum.assign(std::size_t(e - b), 0.);
+    for(int q = b; q < e; ++q) {
+      const int k = m_row[std::size_t(q)];
+      const double lk = m_l[std::size_t(q)];
+      sum[std::size_t(q - b)] += m_diagonal[std::size_t(k)] * lk;
+      // the rows i > k of column j against column k of Z: Z_ik enters Z_ij (times L_kj) and Z_kj (times L_ij)
+      const int kb = m_start[std::size_t(k)], ke = m_start[std::size_t(k) + 1];
+      if(q + 1 == e || kb == ke)
+        continue;
+      const bool search = std::ptrdiff_t(e - q) * 16 < std::ptrdiff_t(ke - kb);
+      int r = kb;
+      for(int p = q + 1; p < e; ++p) {
+        const int i = m_row[std::size_t(p)];
+        if(search)
+          r = int(std::lower_bound(m_row.begin() + r, m_row.begin() + ke, i) - m_row.begin());
+        else
+          while(r < ke && m_row[std::size_t(r)] < i)
+            ++r;
+        if(r == ke)
+          break;
+        if(m_row[std::size_t(r)] != i)
+          continue;
+        const double z = m_value[std::size_t(r)];
+        sum[std::size_t(p - b)] += z * lk;
+        sum[std::size_t(q - b)] += z * m_l[std::size_t(p)];
+      }
+    }
+    double diagonal = 1 / m_d[std::size_t(j)];
+    for(int q = b; q < e; ++q) {
+      m_value[std::size_t(q)] = -sum[std::size_t(q - b)];
+      diagonal += m_l[std::size_t(q)] * sum[std::size_t(q - b)];
+    }
+    m_diagonal[std::size_t(j)] = diagonal;
+  }
+
+  // Per column: 1 or 2 in one of two disjoint subtrees of about equal work (squared column lengths), 0 elsewhere.
+  // From the roots down, the heaviest subtree is replaced by its children until the two heaviest are balanced.
+  std::vector<char> split_in_two_subtrees(int n) const
+  {
+    std::vector<char> owner(std::size_t(n), 0);
+    if(n < 1000)
+      return owner; // not worth a thread
+    std::vector<int> parent(std::size_t(n), -1);
+    std::vector<double> work(std::size_t(n), 0.);
+    std::vector<std::vector<int>> children((std::size_t(n)));
+    std::vector<int> roots;
+    for(int j = 0; j < n; ++j) {
+      const int b = m_start[std::size_t(j)], e = m_start[std::size_t(j) + 1];
+      work[std::size_t(j)] += double(e - b + 1) * double(e - b + 1);
+      if(b < e) {
+        parent[std::size_t(j)] = m_row[std::size_t(b)];
+        work[std::size_t(parent[std::size_t(j)])] += work[std::size_t(j)];
+        children[std::size_t(parent[std::size_t(j)])].push_back(j);
+      } else
+        roots.push_back(j);
+    }
+    double total = 0;
+    for(int r : roots)
+      total += work[std::size_t(r)];
+    std::vector<int> candidates = roots;
+    auto heavier = [&](int a, int b) { return work[std::size_t(a)] > work[std::size_t(b)]; };
+    for(int step = 0; step < 10000 && !candidates.empty(); ++step) {
+      std::sort(candidates.begin(), candidates.end(), heavier);
+      if(candidates.size() >= 2 && work[std::size_t(candidates[1])] >= 0.6 * work[std::size_t(candidates[0])])
+        break;
+      const int top = candidates.front();
+      if(work[std::size_t(top)] < 0.2 * total)
+        return owner; // no pair of heavy subtrees
+      candidates.erase(candidates.begin());
+      candidates.insert(candidates.end(), children[std::size_t(top)].begin(), children[std::size_t(top)].end());
+    }
+    if(candidates.size() < 2)
+      return owner;
+    owner[std::size_t(candidates[0])] = 1;
+    owner[std::size_t(candidates[1])] = 2;
+    for(int j = n - 1; j >= 0; --j)
+      if(owner[std::size_t(j)] == 0 && parent[std::size_t(j)] >= 0)
+        owner[std::size_t(j)] = owner[std::size_t(parent[std::size_t(j)])];
+    return owner;
+  }
+
   std::vector<int> m_start, m_row;
+  std::vector<double> m_l, m_d; // the factor, while the inverse is made
   std::vector<double> m_value, m_diagonal;
 };
 

@@ -199,10 +199,13 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     if(node >= 0 && !g.on_boundary[v])
       row_of_vertex[std::size_t(v)] = rows.row_of_node[node];
   }
+  // the rows of the system solved: those of the factor, and after set_constraints() on a kept factorization the
+  // links' rows bordered outside it (numbered after them)
+  const Eigen::Index system_rows = Access::multipliers(solver).size();
   internal::Unit_lower_factor factor;
   std::unique_ptr<internal::Selected_inverse> selected = system.selected_inverse(rows, &factor);
   internal::Move_energy inverse(std::move(row_of_vertex),
-                                rows.rows > 0 ? system.permutation().indices().data() : nullptr, rows.rows,
+                                rows.rows > 0 ? system.permutation().indices().data() : nullptr, system_rows,
                                 std::move(selected), std::move(factor),
                                 [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
 
@@ -218,13 +221,13 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       if(!prescribed && rows.row_of_slot[std::size_t(l)] >= 0)
         free_rows.push_back(rows.row_of_slot[std::size_t(l)]);
     }
-  if(free_rows.size() > 64 || double(free_rows.size()) * double(rows.rows) > 16e6) // at most 2 x 128 MB of columns
+  if(free_rows.size() > 64 || double(free_rows.size()) * double(system_rows) > 16e6) // at most 2 x 128 MB of columns
     free_rows.clear();
   const double unit = 2 * CGAL_PI / n;
   const Eigen::Index nf = Eigen::Index(free_rows.size());
-  Eigen::MatrixXd free_columns(rows.rows, nf); // M^-1 on the free rows
+  Eigen::MatrixXd free_columns(system_rows, nf); // M^-1 on the free rows
   for(Eigen::Index a = 0; a < nf; ++a) {
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(rows.rows);
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(system_rows);
     e[free_rows[std::size_t(a)]] = 1;
     free_columns.col(a) = system.solve(rows, e);
   }

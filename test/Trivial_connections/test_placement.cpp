@@ -521,7 +521,7 @@ TEST(Refinement, selected_inverse_is_the_inverse_on_the_pattern_of_the_factor)
   // in a fill-reducing order, whose elimination tree branches (the inversion then runs on two threads)
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
   Eigen::AMDOrdering<int>()(grid.selfadjointView<Eigen::Lower>(), order);
-  Eigen::SparseMatrix<double> M = grid.twistedBy(order.inverse());
+  const Eigen::SparseMatrix<double> M = order.transpose() * grid * order;
   using Simplicial = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>;
   struct View
   {

@@ -47,7 +47,8 @@ Why `refine_singularities()` stopped.
 */
 enum class Refinement_stop
 {
-  local_minimum,  ///< no single move or cancellation lowers the energy (the integers of loops and links kept)
+  local_minimum,  ///< no single move or cancellation lowers the energy, its integers chosen again (kept when the
+                  ///< loops and links have more than 64 free integers)
   maximum_trials, ///< the budget of solves (`maximum_trials`) was spent
   rejected_moves  ///< moves predicted to lower the energy did not once their integers were chosen again
 };
@@ -83,17 +84,21 @@ singularity against one of a negative singularity) while that lowers the minimis
 connection (`energy + guidance_energy` of `solve()`), until no single move or cancellation lowers it: a local
 minimum.
 
-Every candidate is scored exactly from one solve, its integers of loops and links kept: the energy is
-`b^T M^-1 b`, so moving `d = 2 pi u / n` of index from `v` to `w` changes it by
+Every candidate is scored exactly from one solve: the energy is `b^T M^-1 b`, so moving `d = 2 pi u / n` of
+index from `v` to `w` changes it, the integers of loops and links kept, by
 `(u / n) (g_w - g_v) + d^2 (G_vv + G_ww - 2 G_vw)`, with `g` the energy gradient of the solve and `G = M^-1`.
 The entries of `G` between neighbours are on the pattern of the sparse factor, so one selected inversion of
 the factor (about the cost of the factorization) gives all of them; a cancellation between distant vertices
-costs a back-substitution when the bound `|G_vw| <= sqrt(G_vv G_ww)` does not already exclude it. A round
-applies the best-scored moves that lie apart (no two within one ring of each other), in one `solve()` that
-chooses the integers again; when that solve does not lower the energy, half of the moves are tried, down to
-a single one. The energy decreases at every round, so the refinement ends, at a local minimum unless a budget
-of solves is given. Solvers whose backend does not expose its factor (or after `set_constraints()` on a kept
+reads `G_vw` from the column of `G` at one of them (a back-substitution, kept from round to round). A move may
+lower the energy only with some free integers changed: with at most 64 of them, each candidate is also priced
+with the best change of the integers (a closest vector search in their metric, when a bound says it may pay).
+A round applies the best-scored candidates that lie apart (no two within one ring of each other) in one
+`solve()` that chooses the integers again, each cancellation's change corrected exactly for its interaction
+with those taken before it; when that solve does not lower the energy, half of the moves are tried, down to a
+single one. The energy decreases at every round, so the refinement ends, at a local minimum unless a budget of
+solves is given. Solvers whose backend does not expose its factor (or after `set_constraints()` on a kept
 factorization) get the entries from back-substitutions, a column per vertex (kept up to about 256 MB).
+See the user manual, "Refinement by Moves", for the measurements.
 
 Poincare-Hopf is kept: a move keeps every component's index sum.
 
@@ -341,8 +346,8 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       for(int v = 0; v < m.nv; ++v)
         if(k[v] != 0 && !fixed[v])
           (k[v] > 0 ? positive : negative).push_back(v);
-      // The exact change of every pair, from the columns of G at the positive singularities (kept from round to
-      // round: most of them stay), the integers priced as for moves.
+      // The exact change of every pair, from the columns of G at the singularities of one sign (kept from round
+      // to round: most of them stay), the integers priced as for moves.
       std::vector<double> diagonal(std::size_t(m.nv), 0.);
       for(int v = 0; v < m.nv; ++v)
         if(k[v] != 0 && !fixed[v])

@@ -73,14 +73,10 @@ struct Factor_reading<CGAL::Eigen_solver_traits<Cholmod_supernodal_factorization
   template <class Traits>
   static bool read(Traits& traits, Unit_lower_factor& f)
   {
-    const cholmod_factor* F = traits.solver().factor();
-    if(F == nullptr || !F->is_super || !F->is_ll || F->itype != CHOLMOD_INT || F->xtype != CHOLMOD_REAL)
+    // L L^T in the order given, as the substitutions read it; supernodal
+    if(!Factor_substitutions<Cholmod_solver_traits>::available(traits) || !traits.solver().factor()->is_super)
       return false;
-    const int* perm = static_cast<const int*>(F->Perm);
-    if(perm != nullptr)
-      for(std::size_t i = 0; i < F->n; ++i)
-        if(perm[i] != int(i))
-          return false;
+    const cholmod_factor* F = traits.solver().factor();
     const int* super = static_cast<const int*>(F->super);
     const int* pi = static_cast<const int*>(F->pi);
     const int* px = static_cast<const int*>(F->px);

@@ -101,14 +101,23 @@ struct Placed
   TC::Placement_report report;
 };
 
+// the inverse of descriptors(): by vertex number of the view
+Singularities numbered(const Mesh_view<Surface_mesh>& view,
+                       const std::vector<std::pair<Solver::vertex_descriptor, TC::Singularity_index>>& s)
+{
+  Singularities r;
+  for(const auto& e : s)
+    r.emplace_back(view.vid.at(e.first), e.second);
+  return r;
+}
+
 template <class NP = TC::parameters::Default_named_parameters>
 Placed place(const Mesh_view<Surface_mesh>& view, const Solver& solver, const NP& np = TC::parameters::default_values())
 {
   std::vector<std::pair<Solver::vertex_descriptor, TC::Singularity_index>> out;
   Placed p;
   p.report = TC::place_singularities(solver, std::back_inserter(out), np);
-  for(const auto& s : out)
-    p.singularities.emplace_back(view.vid.at(s.first), s.second);
+  p.singularities = numbered(view, out);
   return p;
 }
 
@@ -447,9 +456,7 @@ TEST(Refinement, moves_two_close_singularities_on_a_sphere_apart_without_raising
   }
   EXPECT_LT(r.moves.front().energy, r.energy_before);
   ASSERT_EQ(r.singularities.size(), 2u);
-  Singularities end;
-  for(const auto& s : r.singularities)
-    end.emplace_back(view.vid.at(s.first), s.second);
+  const Singularities end = numbered(view, r.singularities);
   EXPECT_EQ(sum_of(end, 1), Index(2));
   EXPECT_GT(norm(view.P[end[0].first] - view.P[end[1].first]), norm(view.P[a] - view.P[b]) + 0.3);
   // the connection written is that of the refined set
@@ -622,9 +629,7 @@ TEST(Refinement, stops_at_a_local_minimum_that_every_single_move_and_cancellatio
       EXPECT_GT(r.rounds, 0u);
       EXPECT_LE(r.rounds, r.trials);
       EXPECT_LE(r.cancellations, r.moves.size());
-      Singularities end;
-      for(const auto& e : r.singularities)
-        end.emplace_back(view.vid.at(e.first), e.second);
+      const Singularities end = numbered(view, r.singularities);
       // the connection written is that of the refined set, with the energy reported
       check_connection(view, solver, end, n, x, r.report);
       EXPECT_NEAR(r.report.energy + r.report.guidance_energy, r.energy_after, 1e-12 * r.energy_after);
@@ -1204,9 +1209,7 @@ TEST(Refinement, reaches_a_local_minimum_under_pins_and_with_boundary_alignment)
     EXPECT_TRUE(r.local_minimum);
     EXPECT_LE(r.energy_after, r.energy_before);
     EXPECT_LE(r.report.max_constraint_residual, 1e-9);
-    Singularities end;
-    for(const auto& e : r.singularities)
-      end.emplace_back(view.vid.at(e.first), e.second);
+    const Singularities end = numbered(view, r.singularities);
     expect_no_single_move_or_cancellation_lowers_the_energy(view, solver, end, 4, r.energy_after, np);
 
     // half of the pins set again on the kept factorization: their links are rows bordered outside the factor
@@ -1220,9 +1223,7 @@ TEST(Refinement, reaches_a_local_minimum_under_pins_and_with_boundary_alignment)
                                             TC::parameters::cancel_pairs(true, half_np));
     EXPECT_TRUE(h.local_minimum);
     EXPECT_GT(h.column_solves, 0u); // no selected inverse: every entry from columns
-    Singularities half_end;
-    for(const auto& e : h.singularities)
-      half_end.emplace_back(view.vid.at(e.first), e.second);
+    const Singularities half_end = numbered(view, h.singularities);
     expect_no_single_move_or_cancellation_lowers_the_energy(view, solver, half_end, 4, h.energy_after, half_np);
   }
   {
@@ -1238,9 +1239,7 @@ TEST(Refinement, reaches_a_local_minimum_under_pins_and_with_boundary_alignment)
                                               TC::parameters::cancel_pairs(true, TC::parameters::symmetry_order(n)));
       EXPECT_TRUE(r.local_minimum);
       EXPECT_LE(r.report.max_vertex_residual, 1e-9);
-      Singularities end;
-      for(const auto& e : r.singularities)
-        end.emplace_back(view.vid.at(e.first), e.second);
+      const Singularities end = numbered(view, r.singularities);
       expect_no_single_move_or_cancellation_lowers_the_energy(view, solver, end, n, r.energy_after,
                                                               TC::parameters::symmetry_order(n));
     }

@@ -10,8 +10,8 @@
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/parameters.h>
-#include <CGAL/Trivial_connections/internal/integers/closest_vector.h>
 #include <CGAL/Trivial_connections/internal/placement/move_energy.h>
+#include <CGAL/Trivial_connections/internal/placement/move_integers.h>
 #include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
 
 #include <boost/property_map/vector_property_map.hpp>
@@ -214,89 +214,21 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
                                 std::move(selected), std::move(factor),
                                 [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
 
-  // The free integers (loops, links) the solves choose: a move may lower the energy only with some of them
-  // changed, by s. With l = their multipliers, G_F their block of M^-1 and p = l + d (G_Fw - G_Fv) the change
-  // is that of the move plus 2 u s.p + u^2 s^T G_F s (u = 2 pi / n): a closest vector problem, searched when
-  // its real minimum -p^T G_F^-1 p could make the move pay off. Each such integer costs a back-substitution
-  // (its column of M^-1), once: done while they are few (at most 64).
-  std::vector<int> free_rows;
-  for(const std::vector<int>& slots : rows.free_slots)
-    for(int l : slots) {
+  // The free integers (loops, links) of each component, which the solves choose: see Move_integers
+  const double unit = 2 * CGAL_PI / n;
+  std::vector<std::vector<int>> free_rows(rows.free_slots.size());
+  for(std::size_t c = 0; c < rows.free_slots.size(); ++c)
+    for(int l : rows.free_slots[c]) {
       const bool prescribed = std::size_t(l) < result.report.loops.size() && result.report.loops[std::size_t(l)].prescribed;
       if(!prescribed && rows.row_of_slot[std::size_t(l)] >= 0)
-        free_rows.push_back(rows.row_of_slot[std::size_t(l)]);
+        free_rows[c].push_back(rows.row_of_slot[std::size_t(l)]);
     }
-  if(free_rows.size() > 64 || double(free_rows.size()) * double(system_rows) > 16e6) // at most 2 x 128 MB of columns
-    free_rows.clear();
-  const double unit = 2 * CGAL_PI / n;
-  const Eigen::Index nf = Eigen::Index(free_rows.size());
-  Eigen::MatrixXd free_columns(system_rows, nf); // M^-1 on the free rows
-  for(Eigen::Index a = 0; a < nf; ++a) {
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(system_rows);
-    e[free_rows[std::size_t(a)]] = 1;
-    free_columns.col(a) = system.solve(rows, e);
-  }
-  Eigen::MatrixXd free_block(nf, nf);
-  for(Eigen::Index a = 0; a < nf; ++a)
-    free_block.row(a) = free_columns.row(free_rows[std::size_t(a)]);
-  free_block = (free_block + free_block.transpose()).eval() / 2;
-  const Eigen::LLT<Eigen::MatrixXd> free_factor(free_block);
-  const Eigen::MatrixXd free_block_inverse = free_factor.solve(Eigen::MatrixXd::Identity(nf, nf));
-  internal::Reduced_lattice free_lattice;
-  if(nf > 0)
-    free_lattice = internal::reduce_lattice(free_block, free_factor.matrixU(), internal::lattice_reduction_budget(nf));
-  // With C_v = G_Fv (the row of free_columns), H = G_F^-1 and lambda_F the free rows' multipliers, the move of d
-  // from v to w has p = lambda_F + d (C_w - C_v), and p^T H p and |C_w - C_v|_H expand into dot products of the
-  // rows of free_columns and of weighted_columns = free_columns H.
-  using Row_major = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>; // rows read one by one
-  const Row_major weighted_columns = free_columns * free_block_inverse;
-  const Row_major free_rows_major = free_columns;
-  free_columns = Eigen::MatrixXd();
-  // per vertex: |C_v|_H^2, and (per round) lambda_F^T H C_v
-  std::vector<double> gamma(std::size_t(m.nv), 0.), beta(std::size_t(m.nv), 0.);
-  std::vector<int> beta_round(std::size_t(m.nv), -1);
-  int current_round = 0;
-  using Free_vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 64, 1>; // on the stack
-  Free_vector lambda_F(nf);  // per round
-  double lambda_norm = 0;    // lambda_F^T H lambda_F, per round
-  auto rows_dot = [&](int ra, int rb) { // C_a^T H C_b
-    return ra < 0 || rb < 0 ? 0. : free_rows_major.row(ra).dot(weighted_columns.row(rb));
-  };
-  for(int v = 0; v < m.nv && nf > 0; ++v)
-    gamma[std::size_t(v)] = rows_dot(inverse.row_of(v), inverse.row_of(v));
-  auto beta_of = [&](int v) {
-    if(beta_round[std::size_t(v)] != current_round) {
-      const int r = inverse.row_of(v);
-      beta[std::size_t(v)] = r < 0 ? 0. : weighted_columns.row(r).dot(lambda_F.transpose());
-      beta_round[std::size_t(v)] = current_round;
-    }
-    return beta[std::size_t(v)];
-  };
-  // A lower bound on what changing the integers can give (<= 0). With c0 = -H lambda_F / u the real minimiser
-  // now and c1 that after the move, the integers now are the lattice point nearest to c0 (when the solve proved
-  // it): at distance rho = |c0|, in the norm of G_F. The move shifts the centre by delta = |c1 - c0|, so no
-  // lattice point is nearer to c1 than rho - delta, and the gain is at least u^2 (rho - delta)_+^2 - |c1|^2.
-  // Without it the bound would be -|c1|^2 (every integer real), and every pair would be searched.
-  double rho = 0;
-  // the energy change of that move with the integers kept (`kept`), or with the best of them
+  internal::Move_integers integers(free_rows, system_rows, unit,
+                                   [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
+  auto component = [&](int v) { return std::size_t(t.component_of_node[t.node_of_vertex[v]]); };
+  // the energy change of the move of d from v to w with the integers kept (`kept`), or with the best of them
   auto with_integers = [&](int v, int w, double d, double kept, double tolerance) {
-    if(nf == 0)
-      return kept;
-    const int rv = inverse.row_of(v), rw = inverse.row_of(w);
-    const double shift2 = (std::max)(gamma[std::size_t(v)] + gamma[std::size_t(w)] - 2 * rows_dot(rv, rw), 0.); // |C_w - C_v|_H^2
-    const double relaxed = lambda_norm + 2 * d * (beta_of(w) - beta_of(v)) + d * d * shift2; // |c1|^2 u^2
-    const double gap = (std::max)(rho - std::abs(d) / unit * std::sqrt(shift2), 0.);
-    if(kept + (std::min)(0., unit * unit * gap * gap - relaxed) >= -tolerance)
-      return kept;
-    Free_vector p = lambda_F;
-    if(rw >= 0)
-      p += d * free_rows_major.row(rw).transpose();
-    if(rv >= 0)
-      p -= d * free_rows_major.row(rv).transpose();
-    const Eigen::VectorXd center = -(free_block_inverse * p) / unit; // the real minimiser (a search is rare)
-    const internal::Closest_vector_result best = internal::closest_vector(free_lattice, free_block, center, {}, 1e5);
-    // u^2 ((s - c)^T G_F (s - c) - c^T G_F c), c = center
-    return (std::min)(kept, kept + unit * unit * (best.value - center.dot(free_block * center)));
+    return integers.empty() ? kept : integers.best(component(v), inverse.row_of(v), inverse.row_of(w), d, kept, tolerance);
   };
 
   struct Candidate
@@ -320,13 +252,8 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   for(int round = 0;; ++round) {
     // changes below this are rounding: no cycling on ties
     const double tolerance = 1e-10 * (std::max)(energy, 1e-300);
-    current_round = round;
-    if(nf > 0) {
-      for(Eigen::Index a = 0; a < nf; ++a)
-        lambda_F[a] = Access::multipliers(solver)[free_rows[std::size_t(a)]];
-      lambda_norm = lambda_F.dot(free_block_inverse * lambda_F);
-      rho = result.report.integers_proven_optimal ? std::sqrt((std::max)(lambda_norm, 0.)) / unit : 0.;
-    }
+    if(!integers.empty())
+      integers.start_round(Access::multipliers(solver), result.report.integers_proven_optimal);
     std::vector<Candidate> candidates;
     for(int v = 0; v < m.nv; ++v) {
       if(k[v] == 0 || fixed[v])
@@ -453,7 +380,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     }
   }
   result.local_minimum = result.stop == Refinement_stop::local_minimum;
-  result.column_solves = inverse.column_solves() + std::size_t(nf);
+  result.column_solves = inverse.column_solves() + integers.column_solves();
   result.energy_after = energy;
   result.singularities = as_set(k);
   // x holds the last trial's connection: solved again when that trial was rejected

@@ -91,8 +91,9 @@ public:
     auto solve_range = [&](std::size_t begin, std::size_t end) {
       std::vector<Eigen::VectorXd> out;
       if(m_factor.n == int(m_rows)) {
+        std::vector<double> z; // one workspace per thread: fresh pages cost more than the substitutions here
         for(std::size_t i = begin; i < end; i += block)
-          columns_of_factor(missing, i, (std::min)(end, i + block), out);
+          columns_of_factor(missing, i, (std::min)(end, i + block), z, out);
         return out;
       }
       for(std::size_t i = begin; i < end; ++i) {
@@ -124,14 +125,14 @@ private:
 
   // The columns of rows[begin, end) (at most `block`), appended to `out`: the substitutions through the factor
   // for all of them at once, which reads the factor once instead of once per column.
-  void columns_of_factor(const std::vector<int>& rows, std::size_t begin, std::size_t end,
+  void columns_of_factor(const std::vector<int>& rows, std::size_t begin, std::size_t end, std::vector<double>& z,
                          std::vector<Eigen::VectorXd>& out) const
   {
     const std::size_t b = end - begin, n = std::size_t(m_factor.n);
     const int* start = m_factor.start.data();
     const int* row = m_factor.row.data();
     const double* l = m_factor.value.data();
-    std::vector<double> z(n * b, 0.); // position-major: z[p * b + c]
+    z.assign(n * b, 0.); // position-major: z[p * b + c]
     int first = int(n);
     for(std::size_t c = 0; c < b; ++c) {
       const int p = m_position[rows[begin + c]];

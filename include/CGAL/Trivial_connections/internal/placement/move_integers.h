@@ -1,0 +1,188 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_MOVE_INTEGERS_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_MOVE_INTEGERS_H
+
+#include <CGAL/Trivial_connections/internal/integers/closest_vector.h>
+#include <CGAL/Trivial_connections/internal/integers/lattice_reduction.h>
+
+#include <CGAL/number_type_config.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  What changing the free integers (of loops and links) can add to a move's energy change. A move may lower the
+  energy only with some of them changed, by s. With lambda_F their multipliers, G_F their block of M^-1 and
+  p = lambda_F + d (G_Fw - G_Fv), the change is that of the move plus 2 u s.p + u^2 s^T G_F s (u = 2 pi / n):
+  a closest vector problem, searched when its real minimum -p^T G_F^-1 p could make the move pay off.
+  M is block diagonal by component, and a move stays in its component, so only that component's integers can
+  change: one block per component, each searched in its own (small) lattice. A block costs a back-substitution
+  per integer (its column of M^-1), once; a component with more than 64 free integers keeps them.
+*/
+class Move_integers
+{
+public:
+  static constexpr std::size_t largest_block = 64;
+
+  // `free_rows[c]`: the rows of component c's free integers; `solve(e)`: M^-1 e
+  template <class Solve>
+  Move_integers(const std::vector<std::vector<int>>& free_rows, Eigen::Index system_rows, double unit, Solve solve)
+    : m_unit(unit), m_block_of_component(free_rows.size(), -1), m_gamma(std::size_t(system_rows), -1.),
+      m_beta(std::size_t(system_rows), 0.), m_beta_round(std::size_t(system_rows), -1)
+  {
+    double stored = 0;
+    for(std::size_t c = 0; c < free_rows.size(); ++c) {
+      const std::vector<int>& rows = free_rows[c];
+      const Eigen::Index k = Eigen::Index(rows.size());
+      // at most 2 x 128 MB of columns in all
+      if(k == 0 || rows.size() > largest_block || stored + 2 * double(k) * double(system_rows) > 32e6)
+        continue;
+      stored += 2 * double(k) * double(system_rows);
+      Block b;
+      b.rows = rows;
+      Eigen::MatrixXd columns(system_rows, k);
+      for(Eigen::Index a = 0; a < k; ++a) {
+        Eigen::VectorXd e = Eigen::VectorXd::Zero(system_rows);
+        e[rows[std::size_t(a)]] = 1;
+        columns.col(a) = solve(e);
+      }
+      m_columns_made += std::size_t(k);
+      b.metric.resize(k, k);
+      for(Eigen::Index a = 0; a < k; ++a)
+        b.metric.row(a) = columns.row(rows[std::size_t(a)]);
+      b.metric = (b.metric + b.metric.transpose()).eval() / 2;
+      const Eigen::LLT<Eigen::MatrixXd> llt(b.metric);
+      if(llt.info() != Eigen::Success)
+        continue; // not positive definite in double precision: that component's integers are kept
+      b.inverse = llt.solve(Eigen::MatrixXd::Identity(k, k));
+      b.lattice = reduce_lattice(b.metric, llt.matrixU(), lattice_reduction_budget(k));
+      b.weighted = columns * b.inverse;
+      b.columns = std::move(columns);
+      b.lambda = Eigen::VectorXd::Zero(k);
+      m_block_of_component[c] = int(m_blocks.size());
+      m_blocks.push_back(std::move(b));
+    }
+  }
+
+  bool empty() const { return m_blocks.empty(); }
+  std::size_t column_solves() const { return m_columns_made; }
+
+  // the multipliers of the current solve; `proven`: its integers are the optimal ones
+  void start_round(const Eigen::VectorXd& multipliers, bool proven)
+  {
+    ++m_round;
+    for(Block& b : m_blocks) {
+      for(std::size_t a = 0; a < b.rows.size(); ++a)
+        b.lambda[Eigen::Index(a)] = multipliers[b.rows[a]];
+      b.lambda_norm = b.lambda.dot(b.inverse * b.lambda);
+      b.rho = proven ? std::sqrt((std::max)(b.lambda_norm, 0.)) / m_unit : 0.;
+    }
+  }
+
+  /*
+    A lower bound on what changing the integers can give the move of d from the vertex of row rv to that of rw
+    in component c (<= 0; rows -1 for vertices without one). With c0 = -H lambda_F / u the real minimiser now and c1 that after
+    the move, the integers now are the lattice point nearest to c0 (when the solve proved it): at distance
+    rho = |c0| in the norm of G_F. The move shifts the centre by delta = |c1 - c0|, so no lattice point is nearer
+    to c1 than rho - delta, and the gain is at least u^2 (rho - delta)_+^2 - |c1|^2 u^2. Without it the bound
+    would be -|c1|^2 u^2 (every integer real), and every pair would be searched.
+  */
+  double bound(std::size_t c, int rv, int rw, double d)
+  {
+    const int block = m_block_of_component[c];
+    if(block < 0)
+      return 0;
+    const Block& b = m_blocks[std::size_t(block)];
+    const double shift2 = shift(b, rv, rw);
+    const double relaxed = b.lambda_norm + 2 * d * (beta(b, rw) - beta(b, rv)) + d * d * shift2; // |c1|^2 u^2
+    const double gap = (std::max)(b.rho - std::abs(d) / m_unit * std::sqrt(shift2), 0.);
+    return (std::min)(0., m_unit * m_unit * gap * gap - relaxed);
+  }
+
+  // the energy change of that move with the integers kept (`kept`), or with the best of them
+  double best(std::size_t c, int rv, int rw, double d, double kept, double tolerance)
+  {
+    if(kept + bound(c, rv, rw, d) >= -tolerance)
+      return kept;
+    const Block& b = m_blocks[std::size_t(m_block_of_component[c])];
+    Eigen::VectorXd p = b.lambda;
+    if(rw >= 0)
+      p += d * b.columns.row(rw).transpose();
+    if(rv >= 0)
+      p -= d * b.columns.row(rv).transpose();
+    const Eigen::VectorXd center = -(b.inverse * p) / m_unit; // the real minimiser
+    const Closest_vector_result nearest = closest_vector(b.lattice, b.metric, center, {}, 1e5);
+    // u^2 ((s - c)^T G_F (s - c) - c^T G_F c), c = center
+    return (std::min)(kept, kept + m_unit * m_unit * (nearest.value - center.dot(b.metric * center)));
+  }
+
+private:
+  using Row_major = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>; // rows read one by one
+
+  struct Block
+  {
+    std::vector<int> rows;
+    Eigen::MatrixXd metric, inverse; // G_F, H = G_F^-1
+    Reduced_lattice lattice;
+    Row_major columns, weighted;     // M^-1 on the free rows (C_r is row r), and C H
+    Eigen::VectorXd lambda;          // per round
+    double lambda_norm = 0, rho = 0; // lambda^T H lambda, and the distance of the integers to the centre
+  };
+
+  // |C_w - C_v|_H^2
+  double shift(const Block& b, int rv, int rw)
+  {
+    auto dot = [&](int ra, int rb) { return ra < 0 || rb < 0 ? 0. : b.columns.row(ra).dot(b.weighted.row(rb)); };
+    return (std::max)(gamma(b, rv) + gamma(b, rw) - 2 * dot(rv, rw), 0.);
+  }
+
+  double gamma(const Block& b, int r) // |C_r|_H^2, kept
+  {
+    if(r < 0)
+      return 0;
+    double& g = m_gamma[std::size_t(r)];
+    if(g < 0)
+      g = (std::max)(b.columns.row(r).dot(b.weighted.row(r)), 0.);
+    return g;
+  }
+
+  double beta(const Block& b, int r) // lambda_F^T H C_r, per round
+  {
+    if(r < 0)
+      return 0;
+    if(m_beta_round[std::size_t(r)] != m_round) {
+      m_beta[std::size_t(r)] = b.weighted.row(r).dot(b.lambda.transpose());
+      m_beta_round[std::size_t(r)] = m_round;
+    }
+    return m_beta[std::size_t(r)];
+  }
+
+  double m_unit;
+  std::vector<Block> m_blocks;
+  std::vector<int> m_block_of_component;
+  std::vector<double> m_gamma, m_beta;
+  std::vector<int> m_beta_round;
+  int m_round = 0;
+  std::size_t m_columns_made = 0;
+};
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_MOVE_INTEGERS_H

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Side by side with Directional (issue 37, item 5): the same feature pins (faces beside the sharp curves,
 # feature_aligned_faces at 30 degrees, n = 4) for Directional's power field with hard constraints and for our
-# program; our trivial connection with Directional's singularities vs with our --auto placement.
+# program; our trivial connection with Directional's singularities vs with our --auto placement, unrefined
+# (--auto --no-refine: the placement compares with Directional's power field; plain --auto refines further).
 #
 #   bash scripts/compare_directional.sh PEER_BINARY [BUILD_DIR] [MESH.off ...]
 #
@@ -39,7 +40,7 @@ timed() { # LOG CMD...: runs CMD $reps times, stdout+stderr to LOG; prints the m
 }
 energy() { grep -o 'energy: [-+0-9.eE]*' "$1" | tail -1 | awk '{print $2}'; }
 
-echo "| mesh | faces | pins | Directional: whole run, peak | its singularities | ours with its singularities: energy, whole run | ours --auto: singularities, energy, whole run, peak | ratio of energies |"
+echo "| mesh | faces | pins | Directional: whole run, peak | its singularities | ours with its singularities: energy, whole run | ours --auto --no-refine: singularities, energy, whole run, peak | ratio of energies |"
 echo "|---|---|---|---|---|---|---|---|"
 for mesh in "${meshes[@]}"; do
   name=$(basename "$mesh" .off)
@@ -52,7 +53,7 @@ for mesh in "${meshes[@]}"; do
   read -r t_with m_with <<< "$(timed "$out/$name.ours_with_directional.log" "$program" "$mesh" --n 4 \
     --constraints "$pins" --singularities "$out/$name.directional.sing" --write-singularities "$out/$name.ours_with_directional.sing")"
   e_with=$(energy "$out/$name.ours_with_directional.log")
-  read -r t_auto m_auto <<< "$(timed "$out/$name.ours_auto.log" "$program" "$mesh" --n 4 --auto \
+  read -r t_auto m_auto <<< "$(timed "$out/$name.ours_auto.log" "$program" "$mesh" --n 4 --auto --no-refine \
     --constraints "$pins" --write-singularities "$out/$name.ours_auto.sing")"
   e_auto=$(energy "$out/$name.ours_auto.log")
   nauto=$(grep -vc "^#" "$out/$name.ours_auto.sing" || true)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Side by side with geometry-central: our automatic singularity placement (--auto: the singularities of the
 # globally smoothest N-direction field, Knoeppel et al. 2013, then the trivial connection with exactly them;
-# with and without --refine) against geometry-central's smoothest face direction field and its vertex indices.
+# refined, the program's default, and with --no-refine) against geometry-central's smoothest face direction field and its vertex indices.
 # Whole processes (reading the mesh included) are timed; our trivial connection is also solved with
 # geometry-central's singularities, so that the energies compare where the singularities are, not the solvers.
 #
@@ -16,8 +16,10 @@
 # singular interior vertices as 'v p/N' lines (our --singularities format, 0-based vertex index in file order).
 # Nothing of geometry-central is in this repository.
 # PROGRAM: our command-line program built Release (default /tmp/b2/trivial_connections).
-# Our two command lines are PROGRAM MESH --n N followed by $TC_OURS_SMOOTHEST (default "--auto": the smoothest
-# field's singularities, no refinement) and by $TC_OURS_REFINED (default "--auto --refine --cancel-pairs").
+# Our two command lines are PROGRAM MESH --n N followed by $TC_OURS_SMOOTHEST (default "--auto --no-refine": the
+# smoothest field's singularities, no refinement, what compares with geometry-central's) and by $TC_OURS_REFINED
+# (default "--auto": refined to a local minimum with cancellations, the same as --auto --refine --cancel-pairs).
+# A program older than --no-refine needs TC_OURS_SMOOTHEST=--auto TC_OURS_REFINED="--auto --refine --cancel-pairs".
 # N takes the values of TC_COMPARE_N (default 4; e.g. TC_COMPARE_N="1 2 4").
 # Whole processes are timed by /usr/bin/time (wall seconds, maximum resident size; the median of TC_COMPARE_REPS
 # runs, default 3; the peak is that of the median run). Outputs and logs go to TC_COMPARE_DIR (default
@@ -32,8 +34,8 @@ data="$here/.cgal-data/data/meshes"
 meshes=("$@")
 [ ${#meshes[@]} -gt 0 ] || meshes=("$data/bunny00.off" "$data/armadillo.off" "$data/refined_elephant.off" \
   "$data/femur.off" "$data/elephant.off" "$data/fandisk.off")
-read -r -a ours_smoothest <<< "${TC_OURS_SMOOTHEST:---auto}"
-read -r -a ours_refined <<< "${TC_OURS_REFINED:---auto --refine --cancel-pairs}"
+read -r -a ours_smoothest <<< "${TC_OURS_SMOOTHEST:---auto --no-refine}"
+read -r -a ours_refined <<< "${TC_OURS_REFINED:---auto}"
 out=${TC_COMPARE_DIR:-/tmp/peers/runs_gc}
 mkdir -p "$out"
 

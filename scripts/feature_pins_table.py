@@ -28,10 +28,10 @@ def main(path):
             print(f"<!-- {r['name']}: {r.get('error_message')} -->")
             continue
         rows[r["name"].split("/")[0]].append(r)
-    print("Whole process: `trivial_connections MESH.off --n 4 --auto` without and with `--constraints PINS` "
-          "(wall time; the child's own maximum resident size, wait4)\n")
+    print("Whole process: `trivial_connections MESH.off --n 4 --auto --no-refine` without and with "
+          "`--constraints PINS` (wall time; the child's own maximum resident size, wait4)\n")
     print("| mesh | faces | pins | pins / faces | time, no pins -> pins | ratio | peak memory, no pins -> pins | ratio "
-          "| energy of `--auto`, no pins -> pins |")
+          "| energy of `--auto --no-refine`, no pins -> pins |")
     print("|---|---:|---|---:|---|---:|---|---:|---|")
     for r in rows["program"]:
         mesh, kind = r["name"].split("/")[1:3]

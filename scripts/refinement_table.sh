@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # What the refinement to a local minimum adds to the automatic singularity placement, over CGAL's data set:
-# for each mesh and N, our program with the smoothest field's singularities (--auto) and with them refined
-# (--auto --refine --cancel-pairs): singularities, energy and times of both, so that the manual can say with
-# numbers whether --auto should refine by default.
+# for each mesh and N, our program with the smoothest field's singularities (--auto --no-refine) and with them
+# refined (--auto, which refines by default since these numbers; the same as --auto --refine --cancel-pairs):
+# singularities, energy and times of both, the numbers behind the manual's "Refined by default".
 #
 #   bash scripts/refinement_table.sh [PROGRAM] [MESH.off ...]
 #
@@ -10,8 +10,9 @@
 # output directory first (after waiting for it to exist and not to have changed for a few seconds), so that a
 # rebuild during the run neither makes it vanish nor mixes two versions in one table.
 # MESH: default every *.off of .cgal-data/data/meshes (scripts/fetch_cgal_data.sh).
-# The two command lines are PROGRAM MESH --n N $TC_SMOOTHEST (default "--auto") and PROGRAM MESH --n N
-# $TC_REFINED (default "--auto --refine --cancel-pairs"), both with --progress and with --connection, --field
+# The two command lines are PROGRAM MESH --n N $TC_SMOOTHEST (default "--auto --no-refine") and PROGRAM MESH --n N
+# $TC_REFINED (default "--auto"; a program older than --no-refine needs TC_SMOOTHEST=--auto
+# TC_REFINED="--auto --refine --cancel-pairs"), both with --progress and with --connection, --field
 # in the output directory, for N in TC_TABLE_N (default 4; e.g. TC_TABLE_N="1 2"). Each run once (no median),
 # timed whole by /usr/bin/time (wall seconds, maximum resident size), stopped after TC_TABLE_TIMEOUT seconds
 # (default 120). Outputs and logs go to TC_TABLE_DIR (default a new directory /tmp/refinement_table.XXXXXX,
@@ -41,8 +42,8 @@ if [ ${#meshes[@]} -eq 0 ]; then
   shopt -u nullglob
 fi
 [ ${#meshes[@]} -gt 0 ] || { echo "no mesh (default: $data/*.off; scripts/fetch_cgal_data.sh)" >&2; exit 2; }
-read -r -a smoothest <<< "${TC_SMOOTHEST:---auto}"
-read -r -a refined <<< "${TC_REFINED:---auto --refine --cancel-pairs}"
+read -r -a smoothest <<< "${TC_SMOOTHEST:---auto --no-refine}"
+read -r -a refined <<< "${TC_REFINED:---auto}"
 limit=${TC_TABLE_TIMEOUT:-120}
 out=${TC_TABLE_DIR:-$(mktemp -d /tmp/refinement_table.XXXXXX)}
 mkdir -p "$out"

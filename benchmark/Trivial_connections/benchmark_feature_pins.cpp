@@ -33,7 +33,8 @@
 //     (t_set), place_singularities(face_directions) (t_place), solve (t_solve): r_set_solve = (t_set + t_solve) /
 //     t_build0, peak over the three above the solver without pins (r_peak = peak / peak of the constructor;
 //     peak_set_bytes, r_peak_set: up to the end of set_constraints()).
-//   program/MESH/PINS  `trivial_connections MESH.off --n 4 --auto` without and with `--constraints`, each a child
+//   program/MESH/PINS  `trivial_connections MESH.off --n 4 --auto --no-refine` (the placement, what the pins cost
+//     it; --auto alone also refines) without and with `--constraints`, each a child
 //     process (fork + exec, wait4: wall time and its own maximum resident size): t_program0, t_program,
 //     r_program, rss0_bytes, rss_bytes, r_rss, program_energy0, program_energy (parsed from its output).
 
@@ -515,7 +516,7 @@ void program_run(benchmark::State& state, const Spec& spec, const std::string& k
   }
   const std::size_t nf = num_faces(mesh);
   mesh.clear();
-  const std::vector<std::string> without = {TC_PROGRAM_PATH, off, "--n", "4", "--auto"};
+  const std::vector<std::string> without = {TC_PROGRAM_PATH, off, "--n", "4", "--auto", "--no-refine"};
   std::vector<std::string> with = without;
   with.push_back("--constraints");
   with.push_back(constraints);

@@ -315,7 +315,7 @@ std::string refinement_stop(TC::Refinement_stop stop)
   }
 }
 
-// --auto and --refine: the singularities the trivial connection gets
+// --auto (which refines unless --no-refine) and --refine: the singularities the trivial connection gets
 void design_singularities(const Options& o, Inputs& in, Solver& solver, Design& design, Progress_printer& progress,
                           Timings& time)
 {
@@ -614,6 +614,18 @@ void print_design(std::ostream& out, const Options& o, const Design& d)
   }
   if(d.curvature_guides > 0)
     out << "curvature guidance: " << d.curvature_guides << " faces, weight " << o.guidance_weight << "\n";
+  if(d.placement) {
+    // which field this is, in words: --auto refines unless --no-refine, and users of the old default should see it
+    const std::string field = d.placement->aligned ? "curvature-aligned field" : "smoothest field";
+    out << "design: the singularities of the " << field
+        << (d.placement->fixed > 0 ? " (those of " + o.singularities + " kept)" : std::string()) << ", ";
+    if(!d.refinement)
+      out << "not refined (--no-refine)\n";
+    else if(d.refinement->stop == TC::Refinement_stop::local_minimum)
+      out << "refined to a local minimum of the energy (--no-refine keeps those of the " << field << ")\n";
+    else
+      out << "refined, stopped before a local minimum: " << refinement_stop(d.refinement->stop) << "\n";
+  }
   if(d.refinement) {
     const auto& r = *d.refinement;
     out << "refinement: energy " << std::setprecision(10) << r.energy_before << " -> " << r.energy_after << ", "

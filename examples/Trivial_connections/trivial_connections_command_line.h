@@ -48,8 +48,9 @@ inline const char* const usage_text =
   "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
   "                           [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT]\n"
   "                           [--singularity-points OUT] [--streamlines OUT] [--streamline-seeds K]\n"
-  "                           [--auto] [--align-curvature] [--alignment-strength S] [--refine]\n"
-  "                           [--cancel-pairs] [--write-singularities OUT] [--progress] [--help] [--version]\n"
+  "                           [--auto] [--no-refine] [--align-curvature] [--alignment-strength S]\n"
+  "                           [--refine] [--cancel-pairs] [--write-singularities OUT] [--progress] [--help]\n"
+  "                           [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
@@ -88,17 +89,22 @@ inline const char* const usage_text =
   "                        field and the guide (modulo 2pi/N), still with exactly the given singularities.\n"
   "  --guidance-weight MU  the weight MU > 0 of the guidance (default 1)\n"
   "  --auto                place the singularities automatically: those of the globally smoothest N-direction\n"
-  "                        field (Knoeppel et al. 2013), then the trivial connection with exactly them. With\n"
-  "                        --singularities, the file's singularities are kept and the others placed around\n"
-  "                        them (the automatic ones nearest to them give way).\n"
+  "                        field (Knoeppel et al. 2013), then refine them to a local minimum of the trivial\n"
+  "                        connection's energy (moves to neighbouring vertices and cancellations of opposite\n"
+  "                        pairs), and compute the trivial connection with exactly them. With --singularities,\n"
+  "                        the file's singularities are kept and the others placed around them (the automatic\n"
+  "                        ones nearest to them give way).\n"
+  "  --no-refine           with --auto, keep the placed singularities: exactly those of the smoothest field\n"
+  "                        (of the curvature-aligned field with --align-curvature); the fastest run\n"
   "  --align-curvature     follow the principal curvature directions (N even): with --auto the placement is\n"
   "                        that of the curvature-aligned field, and the trivial connection is guided (weight\n"
   "                        --guidance-weight) towards them on 64 spread faces of strong anisotropy.\n"
   "  --alignment-strength S  how closely the aligned placement follows the curvature (default 100)\n"
-  "  --refine              move singularities to neighbouring vertices while that lowers the energy (the\n"
-  "                        singularities of --singularities stay when --auto is given)\n"
+  "  --refine              move the singularities of --singularities to neighbouring vertices while that\n"
+  "                        lowers the energy. Implied by --auto (with --cancel-pairs; the file's singularities\n"
+  "                        then stay where they are)\n"
   "  --cancel-pairs        with --refine, opposite singularities may also cancel (a unit of 1/N each, at any\n"
-  "                        distance in a component) when that lowers the energy\n"
+  "                        distance in a component) when that lowers the energy. Implied by --auto\n"
   "  --write-singularities OUT  the singularities used, in the --singularities format (edit, run again)\n"
   "  --n N                 symmetry order: 1 vector field, 2 line field, 4 cross field, ... (default 1)\n"
   "  --weights W           energy weights: hodge (|e|/|e*|, default) or unit\n"
@@ -164,7 +170,8 @@ struct Options
   std::string field;
   std::string vtk, ply, singularity_points, streamlines; // optional outputs for viewers
   std::size_t streamline_seeds = 100;
-  bool automatic = false, align_curvature = false, refine = false, cancel_pairs = false;
+  // --auto sets refine and cancel_pairs too unless no_refine
+  bool automatic = false, no_refine = false, align_curvature = false, refine = false, cancel_pairs = false;
   double alignment_strength = 100;
   std::string write_singularities;
   bool align_features = false;
@@ -362,11 +369,12 @@ inline Options parse_arguments(int argc, char** argv)
       o.progress = true;
       continue;
     }
-    if(a == "--triangulate" || a == "--align-boundary" || a == "--auto" || a == "--align-curvature" ||
-       a == "--refine" || a == "--cancel-pairs") {
+    if(a == "--triangulate" || a == "--align-boundary" || a == "--auto" || a == "--no-refine" ||
+       a == "--align-curvature" || a == "--refine" || a == "--cancel-pairs") {
       bool& flag = a == "--triangulate"       ? o.triangulate
                    : a == "--align-boundary"  ? o.align_boundary
                    : a == "--auto"            ? o.automatic
+                   : a == "--no-refine"       ? o.no_refine
                    : a == "--align-curvature" ? o.align_curvature
                    : a == "--refine"          ? o.refine
                                               : o.cancel_pairs;
@@ -401,8 +409,16 @@ inline Options parse_arguments(int argc, char** argv)
     throw Usage_error("--align-curvature needs an even --n (a principal direction has no sign)");
   if(o.align_curvature && !o.guidance.empty())
     throw Usage_error("--align-curvature and --guidance cannot be combined (both choose the guided faces)");
-  if(o.cancel_pairs && !o.refine)
-    throw Usage_error("--cancel-pairs is an option of --refine");
+  if(o.no_refine && !o.automatic)
+    throw Usage_error("--no-refine is an option of --auto");
+  if(o.no_refine && (o.refine || o.cancel_pairs))
+    throw Usage_error(std::string("--no-refine and ") + (o.refine ? "--refine" : "--cancel-pairs") +
+                      " contradict each other (--no-refine keeps the placed singularities as they are)");
+  if(o.cancel_pairs && !o.refine && !o.automatic)
+    throw Usage_error("--cancel-pairs is an option of --refine (or of --auto, which refines with it)");
+  // --auto refines by default: the refined field's energy is never higher, and it usually has fewer singularities
+  if(o.automatic && !o.no_refine)
+    o.refine = o.cancel_pairs = true;
   if(!o.feature_lines.empty() && !o.align_features)
     throw Usage_error("--feature-lines is an option of --align-features");
   const std::string stem = std::filesystem::path(o.mesh).stem().string();

@@ -237,8 +237,18 @@ case("align_curvature_odd_n", {"m.off": TET}, ["m.off", "--auto", "--align-curva
      ["--align-curvature needs an even --n"])
 case("align_curvature_and_guidance", {"m.off": TET, "g.dirs": "0 1 0 0\n"},
      ["m.off", "--align-curvature", "--n", "4", "--guidance", "g.dirs"], 2, ["cannot be combined"])
-case("cancel_pairs_without_refine", {"m.off": TET}, ["m.off", "--auto", "--cancel-pairs"], 2,
-     ["--cancel-pairs is an option of --refine"])
+# --cancel-pairs needs --refine or --auto (which refines with it)
+case("cancel_pairs_without_refine", {"m.off": TET, "s.sing": "0 1\n1 1\n"},
+     ["m.off", "--singularities", "s.sing", "--cancel-pairs"], 2, ["--cancel-pairs is an option of --refine"])
+# --no-refine: only with --auto, once, and not with what it undoes
+case("no_refine_without_auto", {"m.off": TET, "s.sing": "0 1\n1 1\n"},
+     ["m.off", "--singularities", "s.sing", "--no-refine"], 2, ["--no-refine is an option of --auto"])
+case("no_refine_and_refine", {"m.off": TET}, ["m.off", "--auto", "--refine", "--no-refine"], 2,
+     ["--no-refine and --refine contradict each other"])
+case("no_refine_and_cancel_pairs", {"m.off": TET}, ["m.off", "--auto", "--no-refine", "--cancel-pairs"], 2,
+     ["--no-refine and --cancel-pairs contradict each other"])
+case("no_refine_twice", {"m.off": TET}, ["m.off", "--auto", "--no-refine", "--no-refine"], 2,
+     ["option --no-refine given twice"])
 case("alignment_strength_not_positive", {"m.off": TET}, ["m.off", "--auto", "--alignment-strength", "-3"], 2,
      ["--alignment-strength expects a positive finite number"])
 case("auto_fixed_not_multiple", {"m.off": TET, "s.sing": "0 1/3\n"},

@@ -7,9 +7,9 @@
 #                     [--constraints FILE] [--align-boundary] [--guidance FILE] [--guidance-weight MU]
 #                     (then check_constraints.py checks the targets, the guides and the optimality; the checker
 #                     runs with --no-optimality)
-#                     [--auto] [--align-curvature] [--refine]  (automatic placement: the program writes the
-#                     singularities it used with --write-singularities, and the checker checks against them; with
-#                     the curvature guidance the checker runs with --no-optimality)
+#                     [--auto] [--no-refine] [--align-curvature] [--refine]  (automatic placement, refined unless
+#                     --no-refine: the program writes the singularities it used with --write-singularities, and the
+#                     checker checks against them; with the curvature guidance the checker runs with --no-optimality)
 set -euo pipefail
 cli="" checker="" python="" out="" mesh="" sing="none" n=1 weights=hodge boundary="" constraints="" align="" guidance="" guidance_weight=1
 design=()
@@ -29,7 +29,7 @@ while [ $# -gt 0 ]; do
     --align-boundary) align="--align-boundary"; shift ;;
     --guidance) guidance="$2"; shift 2 ;;
     --guidance-weight) guidance_weight="$2"; shift 2 ;;
-    --auto|--align-curvature|--refine) design+=("$1"); shift ;;
+    --auto|--no-refine|--align-curvature|--refine) design+=("$1"); shift ;;
     *) echo "cli_check.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done

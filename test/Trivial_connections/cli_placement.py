@@ -1,10 +1,13 @@
 #!/usr/bin/python3
 """The program's automatic placement where it used to fail (issue 36), checked from its outputs:
   - several components: CGAL's knot and femur in one OFF file, in both orders, get what each gets alone (the same
-    singularities at the same points, energies that add up);
+    singularities at the same points, energies that add up), with --no-refine (the smoothest field's singularities);
   - small shapes (one triangle, two, a strip, a tetrahedron, and a triangle beside a large mesh) get a field, which
     the independent checker (check_connection.py) accepts against the singularities written;
-  - --progress names the placement with its iterations, the curvature guide and the refinement.
+  - --progress names the placement with its iterations, the curvature guide and the refinement;
+  - --auto refines by default: its report says so (the `design:` line), its energy is at most that of
+    --auto --no-refine, --auto --refine [--cancel-pairs] (old command lines) give the same, and the contradicting
+    or misplaced --no-refine is a usage error (exit status 2).
 Usage: cli_placement.py PROGRAM CHECKER DATA_DIR OUT_DIR (DATA_DIR: CGAL's data/meshes)."""
 import os
 import re
@@ -71,14 +74,15 @@ def checked_by_the_checker(mesh, name, n, optimality=True):
     check(r.returncode == 0 and said.endswith("PASS"), "%s: the checker says %s" % (name, said[-300:]))
 
 
-# ---- several components
+# ---- several components: the smoothest field's singularities (--no-refine); a refinement is not bound to give each
+# component what it gets alone
 knot, femur = read_off(os.path.join(data, "knot.off")), read_off(os.path.join(data, "femur.off"))
 for n in (1, 4):
     alone, energy, field_energy = {}, 0.0, 0.0
     for name, part in (("knot", knot), ("femur", femur)):
         path = os.path.join(out, name + ".off")
         write_off(path, [part])
-        report, _, placed = run(path, "%s_n%d" % (name, n), "--n", str(n))
+        report, _, placed = run(path, "%s_n%d" % (name, n), "--n", str(n), "--no-refine")
         if report is None:
             continue
         alone.update(placed)
@@ -87,7 +91,7 @@ for n in (1, 4):
     for name, parts in (("knot_femur", [knot, femur]), ("femur_knot", [femur, knot])):
         path = os.path.join(out, name + ".off")
         write_off(path, parts)
-        report, _, placed = run(path, "%s_n%d" % (name, n), "--n", str(n))
+        report, _, placed = run(path, "%s_n%d" % (name, n), "--n", str(n), "--no-refine")
         if report is None:
             continue
         check(placed == alone, "%s, n = %d: %d singularities, %d for the parts alone, %d differ" % (
@@ -110,7 +114,8 @@ for name, parts in shapes.items():
     path = os.path.join(out, name + ".off")
     write_off(path, parts)
     for n in (1, 2, 4):
-        for options in ((), ("--align-boundary",), ("--align-curvature",), ("--refine",)):
+        # () refines (the default), ("--no-refine",) does not
+        for options in ((), ("--align-boundary",), ("--align-curvature",), ("--no-refine",)):
             if "--align-curvature" in options and n % 2:
                 continue
             case = "%s_n%d%s" % (name, n, "".join(o.replace("--", "_") for o in options))
@@ -124,16 +129,17 @@ for name, parts in shapes.items():
     # a regular tetrahedron carries a parallel line and cross field with four 1/2 singularities
     if name == "tetrahedron":
         for n in (2, 4):
-            _, _, placed = run(path, "tetrahedron_n%d_again" % n, "--n", str(n))
+            _, _, placed = run(path, "tetrahedron_n%d_again" % n, "--n", str(n), "--no-refine")
             check(sorted(placed.values()) == ["1/2"] * 4, "tetrahedron, n = %d: %s" % (n, sorted(placed.values())))
-# the knot beside a triangle: the knot's own singularities
-_, _, with_triangle = run(os.path.join(out, "knot_and_a_triangle.off"), "knot_and_a_triangle_n4_again", "--n", "4")
-_, _, knot_alone = run(os.path.join(out, "knot.off"), "knot_n4_again", "--n", "4")
+# the knot beside a triangle: the knot's own singularities (those of the smoothest field)
+_, _, with_triangle = run(os.path.join(out, "knot_and_a_triangle.off"), "knot_and_a_triangle_n4_again", "--n", "4",
+                          "--no-refine")
+_, _, knot_alone = run(os.path.join(out, "knot.off"), "knot_n4_again", "--n", "4", "--no-refine")
 check(with_triangle == knot_alone, "the knot beside a triangle: %d singularities, %d alone" % (
     len(with_triangle), len(knot_alone)))
 
-# ---- --progress names every phase of the design
-report, err, _ = run(os.path.join(data, "fandisk.off"), "fandisk_progress", "--n", "4", "--align-curvature", "--refine",
+# ---- --progress names every phase of the design (--auto refines without being asked)
+report, err, _ = run(os.path.join(data, "fandisk.off"), "fandisk_progress", "--n", "4", "--align-curvature",
                      "--progress")
 for phase, detail in (("curvature guide", r"\d+ guided faces"),
                       ("placement", r"curvature-aligned field(, \d+ iterations)?, \d+ singularities"),
@@ -143,6 +149,65 @@ for phase, detail in (("curvature guide", r"\d+ guided faces"),
 report, err, _ = run(os.path.join(data, "fandisk.off"), "fandisk_progress_smooth", "--n", "4", "--progress")
 check(re.search(r"\] placement \.\.\. done \( *[0-9.]+ s; smoothest field, \d+ iterations, \d+ singularities", err)
       is not None, "--progress shows the smoothest field's iterations")
+
+# ---- --auto refines by default
+DESIGN_REFINED = "design: the singularities of the %s field, refined to a local minimum of the energy"
+DESIGN_UNREFINED = "design: the singularities of the %s field, not refined (--no-refine)"
+
+
+def design_line(report):
+    m = re.search(r"^design: .*$", report or "", re.M)
+    return m.group(0) if m else "no design line"
+
+
+by_default = {}  # case -> (report, singularities) of --auto
+for mesh, n in (("fandisk.off", 4), ("knot.off", 1), ("knot.off", 4), ("pig.off", 4)):
+    path = os.path.join(data, mesh)
+    case = "%s_n%d" % (mesh[:-4], n)
+    refined, _, placed = run(path, case + "_default", "--n", str(n))
+    unrefined, _, smoothest = run(path, case + "_no_refine", "--n", str(n), "--no-refine")
+    if refined is None or unrefined is None:
+        continue
+    by_default[case] = refined, placed
+    check(design_line(refined).startswith(DESIGN_REFINED % "smoothest"), "%s --auto: %s" % (case, design_line(refined)))
+    check(design_line(unrefined) == DESIGN_UNREFINED % "smoothest",
+          "%s --auto --no-refine: %s" % (case, design_line(unrefined)))
+    check(re.search(r"^refinement: ", unrefined, re.M) is None, "%s --auto --no-refine: no refinement line" % case)
+    # the scripts' reading of the count is unchanged: the singularities written
+    check(number(refined, r"(?m)^singularities: ([0-9]+)") == len(placed) and
+          number(unrefined, r"(?m)^singularities: ([0-9]+)") == len(smoothest),
+          "%s: 'singularities: N' gives %d refined, %d with --no-refine" % (case, len(placed), len(smoothest)))
+    e, e0 = number(refined, r"(?m)^energy: ([0-9.e+-]+)"), number(unrefined, r"(?m)^energy: ([0-9.e+-]+)")
+    check(e <= e0 * (1 + 1e-12), "%s: energy %.10g refined, %.10g with --no-refine" % (case, e, e0))
+    checked_by_the_checker(path, case + "_default", n)
+# the old command lines mean the same as --auto (the same singularities, the same energy)
+fandisk = os.path.join(data, "fandisk.off")
+default, default_placed = by_default.get("fandisk_n4", ("", {}))
+for options in (("--refine",), ("--refine", "--cancel-pairs"), ("--cancel-pairs",)):
+    case = "fandisk_n4" + "".join(o.replace("--", "_") for o in options)
+    report, _, placed = run(fandisk, case, "--n", "4", *options)
+    check(report is not None and placed == default_placed and
+          number(report, r"(?m)^energy: ([0-9.e+-]+)") == number(default, r"(?m)^energy: ([0-9.e+-]+)"),
+          "--auto %s gives what --auto gives (%d singularities)" % (" ".join(options), len(placed)))
+aligned, _, _ = run(fandisk, "fandisk_n4_curvature_no_refine", "--n", "4", "--align-curvature", "--no-refine")
+check(design_line(aligned) == DESIGN_UNREFINED % "curvature-aligned",
+      "--auto --align-curvature --no-refine: %s" % design_line(aligned))
+# usage errors: one line, exit status 2, no output written
+for args, words in ((["--no-refine"], "--no-refine is an option of --auto"),
+                    (["--auto", "--no-refine", "--refine"], "--no-refine and --refine contradict each other"),
+                    (["--auto", "--refine", "--no-refine"], "--no-refine and --refine contradict each other"),
+                    (["--auto", "--no-refine", "--cancel-pairs"], "--no-refine and --cancel-pairs contradict"),
+                    (["--auto", "--no-refine", "--no-refine"], "option --no-refine given twice"),
+                    (["--cancel-pairs"], "--cancel-pairs is an option of --refine")):
+    prefix = os.path.join(out, "usage_error")
+    for f in (prefix + ".c.txt", prefix + ".f.txt"):
+        if os.path.exists(f):
+            os.remove(f)
+    r = subprocess.run([program, fandisk, *args, "--connection", prefix + ".c.txt", "--field", prefix + ".f.txt"],
+                       capture_output=True, text=True)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 2 and len(lines) == 1 and words in lines[0] and not os.path.exists(prefix + ".c.txt"),
+          "%s: exit status %d, %s" % (" ".join(args), r.returncode, r.stderr.strip()))
 
 if failures:
     print("%d failure(s)" % len(failures))

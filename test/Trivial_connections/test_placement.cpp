@@ -641,6 +641,53 @@ TEST(Refinement, stops_at_a_local_minimum_that_every_single_move_and_cancellatio
 
 // Two components, each with its boundary loops' integers: a move changes only those of its own component, and the
 // refinement searches them component by component (b9_mesh, 47 components, spent 3 s in one search of all).
+// On cheese (genus 133: 266 integers, more than the search can prove optimal) the refinement prices moves with the
+// integers kept, and each trial also tries those integers: no predicted move is rejected for a worse search, and
+// the refinement ends at a local minimum. The hint is a candidate of the next solve only: that solve's energy is
+// at most the one with those integers prescribed.
+TEST(Refinement, a_trial_never_loses_to_the_integers_it_moved_from)
+{
+  Surface_mesh tm;
+  TC_READ_CGAL_MESH_OR_SKIP("cheese.off", tm);
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  const int n = 4;
+  const Placed p = place(view, solver, TC::parameters::symmetry_order(n));
+  std::vector<double> x;
+  const TC::Solve_report first = solver.solve(descriptors(view, p.singularities), view.halfedge_map(x),
+                                              TC::parameters::symmetry_order(n));
+  ASSERT_FALSE(first.integers_proven_optimal);
+  std::vector<std::optional<std::int64_t>> kept;
+  for(const auto& l : first.loops)
+    kept.push_back(l.period);
+  // a neighbouring set: one singularity moved by a ring
+  Singularities moved = p.singularities;
+  for(int h = 0; h < view.nh(); ++h)
+    if(view.src[h] == moved[0].first && view.interior_vertex(view.tgt[h]) &&
+       std::none_of(moved.begin(), moved.end(), [&](const auto& s) { return s.first == view.tgt[h]; })) {
+      moved[0].first = view.tgt[h];
+      break;
+    }
+  ASSERT_NE(moved[0].first, p.singularities[0].first);
+  const double with_kept = solver.solve(descriptors(view, moved), view.halfedge_map(x),
+                                        TC::parameters::loop_periods(kept, TC::parameters::symmetry_order(n))).energy;
+  for(std::size_t l = 0; l < first.loops.size(); ++l)
+    ASSERT_TRUE(kept[l].has_value());
+  std::vector<std::int64_t> hint;
+  for(const auto& l : kept)
+    hint.push_back(*l);
+  Access::hint_periods(solver, hint);
+  const double hinted = solver.solve(descriptors(view, moved), view.halfedge_map(x), TC::parameters::symmetry_order(n)).energy;
+  EXPECT_LE(hinted, with_kept * (1 + 1e-12));
+
+  const auto r = TC::refine_singularities(solver, descriptors(view, p.singularities), view.halfedge_map(x),
+                                          TC::parameters::cancel_pairs(true, TC::parameters::symmetry_order(n)));
+  EXPECT_TRUE(r.local_minimum);
+  EXPECT_EQ(r.stop, TC::Refinement_stop::local_minimum);
+  EXPECT_LT(r.energy_after, r.energy_before);
+  check_connection(view, solver, numbered(view, r.singularities), n, x, r.report);
+}
+
 TEST(Refinement, reaches_a_local_minimum_on_several_components_each_with_its_own_integers)
 {
   Surface_mesh one, tm;

@@ -504,7 +504,8 @@ public:
     if(choose_periods)
       lambda = internal::solve_choosing_integers(
         m_system, m_rows, m_lattices, b, unit, prescribed, holonomy, periods, energies,
-        [&](double fraction) { notify(progress, Phase::loop_integers, fraction); });
+        [&](double fraction) { notify(progress, Phase::loop_integers, fraction); },
+        m_period_hint.empty() ? nullptr : &m_period_hint);
     else
       lambda = m_system.solve(m_rows, b);
 
@@ -512,6 +513,8 @@ public:
       write_energy_gradient(lambda, CGAL::parameters::get_parameter(np, tc_np::energy_gradient));
       m_multipliers = lambda;
     }
+    m_period_hint.clear();
+    m_last_periods = periods;
     internal::Constraint_sums sums;
     Eigen::VectorXd xe = internal::checked_connection(
       m_rows, [&](const Eigen::VectorXd& r) { return m_system.solve(m_rows, r); }, b, lambda, sums);
@@ -726,6 +729,8 @@ private:
   internal::Prefactored_system<Solver_traits> m_system; // factorization/: M factored, its solves
   std::vector<internal::Reduced_lattice> m_lattices;    // integers/: per component, the reduced lattice of its integers
   Eigen::VectorXd m_multipliers; // of the last solve that gave its energy gradient (the refinement reads them)
+  // the integers of every slot of the last solve, and those the next solve alone tries too (the refinement's)
+  std::vector<std::int64_t> m_last_periods, m_period_hint;
 };
 
 namespace internal {
@@ -745,6 +750,10 @@ struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverT
   static Prefactored_system<typename Solver::Solver_traits>& system(Solver& s) { return s.m_system; }
   // M^-1 b of the last solve() given an energy_gradient
   static const Eigen::VectorXd& multipliers(const Solver& s) { return s.m_multipliers; }
+  // the integers of every slot (loops, then links) of the last solve; a candidate for the next solve only, which
+  // then gives an energy no higher than with them (when its search cannot prove the optimum)
+  static const std::vector<std::int64_t>& last_periods(const Solver& s) { return s.m_last_periods; }
+  static void hint_periods(Solver& s, std::vector<std::int64_t> periods) { s.m_period_hint = std::move(periods); }
   // a solver of tm from its arrays, made from the connectivity tm is built from (see Mesh_arrays); with a
   // vertex_point_map in np, nothing of tm is read until the constructor has returned
   template <class NamedParameters = parameters::Default_named_parameters>

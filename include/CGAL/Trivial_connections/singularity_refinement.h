@@ -186,6 +186,9 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     result.singularities_before = given.size();
   }
   result.energy_before = energy;
+  // each trial also tries the integers of the set it moves from: a move predicted with them kept is then never
+  // rejected because a search that cannot prove the optimum (hundreds of integers) found worse ones
+  std::vector<std::int64_t> accepted_periods = Access::last_periods(solver);
 
   // vertex neighbours (each interior edge once per direction; border edges from their one corner)
   std::vector<std::vector<int>> neighbours(std::size_t(m.nv));
@@ -359,11 +362,13 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         kk[std::size_t(chosen[i].to)] += chosen[i].units;
       }
       ++result.trials;
+      Access::hint_periods(solver, accepted_periods);
       const double e = solve(as_set(kk), trial_gradient, trial_report);
       last_trial_accepted = accepted = e < energy * (1 - 1e-12);
       if(!accepted)
         continue;
       k.swap(kk);
+      accepted_periods = Access::last_periods(solver);
       gradient.swap(trial_gradient);
       result.report = trial_report;
       energy = e;

@@ -46,7 +46,8 @@ Eigen::VectorXd solve_choosing_integers(Prefactored_system<SolverTraits>& system
                                         const std::vector<Reduced_lattice>& lattices, Eigen::VectorXd& b,
                                         double unit, const std::vector<char>& prescribed,
                                         const std::vector<double>& holonomy, std::vector<std::int64_t>& periods,
-                                        Integer_choice_energies& energies, Notify notify)
+                                        Integer_choice_energies& energies, Notify notify,
+                                        const std::vector<std::int64_t>* hint = nullptr)
 {
   typename Prefactored_system<SolverTraits>::Loop_forward forward = system.forward(rows, b);
   notify(0.);
@@ -54,7 +55,7 @@ Eigen::VectorXd solve_choosing_integers(Prefactored_system<SolverTraits>& system
   // (in the reduced basis, nearest plane and descent already find most of what a longer search would)
   const Loop_period_choice choice = choose_loop_periods(rows.free_slots, system.metrics(), lattices, forward.y, unit,
                                                         prescribed, holonomy, (std::max)(1e5, 5. * double(rows.rows)),
-                                                        periods);
+                                                        periods, hint);
   notify(1.);
   if(energies.want_relaxed) {
     energies.relaxed_rhs = b;

@@ -62,7 +62,8 @@ inline Loop_period_choice choose_loop_periods(const std::vector<std::vector<int>
                                               const std::vector<Reduced_lattice>& lattices,
                                               const std::vector<Eigen::VectorXd>& y, double unit,
                                               const std::vector<char>& prescribed, const std::vector<double>& holonomy,
-                                              double work_budget, std::vector<std::int64_t>& periods)
+                                              double work_budget, std::vector<std::int64_t>& periods,
+                                              const std::vector<std::int64_t>* hint = nullptr)
 {
   Loop_period_choice choice;
   for(std::size_t c = 0; c < free_slots.size(); ++c) {
@@ -130,7 +131,13 @@ inline Loop_period_choice choose_loop_periods(const std::vector<std::vector<int>
       // each slot on its own: the integer making its own connection sum smallest
       own[a] = std::int64_t(std::llround(holonomy[free[chosen[a]]] / unit));
     }
-    const Closest_vector_result best = closest_vector(*lattice, *G, center, {rounded, own}, work_budget);
+    std::vector<std::vector<std::int64_t>> candidates{rounded, own};
+    if(hint && hint->size() == periods.size()) { // never worse than the integers of a solve before
+      candidates.emplace_back(std::size_t(kc));
+      for(Eigen::Index a = 0; a < kc; ++a)
+        candidates.back()[std::size_t(a)] = (*hint)[std::size_t(free[chosen[a]])];
+    }
+    const Closest_vector_result best = closest_vector(*lattice, *G, center, candidates, work_budget);
     choice.proven = choice.proven && best.proven;
     // t^T S^-1 t = unit^2 q(m) + constant
     choice.rounding_part += unit * unit * best.candidate_values[0] + constant;

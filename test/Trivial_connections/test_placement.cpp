@@ -12,6 +12,7 @@
 #include <CGAL/Trivial_connections/singularity_placement.h>
 #include <CGAL/Trivial_connections/singularity_refinement.h>
 #include <CGAL/Trivial_connections/internal/factorization/selected_inverse.h>
+#include <CGAL/Trivial_connections/internal/placement/move_energy.h>
 
 #include <gtest/gtest.h>
 
@@ -27,6 +28,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <random>
 #include <set>
 #include <string>
@@ -499,9 +501,11 @@ TEST(Refinement, keeps_fixed_vertices_and_cancels_pairs_when_asked)
 // Takahashi's recurrences on the factor give M^-1 on its pattern: compared with the columns of the inverse of a
 // sparse matrix whose factor fills in (a grid Laplacian, shifted, with a few long-range couplings), large enough for
 // the two threads.
-TEST(Refinement, selected_inverse_is_the_inverse_on_the_pattern_of_the_factor)
+// A grid Laplacian (plus a small diagonal and two long links) of side^2 rows in a fill-reducing order, whose
+// elimination tree branches (a selected inversion then runs on two threads)
+Eigen::SparseMatrix<double> grid_in_fill_reducing_order(int side)
 {
-  const int side = 36, nn = side * side;
+  const int nn = side * side;
   std::vector<Eigen::Triplet<double>> entries;
   std::mt19937 random(7);
   std::uniform_real_distribution<double> weight(0.5, 2);
@@ -525,10 +529,17 @@ TEST(Refinement, selected_inverse_is_the_inverse_on_the_pattern_of_the_factor)
     entries.emplace_back(i, i, 0.01);
   Eigen::SparseMatrix<double> grid(nn, nn);
   grid.setFromTriplets(entries.begin(), entries.end());
-  // in a fill-reducing order, whose elimination tree branches (the inversion then runs on two threads)
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
   Eigen::AMDOrdering<int>()(grid.selfadjointView<Eigen::Lower>(), order);
-  const Eigen::SparseMatrix<double> M = order.transpose() * grid * order;
+  return order.transpose() * grid * order;
+}
+
+using Simplicial_natural = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>;
+
+TEST(Refinement, selected_inverse_is_the_inverse_on_the_pattern_of_the_factor)
+{
+  const int side = 36, nn = side * side;
+  const Eigen::SparseMatrix<double> M = grid_in_fill_reducing_order(side);
   using Simplicial = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>;
   struct View
   {
@@ -562,6 +573,52 @@ TEST(Refinement, selected_inverse_is_the_inverse_on_the_pattern_of_the_factor)
         off_j = j, off_i = i;
   ASSERT_GE(off_j, 0);
   EXPECT_TRUE(std::isnan(z.entry(off_i, off_j)));
+}
+
+// The refinement's entries of M^-1, wherever they come from: the selected inversion, the elimination tree paths (few
+// singularities) or columns (no readable factor), near a vertex and far from it, against solves of M.
+TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_columns_agree_with_solves)
+{
+  const int side = 30, nn = side * side;
+  const Eigen::SparseMatrix<double> M = grid_in_fill_reducing_order(side);
+  struct View
+  {
+    Simplicial_natural s;
+    const Simplicial_natural& solver() const { return s; }
+  } view;
+  view.s.compute(M);
+  ASSERT_EQ(view.s.info(), Eigen::Success);
+  // vertices 0..nn-1 on rows nn-1..0, and a last vertex without a row
+  std::vector<int> row_of_vertex(std::size_t(nn) + 1, -1);
+  for(int v = 0; v < nn; ++v)
+    row_of_vertex[std::size_t(v)] = nn - 1 - v;
+  std::vector<int> position(static_cast<std::size_t>(nn));
+  std::iota(position.begin(), position.end(), 0);
+  auto solve = [&](const Eigen::VectorXd& e) { return Eigen::VectorXd(view.s.solve(e)); };
+  using Entries = TC::internal::Move_energy::Entries;
+  std::mt19937 random(3);
+  std::uniform_int_distribution<int> vertex(0, nn);
+  for(int mode = 0; mode < 3; ++mode) {
+    SCOPED_TRACE(mode == 0 ? "paths" : mode == 1 ? "selected inversion" : "columns");
+    TC::internal::Unit_lower_factor f;
+    if(mode < 2)
+      ASSERT_TRUE(TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial_natural>>::read(view, f));
+    TC::internal::Move_energy energy(row_of_vertex, position.data(), nn, std::move(f), {0, 1, 2}, solve,
+                                     mode == 0 ? Entries::paths : Entries::selected_inversion);
+    EXPECT_EQ(energy.paths(), mode == 0);
+    EXPECT_EQ(energy.selected(), mode == 1);
+    if(mode == 0)
+      energy.prefetch_paths({5, 6, 7, nn});
+    for(int trial = 0; trial < 300; ++trial) {
+      const int v = vertex(random), w = trial % 3 == 0 ? v : trial % 3 == 1 ? (std::min)(v + 1, nn) : vertex(random);
+      const double expected = row_of_vertex[std::size_t(v)] < 0 || row_of_vertex[std::size_t(w)] < 0
+                                ? 0.
+                                : solve(Eigen::VectorXd::Unit(nn, row_of_vertex[std::size_t(v)]))[row_of_vertex[std::size_t(w)]];
+      EXPECT_NEAR(energy.entry(v, w), expected, 1e-10 * (1 + std::abs(expected))) << v << " " << w;
+      EXPECT_NEAR(energy.entry(w, v), energy.entry(v, w), 1e-12 * (1 + std::abs(expected)));
+    }
+    EXPECT_EQ(energy.paths(), mode == 0); // the pattern was that of an elimination tree
+  }
 }
 
 // What the refinement calls a local minimum, checked by brute force: a solve (its integers chosen again) of every

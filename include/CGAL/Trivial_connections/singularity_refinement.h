@@ -211,10 +211,21 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   // links' rows bordered outside it (numbered after them)
   const Eigen::Index system_rows = Access::multipliers(solver).size();
   internal::Unit_lower_factor factor;
-  std::unique_ptr<internal::Selected_inverse> selected = system.selected_inverse(rows, &factor);
+  if(!system.read_factor(rows, factor))
+    factor = internal::Unit_lower_factor();
+  // the vertices whose entries the first round reads: the singular ones and their neighbours
+  auto singular_and_neighbours = [&] {
+    std::vector<int> wanted;
+    for(int v = 0; v < m.nv; ++v)
+      if(k[std::size_t(v)] != 0 && !fixed[std::size_t(v)]) {
+        wanted.push_back(v);
+        wanted.insert(wanted.end(), neighbours[std::size_t(v)].begin(), neighbours[std::size_t(v)].end());
+      }
+    return wanted;
+  };
   internal::Move_energy inverse(std::move(row_of_vertex),
                                 rows.rows > 0 ? system.permutation().indices().data() : nullptr, system_rows,
-                                std::move(selected), std::move(factor),
+                                std::move(factor), singular_and_neighbours(),
                                 [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
 
   // The free integers (loops, links) of each component, which the solves choose: see Move_integers
@@ -257,6 +268,8 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     const double tolerance = 1e-10 * (std::max)(energy, 1e-300);
     if(!integers.empty())
       integers.start_round(Access::multipliers(solver), result.report.integers_proven_optimal);
+    if(inverse.paths())
+      inverse.prefetch_paths(singular_and_neighbours());
     std::vector<Candidate> candidates;
     for(int v = 0; v < m.nv; ++v) {
       if(k[v] == 0 || fixed[v])

@@ -20,7 +20,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <memory>
 #include <utility>
 #include <vector>
 
@@ -132,17 +131,11 @@ public:
     return m_factor.solve(b);
   }
 
-  // M^-1 on the pattern of the factor (positions: permutation()), or null when the factor cannot be read or
-  // rows live outside it (set_constraints() on a kept factorization); `factor`, when given, gets a copy of the
-  // factor read
-  std::unique_ptr<Selected_inverse> selected_inverse(const Constraint_rows& rows, Unit_lower_factor* factor = nullptr)
+  // the factor L D L^T of M in the order of the factored system (positions: permutation()); false when the
+  // backend does not expose it, or rows live outside it (set_constraints() on a kept factorization)
+  bool read_factor(const Constraint_rows& rows, Unit_lower_factor& f)
   {
-    Unit_lower_factor f;
-    if(rows.rows == 0 || m_bordered.active() || !m_factor.read_factor(f) || f.n != int(rows.rows))
-      return nullptr;
-    if(factor)
-      *factor = f;
-    return std::unique_ptr<Selected_inverse>(new Selected_inverse(std::move(f)));
+    return rows.rows > 0 && !m_bordered.active() && m_factor.read_factor(f) && f.n == int(rows.rows);
   }
 
   // M^-1 b, checked and refined

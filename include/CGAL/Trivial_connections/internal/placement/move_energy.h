@@ -30,24 +30,53 @@ namespace internal {
   changes b by d (e_w - e_v), so
     dE = 2 d (lambda_w - lambda_v) + d^2 (G_vv + G_ww - 2 G_vw),   lambda = M^-1 b, G = M^-1,
   the first term the energy gradient of the current solve. A free integer m_l of a loop or link changed by s
-  adds 2 pi s / n on its row, and the same expansion, with the multiplier of that row, prices it. The entries of G between a vertex and its
-  neighbours are on the pattern of the factor, so one selected inversion gives them all; a pair of distant
-  vertices costs the back-substitution of a column (kept). Without a readable factor every entry comes from
-  columns. A vertex without a row (boundary vertices, one pinned vertex per closed component) has G = 0.
+  adds 2 pi s / n on its row, and the same expansion, with the multiplier of that row, prices it.
+  The entries of G between a vertex and its neighbours are on the pattern of the factor, so one selected inversion
+  gives them all, at several times the factorization's cost; with few singularities their paths in the
+  elimination tree (see Path) give those wanted for far less. A pair of distant vertices costs the
+  back-substitution of a column (kept). Without a readable factor every entry comes from columns. A vertex without
+  a row (boundary vertices, one pinned vertex per closed component) has G = 0.
 */
 class Move_energy
 {
 public:
   using Column_solve = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
+  // where the entries near the singularities come from, with a readable factor (tests choose)
+  enum class Entries { automatic, selected_inversion, paths };
 
-  // `row_of_vertex`: the row of each vertex (or -1); `position`: row -> position in the factored system
-  // `factor`: the factor M = L D L^T in those positions when it could be read (n = 0 otherwise), for columns made
-  // several at a time
-  Move_energy(std::vector<int> row_of_vertex, const int* position, Eigen::Index rows,
-              std::unique_ptr<Selected_inverse> inverse, Unit_lower_factor&& factor, Column_solve solve)
-    : m_row(std::move(row_of_vertex)), m_position(position), m_rows(rows), m_inverse(std::move(inverse)),
-      m_factor(std::move(factor)), m_solve(std::move(solve))
+  // `row_of_vertex`: the row of each vertex (or -1); `position`: row -> position in the factored system;
+  // `factor`: the factor M = L D L^T in those positions when it could be read (n = 0 otherwise); `first`: the
+  // vertices whose entries are wanted first (the singular ones and their neighbours), to choose between a
+  // selected inversion and paths
+  Move_energy(std::vector<int> row_of_vertex, const int* position, Eigen::Index rows, Unit_lower_factor&& factor,
+              const std::vector<int>& first, Column_solve solve, Entries choice = Entries::automatic)
+    : m_row(std::move(row_of_vertex)), m_position(position), m_rows(rows), m_factor(std::move(factor)),
+      m_solve(std::move(solve))
   {
+    if(m_factor.n != int(m_rows) || m_factor.n == 0)
+      return;
+    // The work of each: a selected inversion about sum (column length)^2, and several times that in lookups; a
+    // path that of the columns along it, for each vertex wanted, and more as singularities move.
+    const int n = m_factor.n;
+    std::vector<double> path(std::size_t(n), 0.);
+    double inversion = 0;
+    for(int j = n - 1; j >= 0; --j) {
+      const int b = m_factor.start[std::size_t(j)], e = m_factor.start[std::size_t(j) + 1];
+      path[std::size_t(j)] = double(e - b + 1) + (b < e ? path[std::size_t(m_factor.row[std::size_t(b)])] : 0.);
+      inversion += double(e - b + 1) * double(e - b + 1);
+    }
+    double paths = 0;
+    for(int v : first)
+      if(m_row[std::size_t(v)] >= 0)
+        paths += path[std::size_t(m_position[m_row[std::size_t(v)]])];
+    // measured break-even: paths / inversion about 2 (armadillo, N = 4); turbine_loop1 N = 1 at 0.13 is 3 x faster
+    // with paths, femur N = 4 at 15 is 1.5 x slower
+    const bool use_paths = choice == Entries::paths || (choice == Entries::automatic && 2 * paths < 3 * inversion);
+    m_paths_usable = use_paths && std::all_of(m_factor.d.begin(), m_factor.d.end(), [](double d) { return d > 0; });
+    if(m_paths_usable)
+      m_paths.resize(std::size_t(m_rows));
+    else
+      m_inverse.reset(new Selected_inverse(Unit_lower_factor(m_factor)));
   }
 
   bool selected() const { return bool(m_inverse); }
@@ -56,6 +85,7 @@ public:
   double diagonal(int v) { return entry(v, v); }
 
   double entry(int v, int w) { return row_entry(m_row[std::size_t(v)], m_row[std::size_t(w)]); }
+  bool paths() const { return m_paths_usable; }
   int row_of(int v) const { return m_row[std::size_t(v)]; }
 
   // (M^-1)_{rv rw} for rows (0 when one is -1); off the pattern, from the column of rv
@@ -67,6 +97,12 @@ public:
       const double z = m_inverse->entry(m_position[rv], m_position[rw]);
       if(!std::isnan(z))
         return z;
+    }
+    if(m_paths_usable) {
+      const Path& a = path_of(rv);
+      const Path& b = path_of(rw);
+      if(m_paths_usable)
+        return path_product(a, b);
     }
     return column(rv)[rw];
   }
@@ -113,6 +149,33 @@ public:
     m_column_solves += missing.size();
   }
 
+  // makes the paths of these vertices not made yet, half on a second thread
+  void prefetch_paths(const std::vector<int>& vertices)
+  {
+    if(!m_paths_usable)
+      return;
+    std::vector<int> missing;
+    for(int v : vertices) {
+      const int r = m_row[std::size_t(v)];
+      if(r >= 0 && !m_paths[std::size_t(r)].made) {
+        missing.push_back(r);
+        m_paths[std::size_t(r)].made = true; // listed once
+      }
+    }
+    auto make = [&](std::size_t begin, std::size_t end) {
+      std::vector<double> work(std::size_t(m_factor.n), 0.);
+      std::vector<int> stamp(std::size_t(m_factor.n), -1);
+      bool tree = true;
+      for(std::size_t i = begin; i < end && tree; ++i)
+        tree = make_path(missing[i], work, stamp);
+      return tree;
+    };
+    const std::size_t half = missing.size() / 2;
+    auto second = concurrently([&] { return make(half, missing.size()); });
+    const bool first = make(0, half);
+    m_paths_usable = second.get() && first;
+  }
+
   // G e_v over the rows (kept; valid until the next column is made), or null for a vertex without a row
   const Eigen::VectorXd* column_of(int v)
   {
@@ -122,6 +185,72 @@ public:
 
 private:
   static constexpr std::size_t block = 8;
+
+  /*
+    With M = L D L^T, G_vw = y_v^T y_w where y_v = D^-1/2 L^-1 e_v. L^-1 e_v is nonzero only on the path from v
+    to its root in the elimination tree (a column of L has its rows among the ancestors of its own), so y_v costs
+    the columns of L along that path, and y_v^T y_w is a sum over the part common to both paths: from where they
+    meet to the root. Far cheaper than a selected inversion of the whole factor when few vertices are wanted.
+  */
+  struct Path
+  {
+    bool made = false;
+    std::vector<int> position; // from the vertex's position up to its root
+    std::vector<double> value; // y there
+  };
+
+  const Path& path_of(int r)
+  {
+    Path& p = m_paths[std::size_t(r)];
+    if(!p.made) {
+      p.made = true;
+      if(m_work.empty()) {
+        m_work.assign(std::size_t(m_factor.n), 0.);
+        m_stamp.assign(std::size_t(m_factor.n), -1);
+      }
+      m_paths_usable = make_path(r, m_work, m_stamp);
+    }
+    return p;
+  }
+
+  static double path_product(const Path& a, const Path& b)
+  {
+    double sum = 0;
+    for(std::size_t i = a.position.size(), j = b.position.size();
+        i > 0 && j > 0 && a.position[i - 1] == b.position[j - 1]; --i, --j)
+      sum += a.value[i - 1] * b.value[j - 1];
+    return sum;
+  }
+
+  // the path of row r; `work` is zero and `stamp` has no entry r on entry, and `work` is zero again on exit; false
+  // when a row of L is off the path (not an elimination tree's pattern: paths are not used then)
+  bool make_path(int r, std::vector<double>& work, std::vector<int>& stamp) const
+  {
+    Path& path = const_cast<Path&>(m_paths[std::size_t(r)]); // each row's path is made by one thread
+    path.position.clear();
+    const int* start = m_factor.start.data();
+    const int* row = m_factor.row.data();
+    for(int j = m_position[r]; j >= 0; j = start[j] < start[j + 1] ? row[start[j]] : -1) {
+      path.position.push_back(j);
+      stamp[std::size_t(j)] = r;
+    }
+    work[std::size_t(m_position[r])] = 1;
+    bool tree = true;
+    path.value.resize(path.position.size());
+    for(std::size_t i = 0; i < path.position.size(); ++i) {
+      const int j = path.position[i];
+      const double yj = work[std::size_t(j)];
+      work[std::size_t(j)] = 0;
+      path.value[i] = yj / std::sqrt(m_factor.d[std::size_t(j)]);
+      for(int p = start[j]; p < start[j + 1]; ++p) {
+        tree = tree && stamp[std::size_t(row[p])] == r;
+        work[std::size_t(row[p])] -= m_factor.value[std::size_t(p)] * yj;
+      }
+    }
+    if(!tree)
+      std::fill(work.begin(), work.end(), 0.);
+    return tree;
+  }
 
   // The columns of rows[begin, end) (at most `block`), appended to `out`: the substitutions through the factor
   // for all of them at once, which reads the factor once instead of once per column.
@@ -188,6 +317,10 @@ private:
   Column_solve m_solve;
   std::unordered_map<int, Eigen::VectorXd> m_columns;
   std::size_t m_column_solves = 0;
+  bool m_paths_usable = false;
+  std::vector<Path> m_paths; // by row
+  std::vector<double> m_work;
+  std::vector<int> m_stamp;
 };
 
 } // namespace internal

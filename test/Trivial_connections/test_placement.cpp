@@ -780,6 +780,27 @@ TEST(Refinement, reaches_a_local_minimum_on_several_components_each_with_its_own
   check_connection(view, solver, end, n, x, r.report);
   expect_no_single_move_or_cancellation_lowers_the_energy(view, solver, end, n, r.energy_after,
                                                           TC::parameters::symmetry_order(n));
+
+  // three components, of which only some have free integers (a move in one without them is priced with none;
+  // this crashed once)
+  Surface_mesh blobs;
+  TC_READ_CGAL_MESH_OR_SKIP("blobby_3cc.off", blobs);
+  const Mesh_view<Surface_mesh> blobs_view(blobs);
+  Solver blobs_solver(blobs);
+  for(int order : {1, 2, 4}) {
+    SCOPED_TRACE("blobby_3cc, n = " + std::to_string(order));
+    const Placed q = place(blobs_view, blobs_solver, TC::parameters::symmetry_order(order));
+    std::vector<double> y;
+    const auto s = TC::refine_singularities(blobs_solver, descriptors(blobs_view, q.singularities),
+                                            blobs_view.halfedge_map(y),
+                                            TC::parameters::cancel_pairs(true, TC::parameters::symmetry_order(order)));
+    ASSERT_TRUE(s.local_minimum);
+    EXPECT_LE(s.energy_after, s.energy_before);
+    const Singularities refined = numbered(blobs_view, s.singularities);
+    check_connection(blobs_view, blobs_solver, refined, order, y, s.report);
+    expect_no_single_move_or_cancellation_lowers_the_energy(blobs_view, blobs_solver, refined, order, s.energy_after,
+                                                            TC::parameters::symmetry_order(order));
+  }
 }
 
 TEST(Placement, fixed_singularities_are_kept_and_completed_to_poincare_hopf)

@@ -47,8 +47,8 @@ Why `refine_singularities()` stopped.
 */
 enum class Refinement_stop
 {
-  local_minimum,  ///< no single move or cancellation lowers the energy, its integers chosen again (kept when the
-                  ///< loops and links have more than 64 free integers)
+  local_minimum,  ///< no single move or cancellation lowers the energy, its integers chosen again (kept in a
+                  ///< component whose loops and links have more than 64 free integers)
   maximum_trials, ///< the budget of solves (`maximum_trials`) was spent
   rejected_moves  ///< moves predicted to lower the energy did not once their integers were chosen again
 };
@@ -88,10 +88,12 @@ Every candidate is scored exactly from one solve: the energy is `b^T M^-1 b`, so
 index from `v` to `w` changes it, the integers of loops and links kept, by
 `(u / n) (g_w - g_v) + d^2 (G_vv + G_ww - 2 G_vw)`, with `g` the energy gradient of the solve and `G = M^-1`.
 The entries of `G` between neighbours are on the pattern of the sparse factor, so one selected inversion of
-the factor (about the cost of the factorization) gives all of them; a cancellation between distant vertices
-reads `G_vw` from the column of `G` at one of them (a back-substitution, kept from round to round). A move may
-lower the energy only with some free integers changed: with at most 64 of them, each candidate is also priced
-with the best change of the integers (a closest vector search in their metric, when a bound says it may pay).
+the factor gives all of them; with few singularities, their paths in the elimination tree give those wanted for
+less (the cheaper of the two is predicted). A cancellation between distant vertices reads `G_vw` from the column
+of `G` at one of them (a back-substitution, kept from round to round). A move may lower the energy only with
+some free integers of its component changed: with at most 64 of them, each candidate is also priced with the best
+change of the integers (a closest vector search in their metric, when a bound says it may pay); with more, the
+moves are priced with them kept, and each trial solve tries them too.
 A round applies the best-scored candidates that lie apart (no two within one ring of each other) in one
 `solve()` that chooses the integers again, each cancellation's change corrected exactly for its interaction
 with those taken before it; when that solve does not lower the energy, half of the moves are tried, down to a
@@ -262,6 +264,8 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   Solve_report trial_report;
   bool last_trial_accepted = true;
   std::vector<int> blocked(std::size_t(m.nv), -1); // the round that last blocked a vertex
+  const std::size_t unlimited = (std::numeric_limits<std::size_t>::max)();
+  std::size_t round_size = unlimited; // the most moves a round tries at once
   result.stop = Refinement_stop::local_minimum;
   for(int round = 0;; ++round) {
     // changes below this are rounding: no cycling on ties
@@ -366,7 +370,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       }
     }
     bool accepted = false;
-    for(std::size_t size = chosen.size(); size > 0 && !accepted; size /= 2) {
+    for(std::size_t size = (std::min)(chosen.size(), round_size); size > 0 && !accepted; size /= 2) {
       if(result.trials >= budget)
         break;
       std::vector<std::int64_t> kk(k);
@@ -380,6 +384,11 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       last_trial_accepted = accepted = e < energy * (1 - 1e-12);
       if(!accepted)
         continue;
+      // after a halving, the next round starts at twice the size that was accepted (fewer solves rejected where
+      // moves interact more than predicted), and grows back when its first solve is accepted
+      round_size = size < (std::min)(chosen.size(), round_size) ? 2 * size
+                   : round_size > unlimited / 2               ? unlimited
+                                                              : 2 * round_size;
       k.swap(kk);
       accepted_periods = Access::last_periods(solver);
       gradient.swap(trial_gradient);

@@ -117,9 +117,10 @@ public:
   // the energy change of that move with the integers kept (`kept`), or with the best of them
   double best(std::size_t c, int rv, int rw, double d, double kept, double tolerance)
   {
-    if(kept + bound(c, rv, rw, d) >= -tolerance)
+    const int block = m_block_of_component[c];
+    if(block < 0 || kept + bound(c, rv, rw, d) >= -tolerance)
       return kept;
-    const Block& b = m_blocks[std::size_t(m_block_of_component[c])];
+    const Block& b = m_blocks[std::size_t(block)];
     Eigen::VectorXd p = b.lambda;
     if(rw >= 0)
       p += d * b.columns.row(rw).transpose();

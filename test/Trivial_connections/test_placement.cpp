@@ -618,6 +618,19 @@ TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_column
       EXPECT_NEAR(energy.entry(w, v), energy.entry(v, w), 1e-12 * (1 + std::abs(expected)));
     }
     EXPECT_EQ(energy.paths(), mode == 0); // the pattern was that of an elimination tree
+    // whole columns, made eight at a time through the factor (two threads) when it is readable
+    std::vector<int> some;
+    for(int i = 0; i < 21; ++i)
+      some.push_back(vertex(random));
+    energy.prefetch(some);
+    for(int v : some) {
+      const Eigen::VectorXd* column = energy.column_of(v);
+      ASSERT_EQ(column == nullptr, row_of_vertex[std::size_t(v)] < 0);
+      if(column) {
+        const Eigen::VectorXd expected = solve(Eigen::VectorXd::Unit(nn, row_of_vertex[std::size_t(v)]));
+        EXPECT_LT((*column - expected).cwiseAbs().maxCoeff(), 1e-10 * expected.cwiseAbs().maxCoeff()) << v;
+      }
+    }
   }
 }
 

@@ -128,8 +128,9 @@ public:
       std::vector<Eigen::VectorXd> out;
       if(m_factor.n == int(m_rows)) {
         std::vector<double> z; // one workspace per thread: fresh pages cost more than the substitutions here
+        std::vector<char> on_path;
         for(std::size_t i = begin; i < end; i += block)
-          columns_of_factor(missing, i, (std::min)(end, i + block), z, out);
+          columns_of_factor(missing, i, (std::min)(end, i + block), z, on_path, out);
         return out;
       }
       for(std::size_t i = begin; i < end; ++i) {
@@ -255,26 +256,53 @@ private:
   // The columns of rows[begin, end) (at most `block`), appended to `out`: the substitutions through the factor
   // for all of them at once, which reads the factor once instead of once per column.
   void columns_of_factor(const std::vector<int>& rows, std::size_t begin, std::size_t end, std::vector<double>& z,
-                         std::vector<Eigen::VectorXd>& out) const
+                         std::vector<char>& on_path, std::vector<Eigen::VectorXd>& out) const
   {
     const std::size_t b = end - begin, n = std::size_t(m_factor.n);
     const int* start = m_factor.start.data();
     const int* row = m_factor.row.data();
     const double* l = m_factor.value.data();
     z.assign(n * b, 0.); // position-major: z[p * b + c]
+    // L^-1: nonzero only on the paths of the units to their roots in the elimination tree (their union, in
+    // increasing order); the dense pass from the first unit on when the pattern is not a tree's
+    std::vector<int> nodes;
+    if(on_path.size() != n)
+      on_path.assign(n, 0);
     int first = int(n);
     for(std::size_t c = 0; c < b; ++c) {
       const int p = m_position[rows[begin + c]];
       z[std::size_t(p) * b + c] = 1;
       first = (std::min)(first, p);
+      for(int j = p; j >= 0 && !on_path[std::size_t(j)]; j = start[j] < start[j + 1] ? row[start[j]] : -1) {
+        on_path[std::size_t(j)] = 1;
+        nodes.push_back(j);
+      }
     }
-    for(int j = first; j < int(n); ++j) { // L^-1, from the first unit on
+    std::sort(nodes.begin(), nodes.end());
+    auto eliminate = [&](int j) {
       const double* zj = &z[std::size_t(j) * b];
       for(int p = start[j]; p < start[j + 1]; ++p) {
         double* zi = &z[std::size_t(row[p]) * b];
         for(std::size_t c = 0; c < b; ++c)
           zi[c] -= l[p] * zj[c];
       }
+    };
+    bool tree = true;
+    for(std::size_t q = 0; q < nodes.size() && tree; ++q) {
+      const int j = nodes[q];
+      for(int p = start[j]; p < start[j + 1]; ++p)
+        tree = tree && on_path[std::size_t(row[p])];
+      if(tree)
+        eliminate(j);
+    }
+    for(int j : nodes)
+      on_path[std::size_t(j)] = 0;
+    if(!tree) {
+      std::fill(z.begin(), z.end(), 0.);
+      for(std::size_t c = 0; c < b; ++c)
+        z[std::size_t(m_position[rows[begin + c]]) * b + c] = 1;
+      for(int j = first; j < int(n); ++j)
+        eliminate(j);
     }
     for(std::size_t j = 0; j < n; ++j) // D^-1
       for(std::size_t c = 0; c < b; ++c)

@@ -113,10 +113,10 @@ Singularities numbered(const Mesh_view<Surface_mesh>& view,
   return r;
 }
 
-template <class NP = TC::parameters::Default_named_parameters>
-Placed place(const Mesh_view<Surface_mesh>& view, const Solver& solver, const NP& np = TC::parameters::default_values())
+template <class NP = TC::parameters::Default_named_parameters, class S = Solver>
+Placed place(const Mesh_view<Surface_mesh>& view, const S& solver, const NP& np = TC::parameters::default_values())
 {
-  std::vector<std::pair<Solver::vertex_descriptor, TC::Singularity_index>> out;
+  std::vector<std::pair<typename S::vertex_descriptor, TC::Singularity_index>> out;
   Placed p;
   p.report = TC::place_singularities(solver, std::back_inserter(out), np);
   p.singularities = numbered(view, out);
@@ -637,8 +637,8 @@ TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_column
 // What the refinement calls a local minimum, checked by brute force: a solve (its integers chosen again) of every
 // move of a singularity to a free neighbouring interior vertex and of every cancellation of a unit of a pair.
 // `np`: those of the solves (symmetry_order, face_directions).
-template <class NP>
-void expect_no_single_move_or_cancellation_lowers_the_energy(const Mesh_view<Surface_mesh>& view, Solver& solver,
+template <class NP, class S>
+void expect_no_single_move_or_cancellation_lowers_the_energy(const Mesh_view<Surface_mesh>& view, S& solver,
                                                             const Singularities& s, int n, double energy, const NP& np)
 {
   std::vector<double> y;
@@ -708,6 +708,35 @@ TEST(Refinement, stops_at_a_local_minimum_that_every_single_move_and_cancellatio
     }
   }
 }
+
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+// With CHOLMOD's supernodal factor, read with the zeros of its dense blocks (kept for the selected inversion,
+// dropped for the paths and columns): the same local minimum, confirmed by brute force.
+TEST(Refinement, reaches_a_local_minimum_through_a_supernodal_factor)
+{
+  using Cholmod_solver = TC::Trivial_connection_solver<Surface_mesh, CGAL::Default, TC::Cholmod_solver_traits>;
+  for(const char* name : {"eight.off", "elephant.off"}) {
+    SCOPED_TRACE(name);
+    Surface_mesh tm;
+    TC_READ_CGAL_MESH_OR_SKIP(name, tm);
+    const Mesh_view<Surface_mesh> view(tm);
+    Cholmod_solver solver(tm);
+    for(int n : {1, 4}) {
+      SCOPED_TRACE("n = " + std::to_string(n));
+      const Placed p = place(view, solver, TC::parameters::symmetry_order(n));
+      std::vector<double> x;
+      const auto r = TC::refine_singularities(solver, descriptors(view, p.singularities), view.halfedge_map(x),
+                                              TC::parameters::cancel_pairs(true, TC::parameters::symmetry_order(n)));
+      ASSERT_TRUE(r.local_minimum);
+      EXPECT_LE(r.energy_after, r.energy_before);
+      const Singularities end = numbered(view, r.singularities);
+      check_connection(view, solver, end, n, x, r.report);
+      expect_no_single_move_or_cancellation_lowers_the_energy(view, solver, end, n, r.energy_after,
+                                                              TC::parameters::symmetry_order(n));
+    }
+  }
+}
+#endif
 
 // Two components, each with its boundary loops' integers: a move changes only those of its own component, and the
 // refinement searches them component by component (b9_mesh, 47 components, spent 3 s in one search of all).

@@ -47,8 +47,8 @@ Why `refine_singularities()` stopped.
 */
 enum class Refinement_stop
 {
-  local_minimum,  ///< no single move or cancellation lowers the energy, its integers chosen again (kept in a
-                  ///< component whose loops and links have more than 64 free integers)
+  local_minimum,  ///< no single move or cancellation lowers the energy, its integers chosen again (kept in the
+                  ///< components beyond the 64 free integers of loops and links searched, fewest first)
   maximum_trials, ///< the budget of solves (`maximum_trials`) was spent
   rejected_moves  ///< moves predicted to lower the energy did not once their integers were chosen again
 };
@@ -91,9 +91,9 @@ The entries of `G` between neighbours are on the pattern of the sparse factor, s
 the factor gives all of them; with few singularities, their paths in the elimination tree give those wanted for
 less (the cheaper of the two is predicted). A cancellation between distant vertices reads `G_vw` from the column
 of `G` at one of them (a back-substitution, kept from round to round). A move may lower the energy only with
-some free integers of its component changed: with at most 64 of them, each candidate is also priced with the best
-change of the integers (a closest vector search in their metric, when a bound says it may pay); with more, the
-moves are priced with them kept, and each trial solve tries them too.
+some free integers of its component changed: on components with few of them (64 in all, fewest first), each
+candidate is also priced with the best change of the integers (a closest vector search in their metric, when a
+bound says it may pay); elsewhere the moves are priced with them kept, and each trial solve tries them too.
 A round applies the best-scored candidates that lie apart (no two within one ring of each other) in one
 `solve()` that chooses the integers again, each cancellation's change corrected exactly for its interaction
 with those taken before it; when that solve does not lower the energy, half of the moves are tried, down to a

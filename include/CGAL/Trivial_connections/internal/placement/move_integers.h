@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -32,7 +33,7 @@ namespace internal {
   a closest vector problem, searched when its real minimum -p^T G_F^-1 p could make the move pay off.
   M is block diagonal by component, and a move stays in its component, so only that component's integers can
   change: one block per component, each searched in its own (small) lattice. A block costs a back-substitution
-  per integer (its column of M^-1), once; a component with more than 64 free integers keeps them.
+  per integer (its column of M^-1), once, for at most 64 in all; the integers of the other components are kept.
 */
 class Move_integers
 {
@@ -45,14 +46,19 @@ public:
     : m_unit(unit), m_block_of_component(free_rows.size(), -1), m_gamma(std::size_t(system_rows), -1.),
       m_beta(std::size_t(system_rows), 0.), m_beta_round(std::size_t(system_rows), -1)
   {
-    double stored = 0;
-    for(std::size_t c = 0; c < free_rows.size(); ++c) {
+    // At most 64 columns in all (each a back-substitution) and 2 x 128 MB of them, the components with fewest
+    // integers first: a mesh of many parts, each with a few boundary loops, has them searched on most parts.
+    std::vector<std::size_t> order(free_rows.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return free_rows[a].size() < free_rows[b].size(); });
+    std::size_t columns_left = largest_block;
+    for(std::size_t c : order) {
       const std::vector<int>& rows = free_rows[c];
       const Eigen::Index k = Eigen::Index(rows.size());
-      // at most 2 x 128 MB of columns in all
-      if(k == 0 || rows.size() > largest_block || stored + 2 * double(k) * double(system_rows) > 32e6)
+      if(k == 0 || rows.size() > columns_left || 2 * double(m_columns_made + rows.size()) * double(system_rows) > 32e6)
         continue;
-      stored += 2 * double(k) * double(system_rows);
+      columns_left -= rows.size();
       Block b;
       b.rows = rows;
       Eigen::MatrixXd columns(system_rows, k);

@@ -230,11 +230,21 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
                                 std::move(factor), singular_and_neighbours(),
                                 [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
 
-  // The free integers (loops, links) of each component, which the solves choose: see Move_integers
+  // The free integers (loops, links) of each component, which the solves choose: see Move_integers. Only those of
+  // components with a free singularity: nothing moves in the others, ever.
   const double unit = 2 * CGAL_PI / n;
+  std::vector<char> moving(rows.free_slots.size(), 0);
+  for(int v = 0; v < m.nv; ++v)
+    if(k[std::size_t(v)] != 0 && !fixed[std::size_t(v)]) {
+      const std::size_t c = std::size_t(t.component_of_node[t.node_of_vertex[v]]);
+      if(c < moving.size())
+        moving[c] = 1;
+    }
   std::vector<std::vector<int>> free_rows(rows.free_slots.size());
   for(std::size_t c = 0; c < rows.free_slots.size(); ++c)
     for(int l : rows.free_slots[c]) {
+      if(!moving[c])
+        break;
       const bool prescribed = std::size_t(l) < result.report.loops.size() && result.report.loops[std::size_t(l)].prescribed;
       if(!prescribed && rows.row_of_slot[std::size_t(l)] >= 0)
         free_rows[c].push_back(rows.row_of_slot[std::size_t(l)]);

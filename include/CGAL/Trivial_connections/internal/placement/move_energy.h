@@ -69,7 +69,7 @@ public:
     std::vector<double> path(std::size_t(n), 0.);
     for(int j = n - 1; j >= 0; --j) {
       const int b = m_factor.start[std::size_t(j)], e = m_factor.start[std::size_t(j) + 1];
-      path[std::size_t(j)] = double(e - b + 1) + (b < e ? path[std::size_t(m_factor.row[std::size_t(b)])] : 0.);
+      path[std::size_t(j)] = double(e - b + 1) + (b < e ? path[std::size_t(parent(j))] : 0.);
     }
     double paths = 0;
     for(int v : first)
@@ -193,6 +193,13 @@ public:
 private:
   static constexpr std::size_t block = 8;
 
+  // the parent of position j in the elimination tree: the first row below the diagonal of its column (-1: a root)
+  int parent(int j) const
+  {
+    const int b = m_factor.start[std::size_t(j)];
+    return b < m_factor.start[std::size_t(j) + 1] ? m_factor.row[std::size_t(b)] : -1;
+  }
+
   // `f` without its explicit zeros; returns f as it was
   static Unit_lower_factor without_zeros(Unit_lower_factor& f)
   {
@@ -259,7 +266,7 @@ private:
     path.position.clear();
     const int* start = m_factor.start.data();
     const int* row = m_factor.row.data();
-    for(int j = m_position[r]; j >= 0; j = start[j] < start[j + 1] ? row[start[j]] : -1) {
+    for(int j = m_position[r]; j >= 0; j = parent(j)) {
       path.position.push_back(j);
       stamp[std::size_t(j)] = r;
     }
@@ -301,7 +308,7 @@ private:
       const int p = m_position[rows[begin + c]];
       z[std::size_t(p) * b + c] = 1;
       first = (std::min)(first, p);
-      for(int j = p; j >= 0 && !on_path[std::size_t(j)]; j = start[j] < start[j + 1] ? row[start[j]] : -1) {
+      for(int j = p; j >= 0 && !on_path[std::size_t(j)]; j = parent(j)) {
         on_path[std::size_t(j)] = 1;
         nodes.push_back(j);
       }

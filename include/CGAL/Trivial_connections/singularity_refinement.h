@@ -309,21 +309,47 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       for(int v = 0; v < m.nv; ++v)
         if(k[v] != 0 && !fixed[v])
           diagonal[std::size_t(v)] = inverse.diagonal(v);
-      // the columns of the smaller side
+      // the columns of the smaller side; what a pair reads of the other, gathered once (tens of thousands of
+      // pairs a round); the integers searched only for the pairs their quick bound leaves
       const bool by_positive = positive.size() <= negative.size();
-      inverse.prefetch(by_positive ? positive : negative);
-      for(int s : by_positive ? positive : negative) {
-        const Eigen::VectorXd* column = inverse.column_of(s); // null: no row, G_s. = 0
-        for(int o : by_positive ? negative : positive) {
-          const int v = by_positive ? s : o, w = by_positive ? o : s;
-          if(t.component_of_node[t.node_of_vertex[v]] != t.component_of_node[t.node_of_vertex[w]])
+      const std::vector<int>& columns = by_positive ? positive : negative;
+      const std::vector<int>& others = by_positive ? negative : positive;
+      inverse.prefetch(columns);
+      struct End
+      {
+        int vertex, row;
+        std::size_t component;
+        double gradient, diagonal;
+        internal::Move_integers::Row_terms terms;
+      };
+      auto end_of = [&](int v) {
+        const std::size_t c = component(v);
+        return End{v, inverse.row_of(v), c, gradient[std::size_t(v)], diagonal[std::size_t(v)],
+                   integers.empty() ? internal::Move_integers::Row_terms() : integers.terms(c, inverse.row_of(v))};
+      };
+      std::vector<End> other_ends;
+      for(int o : others)
+        other_ends.push_back(end_of(o));
+      const double unit2 = unit * unit;
+      for(int s : columns) {
+        const End a = end_of(s);
+        const double* column = inverse.column_of(s); // null: no row, G_s. = 0
+        for(const End& b : other_ends) {
+          if(a.component != b.component)
             continue;
-          const int ro = inverse.row_of(o);
-          const double g_vw = column && ro >= 0 ? (*column)[ro] : 0.;
-          const double kept = score(v, w, 1, diagonal[std::size_t(v)] + diagonal[std::size_t(w)] - 2 * g_vw);
-          const double change = with_integers(v, w, unit, kept, tolerance);
+          const End& v = by_positive ? a : b;
+          const End& w = by_positive ? b : a;
+          const double g_vw = column && b.row >= 0 ? column[b.row] : 0.;
+          // score(v, w, 1, G_vv + G_ww - 2 G_vw)
+          const double kept = 1. / n * (w.gradient - v.gradient) + unit2 * (v.diagonal + w.diagonal - 2 * g_vw);
+          if(integers.empty() || kept + integers.quick_bound(a.component, v.terms, w.terms, unit) >= -tolerance) {
+            if(kept < -tolerance)
+              candidates.push_back({v.vertex, w.vertex, 1, kept, true, false});
+            continue;
+          }
+          const double change = integers.best(a.component, v.row, w.row, unit, kept, tolerance);
           if(change < -tolerance)
-            candidates.push_back({v, w, 1, change, true, change < kept});
+            candidates.push_back({v.vertex, w.vertex, 1, change, true, change < kept});
         }
       }
     }
@@ -339,12 +365,13 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     // alone with moves (they would interact through the integers). In a first round on refined_elephant, 71
     // moves with 40 cancellations, predicted -59 without the interactions, gave +99.
     std::vector<Candidate> chosen;
-    std::vector<std::pair<Candidate, std::array<Eigen::VectorXd, 2>>> long_dipoles; // a cancellation, G e_from, G e_to
+    // a cancellation, G e_from, G e_to (null: no row); kept by `inverse` until its next prefetch()
+    std::vector<std::pair<Candidate, std::array<const double*, 2>>> long_dipoles;
     bool integers_taken = false;
     auto free_here = [&](int v) { return blocked[std::size_t(v)] != round; };
-    auto at = [&](const Eigen::VectorXd& column, int v) {
+    auto at = [&](const double* column, int v) {
       const int r = inverse.row_of(v);
-      return r >= 0 && column.size() > 0 ? column[r] : 0.;
+      return r >= 0 && column ? column[r] : 0.;
     };
     for(const Candidate& c : candidates) {
       if(!free_here(c.from) || !free_here(c.to))
@@ -367,11 +394,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       chosen.back().change = change;
       integers_taken = integers_taken || c.integers;
       if(c.cancels && !c.integers) {
-        std::array<Eigen::VectorXd, 2> columns;
-        for(int e = 0; e < 2; ++e)
-          if(const Eigen::VectorXd* column = inverse.column_of(e == 0 ? c.from : c.to))
-            columns[std::size_t(e)] = *column;
-        long_dipoles.emplace_back(c, std::move(columns));
+        long_dipoles.emplace_back(c, std::array<const double*, 2>{{inverse.column_of(c.from), inverse.column_of(c.to)}});
       }
       for(int v : {c.from, c.to}) {
         blocked[std::size_t(v)] = round;

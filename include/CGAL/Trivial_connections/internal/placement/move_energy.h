@@ -11,11 +11,16 @@
 
 #include <Eigen/Core>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <new>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -128,31 +133,33 @@ public:
     }
     if(missing.empty())
       return;
-    if(double(m_columns.size() + missing.size()) * double(m_rows) * sizeof(double) > 256e6)
+    if(m_store.would_exceed(missing.size())) {
       m_columns.clear();
+      m_store.clear();
+    }
+    std::vector<double*> slots;
+    for(int r : missing) {
+      slots.push_back(m_store.slot());
+      m_columns.emplace(r, slots.back());
+    }
     auto solve_range = [&](std::size_t begin, std::size_t end) {
-      std::vector<Eigen::VectorXd> out;
       if(m_factor.n == int(m_rows)) {
-        std::vector<double> z; // one workspace per thread: fresh pages cost more than the substitutions here
+        std::vector<double> z; // one workspace per thread
         std::vector<char> on_path;
         for(std::size_t i = begin; i < end; i += block)
-          columns_of_factor(missing, i, (std::min)(end, i + block), z, on_path, out);
-        return out;
+          columns_of_factor(missing, slots, i, (std::min)(end, i + block), z, on_path);
+        return;
       }
       for(std::size_t i = begin; i < end; ++i) {
         Eigen::VectorXd e = Eigen::VectorXd::Zero(m_rows);
         e[missing[i]] = 1;
-        out.push_back(m_solve(e));
+        Eigen::Map<Eigen::VectorXd>(slots[i], m_rows) = m_solve(e);
       }
-      return out;
     };
     const std::size_t half = missing.size() / 2;
-    auto second = concurrently([&] { return solve_range(half, missing.size()); });
-    std::vector<Eigen::VectorXd> first = solve_range(0, half), rest = second.get();
-    for(std::size_t i = 0; i < half; ++i)
-      m_columns.emplace(missing[i], std::move(first[i]));
-    for(std::size_t i = half; i < missing.size(); ++i)
-      m_columns.emplace(missing[i], std::move(rest[i - half]));
+    auto second = concurrently([&] { solve_range(half, missing.size()); });
+    solve_range(0, half);
+    second.get();
     m_column_solves += missing.size();
   }
 
@@ -183,11 +190,11 @@ public:
     m_paths_usable = second.get() && first;
   }
 
-  // G e_v over the rows (kept; valid until the next column is made), or null for a vertex without a row
-  const Eigen::VectorXd* column_of(int v)
+  // G e_v over the rows (kept until a prefetch() makes room), or null for a vertex without a row
+  const double* column_of(int v)
   {
     const int r = m_row[std::size_t(v)];
-    return r < 0 ? nullptr : &column(r);
+    return r < 0 ? nullptr : column(r);
   }
 
 private:
@@ -288,10 +295,10 @@ private:
     return tree;
   }
 
-  // The columns of rows[begin, end) (at most `block`), appended to `out`: the substitutions through the factor
+  // The columns of rows[begin, end) (at most `block`), into out[begin, end): the substitutions through the factor
   // for all of them at once, which reads the factor once instead of once per column.
-  void columns_of_factor(const std::vector<int>& rows, std::size_t begin, std::size_t end, std::vector<double>& z,
-                         std::vector<char>& on_path, std::vector<Eigen::VectorXd>& out) const
+  void columns_of_factor(const std::vector<int>& rows, const std::vector<double*>& out, std::size_t begin,
+                         std::size_t end, std::vector<double>& z, std::vector<char>& on_path) const
   {
     const std::size_t b = end - begin, n = std::size_t(m_factor.n);
     const int* start = m_factor.start.data();
@@ -351,26 +358,78 @@ private:
       }
     }
     for(std::size_t c = 0; c < b; ++c) {
-      Eigen::VectorXd column(m_rows);
+      double* column = out[begin + c];
       for(Eigen::Index r = 0; r < m_rows; ++r)
         column[r] = z[std::size_t(m_position[r]) * b + c];
-      out.push_back(std::move(column));
     }
   }
 
-  const Eigen::VectorXd& column(int r)
+  // (made here, the store may grow past its budget: columns in use stay valid until the next prefetch())
+  const double* column(int r)
   {
     auto c = m_columns.find(r);
     if(c != m_columns.end())
       return c->second;
-    // the columns kept stay under about 256 MB
-    if(double(m_columns.size() + 1) * double(m_rows) * sizeof(double) > 256e6)
-      m_columns.clear();
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(m_rows);
-    e[r] = 1;
     ++m_column_solves;
-    return m_columns.emplace(r, m_solve(e)).first->second;
+    double* slot = m_store.slot();
+    if(m_factor.n == int(m_rows)) {
+      columns_of_factor({r}, {slot}, 0, 1, m_column_work, m_on_path);
+    } else {
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(m_rows);
+      e[r] = 1;
+      Eigen::Map<Eigen::VectorXd>(slot, m_rows) = m_solve(e);
+    }
+    return m_columns.emplace(r, slot).first->second;
   }
+
+  /*
+    The columns kept, in chunks of at least 2 MB that the kernel may back with huge pages where it offers them
+    (Linux's madvise): thousands of fresh 4 KB pages, each a fault, cost more than the substitutions that fill them
+    (femur, N = 4: 326 columns of 3,897 rows). At most about 256 MB is kept.
+  */
+  class Column_store
+  {
+  public:
+    explicit Column_store(Eigen::Index rows) : m_length(std::size_t(rows))
+    {
+      const std::size_t bytes = (std::max)(m_length * sizeof(double), std::size_t(1));
+      m_per_chunk = (std::max)(std::size_t(1), huge / bytes);
+      m_chunk_bytes = (m_per_chunk * bytes + huge - 1) / huge * huge;
+    }
+
+    bool would_exceed(std::size_t more) const
+    {
+      return double(m_used + more) * double(m_length) * sizeof(double) > 256e6;
+    }
+
+    double* slot()
+    {
+      if(m_used == m_chunks.size() * m_per_chunk) {
+        std::unique_ptr<double, Free> chunk(static_cast<double*>(::operator new(m_chunk_bytes, std::align_val_t(huge))));
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+        madvise(chunk.get(), m_chunk_bytes, MADV_HUGEPAGE); // advice only: 4 KB pages when refused
+#endif
+        m_chunks.push_back(std::move(chunk));
+      }
+      const std::size_t i = m_used++;
+      return m_chunks[i / m_per_chunk].get() + (i % m_per_chunk) * m_length;
+    }
+
+    void clear()
+    {
+      m_chunks.clear();
+      m_used = 0;
+    }
+
+  private:
+    static constexpr std::size_t huge = std::size_t(2) << 20;
+    struct Free
+    {
+      void operator()(double* p) const { ::operator delete(static_cast<void*>(p), std::align_val_t(huge)); }
+    };
+    std::size_t m_length, m_per_chunk = 1, m_chunk_bytes = huge, m_used = 0;
+    std::vector<std::unique_ptr<double, Free>> m_chunks;
+  };
 
   std::vector<int> m_row;
   const int* m_position;
@@ -378,12 +437,15 @@ private:
   std::unique_ptr<Selected_inverse> m_inverse;
   Unit_lower_factor m_factor;
   Column_solve m_solve;
-  std::unordered_map<int, Eigen::VectorXd> m_columns;
+  std::unordered_map<int, const double*> m_columns; // into m_store
+  Column_store m_store{m_rows};
   std::size_t m_column_solves = 0;
   bool m_paths_usable = false;
   std::vector<Path> m_paths; // by row
-  std::vector<double> m_work;
+  std::vector<double> m_work; // zero between paths
   std::vector<int> m_stamp;
+  std::vector<double> m_column_work; // for a column made alone
+  std::vector<char> m_on_path;
 };
 
 } // namespace internal

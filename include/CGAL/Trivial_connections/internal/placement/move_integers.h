@@ -120,6 +120,34 @@ public:
     return (std::min)(0., m_unit * m_unit * gap * gap - relaxed);
   }
 
+  // what bound() reads of a row: lambda_F^T H C_r (this round) and |C_r|_H
+  struct Row_terms
+  {
+    double beta = 0, norm = 0;
+  };
+  Row_terms terms(std::size_t c, int r)
+  {
+    const int block = m_block_of_component[c];
+    if(block < 0 || r < 0)
+      return {};
+    const Block& b = m_blocks[std::size_t(block)];
+    return {beta(b, r), std::sqrt(gamma(b, r))};
+  }
+
+  // At most bound(c, rv, rw, d), from the terms of the two rows only: |C_w - C_v|_H replaced by its upper bound
+  // |C_v|_H + |C_w|_H, which bound() decreases with. For the many pairs of a cancellation search.
+  double quick_bound(std::size_t c, const Row_terms& v, const Row_terms& w, double d) const
+  {
+    const int block = m_block_of_component[c];
+    if(block < 0)
+      return 0;
+    const Block& b = m_blocks[std::size_t(block)];
+    const double reach = v.norm + w.norm;
+    const double relaxed = b.lambda_norm + 2 * d * (w.beta - v.beta) + d * d * reach * reach;
+    const double gap = (std::max)(b.rho - std::abs(d) / m_unit * reach, 0.);
+    return (std::min)(0., m_unit * m_unit * gap * gap - relaxed);
+  }
+
   // the energy change of that move with the integers kept (`kept`), or with the best of them
   double best(std::size_t c, int rv, int rw, double d, double kept, double tolerance)
   {

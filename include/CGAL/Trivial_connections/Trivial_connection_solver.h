@@ -407,6 +407,7 @@ public:
       if(m_system.loop_rows_in_factor() && m_rows.decided_slots.empty() && !links.has_decided_links()) {
         m_links = std::move(links);
         update = m_system.set_links(m_links, m_rows);
+        m_bordered_request = {std::move(user_faces), std::move(guided), std::move(angles), n};
       } else {
         rebuild(user_faces, guided, angles, n);
         update.refactored = true;
@@ -696,6 +697,22 @@ private:
     }
   }
 
+  // The links bordered outside the factor by set_constraints() factored in: the same faces, the system assembled
+  // and factored again (the refinement reads M^-1 from the factor). Nothing when no row is bordered.
+  void factor_bordered_links()
+  {
+    if(!m_system.has_bordered_rows())
+      return;
+    try {
+      rebuild(m_bordered_request.user_faces, m_bordered_request.guided, m_bordered_request.angles, m_bordered_request.n);
+      m_lattices = internal::reduced_loop_lattices(m_system.metrics());
+    } catch(...) { // as set_constraints()
+      rebuild({}, {}, {}, 1);
+      m_lattices = internal::reduced_loop_lattices(m_system.metrics());
+      throw;
+    }
+  }
+
   // The system again for new constrained and guided faces, on the same mesh data and node order.
   void rebuild(const std::vector<int>& user_faces, const std::vector<int>& guided, const std::vector<double>& angles,
                int n)
@@ -731,6 +748,12 @@ private:
   Eigen::VectorXd m_multipliers; // of the last solve that gave its energy gradient (the refinement reads them)
   // the integers of every slot of the last solve, and those the next solve alone tries too (the refinement's)
   std::vector<std::int64_t> m_last_periods, m_period_hint;
+  struct Face_sets
+  {
+    std::vector<int> user_faces, guided;
+    std::vector<double> angles;
+    int n = 1;
+  } m_bordered_request; // what the last set_constraints() that kept the factorization was given
 };
 
 namespace internal {
@@ -754,6 +777,8 @@ struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverT
   // then gives an energy no higher than with them (when its search cannot prove the optimum)
   static const std::vector<std::int64_t>& last_periods(const Solver& s) { return s.m_last_periods; }
   static void hint_periods(Solver& s, std::vector<std::int64_t> periods) { s.m_period_hint = std::move(periods); }
+  // after set_constraints() on a kept factorization: its links into the factor (factored again)
+  static void factor_bordered_links(Solver& s) { s.factor_bordered_links(); }
   // a solver of tm from its arrays, made from the connectivity tm is built from (see Mesh_arrays); with a
   // vertex_point_map in np, nothing of tm is read until the constructor has returned
   template <class NamedParameters = parameters::Default_named_parameters>

@@ -98,8 +98,10 @@ A round applies the best-scored candidates that lie apart (no two within one rin
 `solve()` that chooses the integers again, each cancellation's change corrected exactly for its interaction
 with those taken before it; when that solve does not lower the energy, half of the moves are tried, down to a
 single one. The energy decreases at every round, so the refinement ends, at a local minimum unless a budget of
-solves is given. Solvers whose backend does not expose its factor (or after `set_constraints()` on a kept
-factorization) get the entries from back-substitutions, a column per vertex (kept up to about 256 MB).
+solves is given. After `set_constraints()` on a kept factorization, the new links' rows live outside the factor:
+the system is then factored again with them first (about the cost of the constructor's factorization), so that
+each step costs what it costs without pins. Solvers whose backend does not expose its factor get the entries
+from back-substitutions, a column per vertex (kept up to about 256 MB).
 See the user manual, "Refinement by Moves", for the measurements.
 
 Poincare-Hopf is kept: a move keeps every component's index sum.
@@ -175,6 +177,10 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     return report.energy + report.guidance_energy;
   };
 
+  // rows bordered outside the factor (set_constraints() on a kept factorization) would leave the entries of M^-1
+  // to one back-substitution per vertex: factored in first
+  Access::factor_bordered_links(solver);
+
   Refinement_report<vertex_descriptor> result;
   double energy = 0;
   {
@@ -209,8 +215,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     if(node >= 0 && !g.on_boundary[v])
       row_of_vertex[std::size_t(v)] = rows.row_of_node[node];
   }
-  // the rows of the system solved: those of the factor, and after set_constraints() on a kept factorization the
-  // links' rows bordered outside it (numbered after them)
+  // the rows of the system solved (those of the factor, the bordered ones factored in above)
   const Eigen::Index system_rows = Access::multipliers(solver).size();
   internal::Unit_lower_factor factor;
   if(!system.read_factor(rows, factor))

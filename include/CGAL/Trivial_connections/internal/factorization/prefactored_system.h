@@ -104,6 +104,8 @@ public:
   const Row_permutation& permutation() const { return m_factor.permutation(); }
   const SolverTraits& solver_traits() const { return m_factor.solver_traits(); }
   const std::vector<Loop_metric>& metrics() const { return m_metrics; }
+  // rows live outside the factor (set_constraints() on a kept factorization)
+  bool has_bordered_rows() const { return m_bordered.active(); }
   // the metric was read from the factor, whose substitutions are exposed (set_constraints() keeps the factor)
   bool loop_rows_in_factor() const { return m_loop_rows_in_factor; }
 

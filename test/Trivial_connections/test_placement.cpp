@@ -618,19 +618,39 @@ TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_column
       EXPECT_NEAR(energy.entry(w, v), energy.entry(v, w), 1e-12 * (1 + std::abs(expected)));
     }
     EXPECT_EQ(energy.paths(), mode == 0); // the pattern was that of an elimination tree
-    // whole columns, made eight at a time through the factor (two threads) when it is readable
-    std::vector<int> some;
+    // columns, made eight at a time through the factor (two threads) when it is readable, on the rows watched
+    // (with a factor: the paths of the vertices watched and of the columns' own), which grow onto more rows
+    std::vector<int> some, watched;
     for(int i = 0; i < 21; ++i)
       some.push_back(vertex(random));
+    for(int i = 0; i < 5; ++i)
+      watched.push_back(vertex(random));
+    energy.watch(watched);
     energy.prefetch(some);
-    for(int v : some) {
-      const double* column = energy.column_of(v);
-      ASSERT_EQ(column == nullptr, row_of_vertex[std::size_t(v)] < 0);
-      if(column) {
+    for(int pass = 0; pass < 2; ++pass) {
+      SCOPED_TRACE(pass == 0 ? "on the rows watched" : "grown onto all rows");
+      std::size_t rows_compared = 0, rows_unwatched = 0;
+      for(int v : some) {
+        const double* column = energy.column_of(v);
+        ASSERT_EQ(column == nullptr, row_of_vertex[std::size_t(v)] < 0);
+        if(!column)
+          continue;
         const Eigen::VectorXd expected = solve(Eigen::VectorXd::Unit(nn, row_of_vertex[std::size_t(v)]));
-        EXPECT_LT((Eigen::Map<const Eigen::VectorXd>(column, nn) - expected).cwiseAbs().maxCoeff(),
-                  1e-10 * expected.cwiseAbs().maxCoeff()) << v;
+        for(int r = 0; r < nn; ++r) {
+          if(!energy.watched(r)) {
+            ++rows_unwatched;
+            EXPECT_TRUE(std::isnan(column[r])) << v << " " << r; // never read as a value
+            continue;
+          }
+          ++rows_compared;
+          EXPECT_NEAR(column[r], expected[r], 1e-10 * expected.cwiseAbs().maxCoeff()) << v << " " << r;
+        }
       }
+      EXPECT_GT(rows_compared, 0u);
+      EXPECT_EQ(rows_unwatched > 0, pass == 0 && mode < 2); // only part of the rows made, where a factor is read
+      std::vector<int> all(std::size_t(nn) + 1);
+      std::iota(all.begin(), all.end(), 0);
+      energy.watch(all);
     }
   }
 }

@@ -14,6 +14,8 @@
 #include <CGAL/Trivial_connections/internal/placement/move_integers.h>
 #include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
 
+#include <CGAL/assertions.h>
+
 #include <boost/property_map/vector_property_map.hpp>
 
 #include <algorithm>
@@ -287,8 +289,11 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     const double tolerance = 1e-10 * (std::max)(energy, 1e-300);
     if(!integers.empty())
       integers.start_round(Access::multipliers(solver), result.report.integers_proven_optimal);
+    // the rows this round reads (singular vertices, where they may move): paths, and the columns kept on them
+    const std::vector<int> wanted = singular_and_neighbours();
     if(inverse.paths())
-      inverse.prefetch_paths(singular_and_neighbours());
+      inverse.prefetch_paths(wanted);
+    inverse.watch(wanted);
     std::vector<Candidate> candidates;
     for(int v = 0; v < m.nv; ++v) {
       if(k[v] == 0 || fixed[v])
@@ -344,6 +349,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
             continue;
           const End& v = by_positive ? a : b;
           const End& w = by_positive ? b : a;
+          CGAL_assertion(b.row < 0 || inverse.watched(b.row));
           const double g_vw = column && b.row >= 0 ? column[b.row] : 0.;
           // score(v, w, 1, G_vv + G_ww - 2 G_vw)
           const double kept = 1. / n * (w.gradient - v.gradient) + unit2 * (v.diagonal + w.diagonal - 2 * g_vw);
@@ -376,6 +382,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     auto free_here = [&](int v) { return blocked[std::size_t(v)] != round; };
     auto at = [&](const double* column, int v) {
       const int r = inverse.row_of(v);
+      CGAL_assertion(r < 0 || inverse.watched(r));
       return r >= 0 && column ? column[r] : 0.;
     };
     for(const Candidate& c : candidates) {

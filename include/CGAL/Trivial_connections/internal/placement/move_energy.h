@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <new>
 #include <unordered_map>
@@ -60,6 +61,9 @@ public:
   {
     if(m_factor.n != int(m_rows) || m_factor.n == 0)
       return;
+    m_row_at.resize(std::size_t(m_rows));
+    for(Eigen::Index r = 0; r < m_rows; ++r)
+      m_row_at[std::size_t(m_position[r])] = int(r);
     // The work of each: a selected inversion about sum (column length)^2, and several times that in lookups; a
     // path that of the columns along it, for each vertex wanted, and more as singularities move.
     const int n = m_factor.n;
@@ -84,6 +88,10 @@ public:
     // with paths, femur N = 4 at 15 is 1.5 x slower
     const bool use_paths = choice == Entries::paths || (choice == Entries::automatic && 2 * paths < 3 * inversion);
     m_paths_usable = use_paths && std::all_of(m_factor.d.begin(), m_factor.d.end(), [](double d) { return d > 0; });
+    m_covered.assign(std::size_t(n), elimination_tree_pattern() ? 0 : 1);
+    if(m_covered.front())
+      for(int j = n - 1; j >= 0; --j)
+        m_covered_positions.push_back(j);
     if(m_paths_usable)
       m_paths.resize(std::size_t(m_rows));
     else
@@ -115,6 +123,7 @@ public:
       if(m_paths_usable)
         return path_product(a, b);
     }
+    watch_rows({rv, rw});
     return column(rv)[rw];
   }
 
@@ -133,6 +142,7 @@ public:
     }
     if(missing.empty())
       return;
+    watch_rows(missing);
     if(m_store.would_exceed(missing.size())) {
       m_columns.clear();
       m_store.clear();
@@ -189,6 +199,24 @@ public:
     const bool first = make(0, half);
     m_paths_usable = second.get() && first;
   }
+
+  /*
+    The columns are kept on the positions of the factor that the entries read need only: the paths to the root
+    of the vertices watched (the singular ones and their neighbours, as they move). An entry of G e_v at position
+    j needs those above j in the elimination tree only (the backward substitution reads the rows of column j of L,
+    its ancestors), so the kept columns grow onto newly watched paths exactly, each at the cost of those columns
+    of L. refined_elephant, N = 4: the singular vertices and their neighbours reach a fifth of the tree.
+    Reading a kept column elsewhere than on the watched rows is an error (they hold NaN).
+  */
+  void watch(const std::vector<int>& vertices)
+  {
+    std::vector<int> rows;
+    for(int v : vertices)
+      if(m_row[std::size_t(v)] >= 0)
+        rows.push_back(m_row[std::size_t(v)]);
+    watch_rows(rows);
+  }
+  bool watched(int r) const { return m_covered.empty() || m_covered[std::size_t(m_position[r])]; }
 
   // G e_v over the rows (kept until a prefetch() makes room), or null for a vertex without a row
   const double* column_of(int v)
@@ -295,6 +323,72 @@ private:
     return tree;
   }
 
+  // whether every row of a column of L is an ancestor of it in the elimination tree (parent()): its rows below
+  // the first are among those of its parent's column, from the root down (a factor's pattern always is; checked,
+  // a supernodal factor's without its zeros may not be)
+  bool elimination_tree_pattern() const
+  {
+    const int* start = m_factor.start.data();
+    const int* row = m_factor.row.data();
+    for(int j = 0; j < m_factor.n; ++j) {
+      const int b = start[j], e = start[j + 1];
+      if(b == e)
+        continue;
+      const int p = row[b];
+      int q = start[p];
+      for(int a = b + 1; a < e; ++a) {
+        while(q < start[p + 1] && row[q] < row[a])
+          ++q;
+        if(q == start[p + 1] || row[q] != row[a])
+          return false;
+      }
+    }
+    return true;
+  }
+
+  // covers the paths of these rows, extending the kept columns onto the new positions
+  void watch_rows(const std::vector<int>& rows)
+  {
+    if(m_covered.empty())
+      return;
+    std::vector<int> fresh;
+    for(int r : rows)
+      if(r >= 0)
+        for(int j = m_position[r]; j >= 0 && !m_covered[std::size_t(j)]; j = parent(j)) {
+          m_covered[std::size_t(j)] = 1;
+          fresh.push_back(j);
+        }
+    if(fresh.empty())
+      return;
+    std::sort(fresh.begin(), fresh.end(), std::greater<int>());
+    std::vector<int> merged(m_covered_positions.size() + fresh.size());
+    std::merge(m_covered_positions.begin(), m_covered_positions.end(), fresh.begin(), fresh.end(), merged.begin(),
+               std::greater<int>());
+    m_covered_positions.swap(merged);
+    // G e_v is D^-1 L^-1 e_v then L^-T: off the path of v (covered since its column was made), only L^-T
+    std::vector<double*> kept;
+    for(auto& c : m_columns)
+      kept.push_back(c.second);
+    auto extend = [&](std::size_t begin, std::size_t end) {
+      const int* start = m_factor.start.data();
+      const int* row = m_factor.row.data();
+      const double* l = m_factor.value.data();
+      for(std::size_t i = begin; i < end; ++i) {
+        double* column = kept[i];
+        for(int j : fresh) {
+          double sum = 0;
+          for(int p = start[j]; p < start[j + 1]; ++p)
+            sum += l[p] * column[m_row_at[std::size_t(row[p])]];
+          column[m_row_at[std::size_t(j)]] = -sum;
+        }
+      }
+    };
+    const std::size_t half = kept.size() / 2;
+    auto second = concurrently([&] { extend(half, kept.size()); });
+    extend(0, half);
+    second.get();
+  }
+
   // The columns of rows[begin, end) (at most `block`), into out[begin, end): the substitutions through the factor
   // for all of them at once, which reads the factor once instead of once per column.
   void columns_of_factor(const std::vector<int>& rows, const std::vector<double*>& out, std::size_t begin,
@@ -346,11 +440,11 @@ private:
       for(int j = first; j < int(n); ++j)
         eliminate(j);
     }
-    for(std::size_t j = 0; j < n; ++j) // D^-1
-      for(std::size_t c = 0; c < b; ++c)
-        z[j * b + c] /= m_factor.d[j];
-    for(int j = int(n) - 1; j >= 0; --j) { // L^-T
+    // D^-1 and L^-T on the covered positions (descending), which hold the paths of these rows
+    for(int j : m_covered_positions) {
       double* zj = &z[std::size_t(j) * b];
+      for(std::size_t c = 0; c < b; ++c)
+        zj[c] /= m_factor.d[std::size_t(j)];
       for(int p = start[j]; p < start[j + 1]; ++p) {
         const double* zi = &z[std::size_t(row[p]) * b];
         for(std::size_t c = 0; c < b; ++c)
@@ -359,8 +453,10 @@ private:
     }
     for(std::size_t c = 0; c < b; ++c) {
       double* column = out[begin + c];
-      for(Eigen::Index r = 0; r < m_rows; ++r)
-        column[r] = z[std::size_t(m_position[r]) * b + c];
+      for(Eigen::Index r = 0; r < m_rows; ++r) {
+        const std::size_t j = std::size_t(m_position[r]);
+        column[r] = m_covered[j] ? z[j * b + c] : std::numeric_limits<double>::quiet_NaN();
+      }
     }
   }
 
@@ -371,6 +467,7 @@ private:
     if(c != m_columns.end())
       return c->second;
     ++m_column_solves;
+    watch_rows({r});
     double* slot = m_store.slot();
     if(m_factor.n == int(m_rows)) {
       columns_of_factor({r}, {slot}, 0, 1, m_column_work, m_on_path);
@@ -437,7 +534,10 @@ private:
   std::unique_ptr<Selected_inverse> m_inverse;
   Unit_lower_factor m_factor;
   Column_solve m_solve;
-  std::unordered_map<int, const double*> m_columns; // into m_store
+  std::unordered_map<int, double*> m_columns; // into m_store, on the covered positions
+  std::vector<char> m_covered;           // per position: watched (empty: no factor, columns whole)
+  std::vector<int> m_covered_positions;  // those, descending
+  std::vector<int> m_row_at;             // position -> row
   Column_store m_store{m_rows};
   std::size_t m_column_solves = 0;
   bool m_paths_usable = false;

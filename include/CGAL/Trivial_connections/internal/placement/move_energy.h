@@ -72,13 +72,23 @@ public:
       const double length = double(m_factor.start[std::size_t(j) + 1] - m_factor.start[std::size_t(j)] + 1);
       inversion += length * length;
     }
-    // A supernodal factor brings the zeros of its dense blocks along: the inversion needs them (its pattern must
-    // stay chordal), the substitutions of paths and columns do not (CHOLMOD, refined_elephant: 3.7 x faster).
+    // The elimination tree of the factor as read: its rows of a column are ancestors of it, which the paths and
+    // the columns rely on. A supernodal factor brings the zeros of its dense blocks along, and pins' fixed edges
+    // put zeros in any factor: the inversion needs them (its pattern must stay chordal), the substitutions of
+    // paths and columns do not (CHOLMOD, refined_elephant: 3.7 x faster), but the tree is read before they go
+    // (without them, a column's first row may no longer be its parent: fandisk's pins left neither paths nor
+    // columns but one back-substitution per entry).
+    const bool tree = elimination_tree_pattern(m_factor);
+    m_parent.resize(std::size_t(n));
+    for(int j = 0; j < n; ++j) {
+      const int b = m_factor.start[std::size_t(j)];
+      m_parent[std::size_t(j)] = b < m_factor.start[std::size_t(j) + 1] ? m_factor.row[std::size_t(b)] : -1;
+    }
     Unit_lower_factor padded = without_zeros(m_factor);
     std::vector<double> path(std::size_t(n), 0.);
     for(int j = n - 1; j >= 0; --j) {
       const int b = m_factor.start[std::size_t(j)], e = m_factor.start[std::size_t(j) + 1];
-      path[std::size_t(j)] = double(e - b + 1) + (b < e ? path[std::size_t(parent(j))] : 0.);
+      path[std::size_t(j)] = double(e - b + 1) + (parent(j) >= 0 ? path[std::size_t(parent(j))] : 0.);
     }
     double paths = 0;
     for(int v : first)
@@ -86,9 +96,10 @@ public:
         paths += path[std::size_t(m_position[m_row[std::size_t(v)]])];
     // measured break-even: paths / inversion about 2 (armadillo, N = 4); turbine_loop1 N = 1 at 0.13 is 3 x faster
     // with paths, femur N = 4 at 15 is 1.5 x slower
-    const bool use_paths = choice == Entries::paths || (choice == Entries::automatic && 2 * paths < 3 * inversion);
+    const bool use_paths =
+      tree && (choice == Entries::paths || (choice == Entries::automatic && 2 * paths < 3 * inversion));
     m_paths_usable = use_paths && std::all_of(m_factor.d.begin(), m_factor.d.end(), [](double d) { return d > 0; });
-    m_covered.assign(std::size_t(n), elimination_tree_pattern() ? 0 : 1);
+    m_covered.assign(std::size_t(n), tree ? 0 : 1);
     if(m_covered.front())
       for(int j = n - 1; j >= 0; --j)
         m_covered_positions.push_back(j);
@@ -228,12 +239,9 @@ public:
 private:
   static constexpr std::size_t block = 8;
 
-  // the parent of position j in the elimination tree: the first row below the diagonal of its column (-1: a root)
-  int parent(int j) const
-  {
-    const int b = m_factor.start[std::size_t(j)];
-    return b < m_factor.start[std::size_t(j) + 1] ? m_factor.row[std::size_t(b)] : -1;
-  }
+  // the parent of position j in the elimination tree: the first row below the diagonal of its column in the factor
+  // as read, zeros included (-1: a root)
+  int parent(int j) const { return m_parent[std::size_t(j)]; }
 
   // `f` without its explicit zeros; returns f as it was
   static Unit_lower_factor without_zeros(Unit_lower_factor& f)
@@ -323,14 +331,13 @@ private:
     return tree;
   }
 
-  // whether every row of a column of L is an ancestor of it in the elimination tree (parent()): its rows below
-  // the first are among those of its parent's column, from the root down (a factor's pattern always is; checked,
-  // a supernodal factor's without its zeros may not be)
-  bool elimination_tree_pattern() const
+  // whether every row of a column of f is an ancestor of it in the tree of first rows: its rows below the first
+  // are among those of its parent's column, from the root down (a factor's symbolic pattern always is; checked)
+  static bool elimination_tree_pattern(const Unit_lower_factor& f)
   {
-    const int* start = m_factor.start.data();
-    const int* row = m_factor.row.data();
-    for(int j = 0; j < m_factor.n; ++j) {
+    const int* start = f.start.data();
+    const int* row = f.row.data();
+    for(int j = 0; j < f.n; ++j) {
       const int b = start[j], e = start[j + 1];
       if(b == e)
         continue;
@@ -538,6 +545,7 @@ private:
   std::vector<char> m_covered;           // per position: watched (empty: no factor, columns whole)
   std::vector<int> m_covered_positions;  // those, descending
   std::vector<int> m_row_at;             // position -> row
+  std::vector<int> m_parent;             // position -> its parent in the elimination tree (-1: a root)
   Column_store m_store{m_rows};
   std::size_t m_column_solves = 0;
   bool m_paths_usable = false;

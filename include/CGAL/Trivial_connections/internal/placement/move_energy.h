@@ -142,8 +142,9 @@ public:
   double resistance(int v, int w) { return diagonal(v) + diagonal(w) - 2 * entry(v, w); }
 
   // makes the columns of these vertices that are not kept yet, half on a second thread (the solves only read the
-  // factor)
-  void prefetch(const std::vector<int>& vertices)
+  // factor); `make_room`: the columns kept may be dropped first when they would exceed the budget (false while
+  // columns read before are still in use)
+  void prefetch(const std::vector<int>& vertices, bool make_room = true)
   {
     std::vector<int> missing;
     for(int v : vertices) {
@@ -154,7 +155,7 @@ public:
     if(missing.empty())
       return;
     watch_rows(missing);
-    if(m_store.would_exceed(missing.size())) {
+    if(make_room && m_store.would_exceed(missing.size())) {
       m_columns.clear();
       m_store.clear();
     }
@@ -228,6 +229,13 @@ public:
     watch_rows(rows);
   }
   bool watched(int r) const { return m_covered.empty() || m_covered[std::size_t(m_position[r])]; }
+
+  // whether column_of(v) is made already (or null)
+  bool has_column(int v) const
+  {
+    const int r = m_row[std::size_t(v)];
+    return r < 0 || m_columns.count(r) != 0;
+  }
 
   // G e_v over the rows (kept until a prefetch() makes room), or null for a vertex without a row
   const double* column_of(int v)

@@ -21,8 +21,8 @@
 # (default "--auto": refined to a local minimum with cancellations, the same as --auto --refine --cancel-pairs).
 # A program older than --no-refine needs TC_OURS_SMOOTHEST=--auto TC_OURS_REFINED="--auto --refine --cancel-pairs".
 # N takes the values of TC_COMPARE_N (default 4; e.g. TC_COMPARE_N="1 2 4").
-# Whole processes are timed by /usr/bin/time (wall seconds, maximum resident size; the median of TC_COMPARE_REPS
-# runs, default 3; the peak is that of the median run). Outputs and logs go to TC_COMPARE_DIR (default
+# Whole processes are timed by the shell's clock (wall seconds, to the millisecond) and /usr/bin/time (maximum resident
+# size); the median of TC_COMPARE_REPS runs, default 3; the peak is that of the median run. Outputs and logs go to TC_COMPARE_DIR (default
 # /tmp/peers/runs_gc). A run that fails is reported in its cell instead of stopping the script.
 # Prints a Markdown table.
 set -euo pipefail
@@ -45,12 +45,14 @@ timed() { # LOG CMD...: runs CMD $reps times, stdout+stderr to LOG; prints the m
   local log=$1; shift
   : > "$log.times"
   for _ in $(seq "$reps"); do
-    local status=0
-    /usr/bin/time -f '%e %M' -o "$log.time" "$@" > "$log" 2>&1 || status=$?
+    local status=0 begin end
+    begin=$EPOCHREALTIME # microseconds: /usr/bin/time's %e has 10 ms, a tenth of a small mesh's run
+    /usr/bin/time -f '%M' -o "$log.time" "$@" > "$log" 2>&1 || status=$?
+    end=$EPOCHREALTIME
     if [ "$status" -ne 0 ]; then echo "failed $status"; return 0; fi
-    cat "$log.time" >> "$log.times"
+    echo "$(awk -v a="$begin" -v b="$end" 'BEGIN{printf "%.4f", b - a}') $(tail -1 "$log.time")" >> "$log.times"
   done
-  sort -n "$log.times" | awk '{t[NR] = $1; m[NR] = $2} END {h = int((NR + 1) / 2); printf "%.2f %.0f", t[h], m[h] / 1024}'
+  sort -n "$log.times" | awk '{t[NR] = $1; m[NR] = $2} END {h = int((NR + 1) / 2); printf "%.3f %.0f", t[h], m[h] / 1024}'
 }
 energy() { grep -o '^energy: [-+0-9.eE]*' "$1" | tail -1 | awk '{print $2}' || true; }
 count() { # LOG: the number of singularities our program used ('singularities: S; ...'), else the refinement's

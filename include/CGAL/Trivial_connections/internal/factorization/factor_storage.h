@@ -43,20 +43,27 @@ void write_every_page(T* first, std::ptrdiff_t count)
     first[i] = T();
 }
 
-inline void advise_huge_pages(void* first, std::size_t bytes)
+// madvise(MADV_HUGEPAGE) on the 2 MiB blocks inside [first, first + bytes), whatever its size (a hint: failure
+// changes nothing); for memory that is known to pay, as the refinement's column store (placement/move_energy.h)
+inline void advise_huge_page_blocks(void* first, std::size_t bytes)
 {
 #if defined(__linux__) && !defined(CGAL_TRIVIAL_CONNECTIONS_NO_HUGE_PAGES) && defined(MADV_HUGEPAGE)
   constexpr std::uintptr_t huge = std::uintptr_t(1) << 21;
-  if(bytes < 8 * huge)
-    return;
   const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(first) + huge - 1) & ~(huge - 1);
   const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(first) + bytes) & ~(huge - 1);
   if(end > begin)
-    ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE); // a hint: failure changes nothing
+    ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 #else
   (void)first;
   (void)bytes;
 #endif
+}
+
+// the same for an array of the factor of 16 MiB or more (see above)
+inline void advise_huge_pages(void* first, std::size_t bytes)
+{
+  if(bytes >= (std::size_t(16) << 20))
+    advise_huge_page_blocks(first, bytes);
 }
 
 // Below a megabyte, nothing: the second thread would cost more than it saves.

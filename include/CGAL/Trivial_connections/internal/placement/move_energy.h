@@ -7,13 +7,10 @@
 #define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_PLACEMENT_MOVE_ENERGY_H
 
 #include <CGAL/Trivial_connections/internal/concurrency.h>
+#include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
 #include <CGAL/Trivial_connections/internal/factorization/selected_inverse.h>
 
 #include <Eigen/Core>
-
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 #include <algorithm>
 #include <cmath>
@@ -178,10 +175,7 @@ public:
         Eigen::Map<Eigen::VectorXd>(slots[i], m_rows) = m_solve(e);
       }
     };
-    const std::size_t half = missing.size() / 2;
-    auto second = concurrently([&] { solve_range(half, missing.size()); });
-    solve_range(0, half);
-    second.get();
+    on_two_threads(missing.size(), solve_range);
     m_column_solves += missing.size();
   }
 
@@ -246,6 +240,16 @@ public:
 
 private:
   static constexpr std::size_t block = 8;
+
+  // f(begin, end) over [0, count): the second half on a second thread (the halves write apart)
+  template <class F>
+  static void on_two_threads(std::size_t count, const F& f)
+  {
+    const std::size_t half = count / 2;
+    auto second = concurrently([&] { f(half, count); });
+    f(0, half);
+    second.get();
+  }
 
   // the parent of position j in the elimination tree: the first row below the diagonal of its column in the factor
   // as read, zeros included (-1: a root)
@@ -398,10 +402,7 @@ private:
         }
       }
     };
-    const std::size_t half = kept.size() / 2;
-    auto second = concurrently([&] { extend(half, kept.size()); });
-    extend(0, half);
-    second.get();
+    on_two_threads(kept.size(), extend);
   }
 
   // The columns of rows[begin, end) (at most `block`), into out[begin, end): the substitutions through the factor
@@ -496,8 +497,8 @@ private:
 
   /*
     The columns kept, in chunks of at least 2 MB that the kernel may back with huge pages where it offers them
-    (Linux's madvise): thousands of fresh 4 KB pages, each a fault, cost more than the substitutions that fill them
-    (femur, N = 4: 326 columns of 3,897 rows). At most about 256 MB is kept.
+    (advise_huge_page_blocks()): thousands of fresh 4 KB pages, each a fault, cost more than the substitutions
+    that fill them (femur, N = 4: 326 columns of 3,897 rows). At most about 256 MB is kept.
   */
   class Column_store
   {
@@ -517,10 +518,9 @@ private:
     double* slot()
     {
       if(m_used == m_chunks.size() * m_per_chunk) {
-        std::unique_ptr<double, Free> chunk(static_cast<double*>(::operator new(m_chunk_bytes, std::align_val_t(huge))));
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-        madvise(chunk.get(), m_chunk_bytes, MADV_HUGEPAGE); // advice only: 4 KB pages when refused
-#endif
+        void* memory = ::operator new(m_chunk_bytes, std::align_val_t(huge));
+        std::unique_ptr<double, Free> chunk(static_cast<double*>(memory));
+        advise_huge_page_blocks(chunk.get(), m_chunk_bytes); // 4 KB pages when refused
         m_chunks.push_back(std::move(chunk));
       }
       const std::size_t i = m_used++;

@@ -30,11 +30,12 @@
 
 namespace trivial_connections_program {
 
-// Mesh files from this size on run with huge pages; below it the heap the program needs fills less than a
-// couple of them.
-inline constexpr std::uintmax_t huge_page_file_size = std::uintmax_t(256) << 10;
-// The program's heap against the size of its mesh file (OFF): about 12 to 14 times on 75k to 4.8M faces.
-inline constexpr std::uintmax_t heap_per_file_byte = 16;
+// The heap reserved for the program against the size of its mesh file: --auto's peak heap is 35 to 55 times
+// an OFF file on CGAL's meshes of 5k to 90k faces (the smoothest field's complex factor next to the solver's);
+// past the reserve the heap grows on 4 KiB pages, as without it.
+inline constexpr std::uintmax_t heap_per_file_byte = 64;
+// ... and at least this: a small mesh's run touches a few MiB, which cost hundreds of faults on 4 KiB pages.
+inline constexpr std::uintmax_t minimum_heap_reserve = std::uintmax_t(16) << 20;
 
 /*
   This process's heap made ready for huge pages before the work: every allocation from the main heap (one arena
@@ -78,12 +79,12 @@ inline bool huge_page_heap(std::uintmax_t reserve)
 }
 
 /*
-  On Linux with glibc, transparent huge pages for the program's heap when the mesh file has at least
-  huge_page_file_size bytes, the kernel grants huge pages on request (transparent_hugepage/enabled is `always`
+  On Linux with glibc, transparent huge pages for the program's heap when the kernel grants huge pages on request (transparent_hugepage/enabled is `always`
   or `madvise`) and the user has not set glibc's tunable glibc.malloc.hugetlb (GLIBC_TUNABLES=glibc.malloc.hugetlb=0
   keeps the program from all this). Why: on a virtual machine every page fault is a trap to the hypervisor, and
   the program touches its memory once, so 4 KiB faults cost it about a third of its time on a 75k-face mesh.
-  In this process (huge_page_heap()): the heap is grown once, heap_per_file_byte times the file, marked for huge
+  In this process (huge_page_heap()): the heap is grown once, heap_per_file_byte times the file (at least
+  minimum_heap_reserve; a 5k-face mesh's run pays 2.3k faults on 4 KiB pages, a fifth of its time), marked for huge
   pages, and everything is allocated there. Measured on bunny00 (75k faces, perf stat, 15 runs each): 0.144 to
   0.160 s, against 0.19 to 0.23 s with glibc's own huge pages for malloc (below) and 0.28 s without; page faults
   0.9k against 4.5k and 11.7k. When that fails (the heap cannot grow, or glibc refuses a setting), glibc's
@@ -101,7 +102,7 @@ inline void use_huge_pages(char** argv, const std::string& mesh)
     return;
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(mesh, ec);
-  if(ec || size < huge_page_file_size)
+  if(ec)
     return;
   std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string setting;
@@ -109,7 +110,7 @@ inline void use_huge_pages(char** argv, const std::string& mesh)
   if(setting.find("[always]") == std::string::npos && setting.find("[madvise]") == std::string::npos)
     return;
   if(size <= (std::numeric_limits<std::uintmax_t>::max)() / heap_per_file_byte &&
-     huge_page_heap(size * heap_per_file_byte))
+     huge_page_heap((std::max)(minimum_heap_reserve, size * heap_per_file_byte)))
     return;
 #if __GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 35)
   const std::string with_huge_pages = (current.empty() ? "" : current + ":") + "glibc.malloc.hugetlb=1";

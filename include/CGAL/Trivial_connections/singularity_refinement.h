@@ -10,6 +10,7 @@
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/parameters.h>
+#include <CGAL/Trivial_connections/internal/concurrency.h>
 #include <CGAL/Trivial_connections/internal/placement/move_energy.h>
 #include <CGAL/Trivial_connections/internal/placement/move_integers.h>
 #include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
@@ -337,31 +338,60 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         return End{v, inverse.row_of(v), c, gradient[std::size_t(v)], diagonal[std::size_t(v)],
                    integers.empty() ? internal::Move_integers::Row_terms() : integers.terms(c, inverse.row_of(v))};
       };
-      std::vector<End> other_ends;
+      std::vector<End> column_ends, other_ends;
+      std::vector<const double*> column_values; // null: no row, G_s. = 0
+      for(int s : columns) {
+        column_ends.push_back(end_of(s));
+        column_values.push_back(inverse.column_of(s));
+      }
       for(int o : others)
         other_ends.push_back(end_of(o));
       const double unit2 = unit * unit;
-      for(int s : columns) {
-        const End a = end_of(s);
-        const double* column = inverse.column_of(s); // null: no row, G_s. = 0
-        for(const End& b : other_ends) {
-          if(a.component != b.component)
-            continue;
-          const End& v = by_positive ? a : b;
-          const End& w = by_positive ? b : a;
-          CGAL_assertion(b.row < 0 || inverse.watched(b.row));
-          const double g_vw = column && b.row >= 0 ? column[b.row] : 0.;
-          // score(v, w, 1, G_vv + G_ww - 2 G_vw)
-          const double kept = 1. / n * (w.gradient - v.gradient) + unit2 * (v.diagonal + w.diagonal - 2 * g_vw);
-          if(integers.empty() || kept + integers.quick_bound(a.component, v.terms, w.terms, unit) >= -tolerance) {
-            if(kept < -tolerance)
-              candidates.push_back({v.vertex, w.vertex, 1, kept, true, false});
-            continue;
+      // The pairs of a range of columns, in order: those that lower the energy with the integers kept, and those
+      // whose integers are to be searched (the search is not thread-safe: it runs after, in the same order).
+      struct Pair_price
+      {
+        std::uint32_t column, other;
+        double kept;
+        bool search;
+      };
+      auto price = [&](std::size_t begin, std::size_t end) {
+        std::vector<Pair_price> found;
+        for(std::size_t i = begin; i < end; ++i) {
+          const End& a = column_ends[i];
+          const double* column = column_values[i];
+          for(std::size_t o = 0; o < other_ends.size(); ++o) {
+            const End& b = other_ends[o];
+            if(a.component != b.component)
+              continue;
+            const End& v = by_positive ? a : b;
+            const End& w = by_positive ? b : a;
+            CGAL_assertion(b.row < 0 || inverse.watched(b.row));
+            const double g_vw = column && b.row >= 0 ? column[b.row] : 0.;
+            // score(v, w, 1, G_vv + G_ww - 2 G_vw)
+            const double kept = 1. / n * (w.gradient - v.gradient) + unit2 * (v.diagonal + w.diagonal - 2 * g_vw);
+            const bool search =
+              !integers.empty() && kept + integers.quick_bound(a.component, v.terms, w.terms, unit) < -tolerance;
+            if(search || kept < -tolerance)
+              found.push_back({std::uint32_t(i), std::uint32_t(o), kept, search});
           }
-          const double change = integers.best(a.component, v.row, w.row, unit, kept, tolerance);
-          if(change < -tolerance)
-            candidates.push_back({v.vertex, w.vertex, 1, change, true, change < kept});
         }
+        return found;
+      };
+      // hundreds of thousands of pairs a round on cheese_loop1 (N = 4): half on a second thread
+      const bool split = column_ends.size() >= 2 && column_ends.size() * other_ends.size() >= 20000;
+      const std::size_t half = split ? column_ends.size() / 2 : column_ends.size();
+      auto second = internal::concurrently([&] { return price(half, column_ends.size()); });
+      std::vector<Pair_price> priced = price(0, half);
+      const std::vector<Pair_price> rest = second.get();
+      priced.insert(priced.end(), rest.begin(), rest.end());
+      for(const Pair_price& q : priced) {
+        const End& a = column_ends[q.column];
+        const End& v = by_positive ? a : other_ends[q.other];
+        const End& w = by_positive ? other_ends[q.other] : a;
+        const double change = q.search ? integers.best(a.component, v.row, w.row, unit, q.kept, tolerance) : q.kept;
+        if(change < -tolerance)
+          candidates.push_back({v.vertex, w.vertex, 1, change, true, change < q.kept});
       }
     }
     if(candidates.empty())

@@ -201,6 +201,20 @@ private:
       const int kb = m_start[std::size_t(k)], ke = m_start[std::size_t(k) + 1];
       if(q + 1 == e || kb == ke)
         continue;
+      if(ke - kb == e - q - 1) {
+        // column k has as many rows as column j below k, and holds them all (chordal): the same rows, no merge
+        // (the columns of a supernode, and chains of the elimination tree)
+        const double* z = m_value.data() + kb;
+        const double* l = m_l.data() + q + 1;
+        double* below = sum.data() + (q + 1 - b);
+        double to_q = 0;
+        for(int t = 0; t < ke - kb; ++t) {
+          below[t] += z[t] * lk;
+          to_q += z[t] * l[t];
+        }
+        sum[std::size_t(q - b)] += to_q;
+        continue;
+      }
       const bool search = std::ptrdiff_t(e - q) * 16 < std::ptrdiff_t(ke - kb);
       int r = kb;
       for(int p = q + 1; p < e; ++p) {

@@ -19,6 +19,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <type_traits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -438,13 +439,26 @@ private:
       }
     }
     std::sort(nodes.begin(), nodes.end());
+    // The b values of a position are copied to (or summed in) a local array: written through a pointer into z,
+    // they could alias the rows read, and would be stored and loaded again at each entry of the factor. A full
+    // block has its width known at compile time (cheese_loop1, N = 4: the refinement 0.89 -> 0.70-0.75 s).
+    auto with_width = [b](const auto& kernel) {
+      if(b == block)
+        kernel(std::integral_constant<std::size_t, block>());
+      else
+        kernel(b);
+    };
     auto eliminate = [&](int j) {
-      const double* zj = &z[std::size_t(j) * b];
-      for(int p = start[j]; p < start[j + 1]; ++p) {
-        double* zi = &z[std::size_t(row[p]) * b];
-        for(std::size_t c = 0; c < b; ++c)
-          zi[c] -= l[p] * zj[c];
-      }
+      with_width([&](auto width) {
+        double zj[block];
+        std::copy(&z[std::size_t(j) * b], &z[std::size_t(j) * b] + std::size_t(width), zj);
+        for(int p = start[j]; p < start[j + 1]; ++p) {
+          double* zi = &z[std::size_t(row[p]) * b];
+          const double lp = l[p];
+          for(std::size_t c = 0; c < std::size_t(width); ++c)
+            zi[c] -= lp * zj[c];
+        }
+      });
     };
     bool tree = true;
     for(std::size_t q = 0; q < nodes.size() && tree; ++q) {
@@ -464,16 +478,22 @@ private:
         eliminate(j);
     }
     // D^-1 and L^-T on the covered positions (descending), which hold the paths of these rows
-    for(int j : m_covered_positions) {
-      double* zj = &z[std::size_t(j) * b];
-      for(std::size_t c = 0; c < b; ++c)
-        zj[c] /= m_factor.d[std::size_t(j)];
-      for(int p = start[j]; p < start[j + 1]; ++p) {
-        const double* zi = &z[std::size_t(row[p]) * b];
-        for(std::size_t c = 0; c < b; ++c)
-          zj[c] -= l[p] * zi[c];
+    with_width([&](auto width) {
+      const std::size_t w = std::size_t(width);
+      for(int j : m_covered_positions) {
+        double* zj = &z[std::size_t(j) * b];
+        double sum[block];
+        for(std::size_t c = 0; c < w; ++c)
+          sum[c] = zj[c] / m_factor.d[std::size_t(j)];
+        for(int p = start[j]; p < start[j + 1]; ++p) {
+          const double* zi = &z[std::size_t(row[p]) * b];
+          const double lp = l[p];
+          for(std::size_t c = 0; c < w; ++c)
+            sum[c] -= lp * zi[c];
+        }
+        std::copy(sum, sum + w, zj);
       }
-    }
+    });
     for(std::size_t c = 0; c < b; ++c) {
       double* column = out[begin + c];
       for(Eigen::Index r = 0; r < m_rows; ++r) {

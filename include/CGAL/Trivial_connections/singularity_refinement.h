@@ -379,12 +379,15 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         return found;
       };
       // hundreds of thousands of pairs a round on cheese_loop1 (N = 4): half on a second thread
-      const bool split = column_ends.size() >= 2 && column_ends.size() * other_ends.size() >= 20000;
-      const std::size_t half = split ? column_ends.size() / 2 : column_ends.size();
-      auto second = internal::concurrently([&] { return price(half, column_ends.size()); });
-      std::vector<Pair_price> priced = price(0, half);
-      const std::vector<Pair_price> rest = second.get();
-      priced.insert(priced.end(), rest.begin(), rest.end());
+      std::vector<Pair_price> priced;
+      if(column_ends.size() >= 2 && column_ends.size() * other_ends.size() >= 20000) {
+        const std::size_t half = column_ends.size() / 2;
+        auto second = internal::concurrently([&] { return price(half, column_ends.size()); });
+        priced = price(0, half);
+        const std::vector<Pair_price> rest = second.get();
+        priced.insert(priced.end(), rest.begin(), rest.end());
+      } else
+        priced = price(0, column_ends.size()); // fewer: not worth a thread
       for(const Pair_price& q : priced) {
         const End& a = column_ends[q.column];
         const End& v = by_positive ? a : other_ends[q.other];

@@ -201,9 +201,9 @@ private:
       const int kb = m_start[std::size_t(k)], ke = m_start[std::size_t(k) + 1];
       if(q + 1 == e || kb == ke)
         continue;
-      if(ke - kb == e - q - 1) {
-        // column k has as many rows as column j below k, and holds them all (chordal): the same rows, no merge
-        // (the columns of a supernode, and chains of the elimination tree)
+      if(ke - kb == e - q - 1 && std::equal(m_row.begin() + kb, m_row.begin() + ke, m_row.begin() + q + 1)) {
+        // column k has the rows of column j below k, no more: no merge (the columns of a supernode, and chains of
+        // the elimination tree; compared, as a supernodal factor's padded rows need not be in column k)
         const double* z = m_value.data() + kb;
         const double* l = m_l.data() + q + 1;
         double* below = sum.data() + (q + 1 - b);

@@ -282,6 +282,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   Solve_report trial_report;
   bool last_trial_accepted = true;
   std::vector<int> blocked(std::size_t(m.nv), -1); // the round that last blocked a vertex
+  internal::Second_thread second_thread;          // half of each round's pair pricing
   const std::size_t unlimited = (std::numeric_limits<std::size_t>::max)();
   std::size_t round_size = unlimited; // the most moves a round tries at once
   result.stop = Refinement_stop::local_minimum;
@@ -381,11 +382,9 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       // hundreds of thousands of pairs a round on cheese_loop1 (N = 4): half on a second thread
       std::vector<Pair_price> priced;
       if(column_ends.size() >= 2 && column_ends.size() * other_ends.size() >= 20000) {
-        const std::size_t half = column_ends.size() / 2;
-        auto second = internal::concurrently([&] { return price(half, column_ends.size()); });
-        priced = price(0, half);
-        const std::vector<Pair_price> rest = second.get();
-        priced.insert(priced.end(), rest.begin(), rest.end());
+        auto halves = second_thread.on_two_halves(column_ends.size(), price);
+        priced = std::move(halves.first);
+        priced.insert(priced.end(), halves.second.begin(), halves.second.end());
       } else
         priced = price(0, column_ends.size()); // fewer: not worth a thread
       for(const Pair_price& q : priced) {

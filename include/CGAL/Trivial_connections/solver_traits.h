@@ -529,10 +529,61 @@ struct Factor_substitutions<CGAL::Eigen_solver_traits<Cholmod_supernodal_factori
   static void backward(Traits& traits, Eigen::VectorXd& v) { solve(traits, CHOLMOD_Lt, v); }
 
 private:
-  // With a cholmod_common of its own: the solver's one holds scratch memory, and these substitutions may run
-  // from several threads at once (they only read the factor).
+  // L L^T with dense supernodes, read in place: cholmod_solve would start a cholmod_common and allocate its
+  // workspace at each call, and go through BLAS per supernode (most supernodes of a surface are a few columns)
   template <class Traits>
   static void solve(Traits& traits, int system, Eigen::VectorXd& v)
+  {
+    const cholmod_factor* F = traits.solver().factor();
+    if(!F->is_super) {
+      solve_through_cholmod(traits, system, v);
+      return;
+    }
+    const int* super = static_cast<const int*>(F->super);
+    const int* pi = static_cast<const int*>(F->pi);
+    const int* px = static_cast<const int*>(F->px);
+    const int* all_rows = static_cast<const int*>(F->s);
+    const double* x = static_cast<const double*>(F->x);
+    double* w = v.data();
+    if(system == CHOLMOD_L) {
+      for(std::size_t s = 0; s < F->nsuper; ++s) {
+        const int c0 = super[s], columns = super[s + 1] - c0, nrows = pi[s + 1] - pi[s];
+        const int* rows = all_rows + pi[s];
+        for(int k = 0; k < columns; ++k) {
+          const double* block = x + px[s] + std::size_t(k) * std::size_t(nrows);
+          const double wk = (w[c0 + k] /= block[k]);
+          if(wk != 0)
+            for(int r = k + 1; r < nrows; ++r)
+              w[rows[r]] -= block[r] * wk;
+        }
+      }
+      return;
+    }
+    for(std::size_t s = F->nsuper; s-- > 0;) {
+      const int c0 = super[s], columns = super[s + 1] - c0, nrows = pi[s + 1] - pi[s];
+      const int* rows = all_rows + pi[s];
+      for(int k = columns - 1; k >= 0; --k) {
+        const double* block = x + px[s] + std::size_t(k) * std::size_t(nrows);
+        // four partial sums: one would wait for each product in turn
+        double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+        int r = k + 1;
+        for(; r + 3 < nrows; r += 4) {
+          s0 += block[r] * w[rows[r]];
+          s1 += block[r + 1] * w[rows[r + 1]];
+          s2 += block[r + 2] * w[rows[r + 2]];
+          s3 += block[r + 3] * w[rows[r + 3]];
+        }
+        for(; r < nrows; ++r)
+          s0 += block[r] * w[rows[r]];
+        w[c0 + k] = (w[c0 + k] - ((s0 + s1) + (s2 + s3))) / block[k];
+      }
+    }
+  }
+
+  // A simplicial factor: through cholmod_solve, with a cholmod_common of its own (the solver's one holds scratch
+  // memory, and these substitutions may run from several threads at once: they only read the factor).
+  template <class Traits>
+  static void solve_through_cholmod(Traits& traits, int system, Eigen::VectorXd& v)
   {
     Cholmod_supernodal_factorization& solver = traits.solver();
     struct Common

@@ -34,6 +34,18 @@ struct Unit_lower_factor
   std::vector<double> value, d;
 };
 
+// The parent of each column in the elimination tree of a factor's pattern (column-major, rows below the diagonal
+// increasing): its first row, -1 for a root. Explicit zeros count: they are part of the pattern the tree is of.
+inline std::vector<int> elimination_tree_parents(const std::vector<int>& start, const std::vector<int>& row)
+{
+  const std::size_t n = start.empty() ? 0 : start.size() - 1;
+  std::vector<int> parent(n, -1);
+  for(std::size_t j = 0; j < n; ++j)
+    if(start[j] < start[j + 1])
+      parent[j] = row[std::size_t(start[j])];
+  return parent;
+}
+
 // Reads the factor of the last factorization, in the order of the factored system; false when the backend
 // does not expose it (or permuted the system itself).
 template <class SolverTraits>
@@ -248,15 +260,14 @@ private:
     std::vector<char> owner(std::size_t(n), 0);
     if(n < 1000)
       return owner; // not worth a thread
-    std::vector<int> parent(std::size_t(n), -1);
+    const std::vector<int> parent = elimination_tree_parents(m_start, m_row);
     std::vector<double> work(std::size_t(n), 0.);
     std::vector<std::vector<int>> children((std::size_t(n)));
     std::vector<int> roots;
     for(int j = 0; j < n; ++j) {
       const int b = m_start[std::size_t(j)], e = m_start[std::size_t(j) + 1];
       work[std::size_t(j)] += double(e - b + 1) * double(e - b + 1);
-      if(b < e) {
-        parent[std::size_t(j)] = m_row[std::size_t(b)];
+      if(parent[std::size_t(j)] >= 0) {
         work[std::size_t(parent[std::size_t(j)])] += work[std::size_t(j)];
         children[std::size_t(parent[std::size_t(j)])].push_back(j);
       } else

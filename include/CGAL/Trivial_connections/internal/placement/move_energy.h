@@ -77,11 +77,7 @@ public:
     // (without them, a column's first row may no longer be its parent: fandisk's pins left neither paths nor
     // columns but one back-substitution per entry).
     const bool tree = elimination_tree_pattern(m_factor);
-    m_parent.resize(std::size_t(n));
-    for(int j = 0; j < n; ++j) {
-      const int b = m_factor.start[std::size_t(j)];
-      m_parent[std::size_t(j)] = b < m_factor.start[std::size_t(j) + 1] ? m_factor.row[std::size_t(b)] : -1;
-    }
+    m_parent = elimination_tree_parents(m_factor.start, m_factor.row);
     // the factor with its zeros, for the inversion (empty when it has none: m_factor is copied if inverted)
     Unit_lower_factor padded = without_zeros(m_factor);
     std::vector<double> path(std::size_t(n), 0.);
@@ -177,7 +173,7 @@ public:
         Eigen::Map<Eigen::VectorXd>(slots[i], m_rows) = m_solve(e);
       }
     };
-    on_two_threads(missing.size(), solve_range);
+    m_second_thread.on_two_halves(missing.size(), solve_range); // the halves write apart
     m_column_solves += missing.size();
   }
 
@@ -202,10 +198,8 @@ public:
         tree = make_path(missing[i], work, stamp);
       return tree;
     };
-    const std::size_t half = missing.size() / 2;
-    auto second = concurrently([&] { return make(half, missing.size()); });
-    const bool first = make(0, half);
-    m_paths_usable = second.get() && first;
+    const std::pair<bool, bool> made = m_second_thread.on_two_halves(missing.size(), make);
+    m_paths_usable = made.first && made.second;
   }
 
   /*
@@ -242,16 +236,6 @@ public:
 
 private:
   static constexpr std::size_t block = 8;
-
-  // f(begin, end) over [0, count): the second half on a second thread (the halves write apart)
-  template <class F>
-  static void on_two_threads(std::size_t count, const F& f)
-  {
-    const std::size_t half = count / 2;
-    auto second = concurrently([&] { f(half, count); });
-    f(0, half);
-    second.get();
-  }
 
   // the parent of position j in the elimination tree: the first row below the diagonal of its column in the factor
   // as read, zeros included (-1: a root)
@@ -410,7 +394,7 @@ private:
         }
       }
     };
-    on_two_threads(kept.size(), extend);
+    m_second_thread.on_two_halves(kept.size(), extend);
   }
 
   // The columns of rows[begin, end) (at most `block`), into out[begin, end): the substitutions through the factor
@@ -589,6 +573,7 @@ private:
   std::vector<int> m_stamp;
   std::vector<double> m_column_work; // for a column made alone
   std::vector<char> m_on_path;
+  Second_thread m_second_thread; // the second halves of the columns, paths and watched rows made
 };
 
 } // namespace internal

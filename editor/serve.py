@@ -3,8 +3,9 @@
 
     PYTHONPATH=build/python python3 editor/serve.py MESH [--n N] [--port P] [--bundle DIR] [--folder DIR]
 
-Binds 127.0.0.1 only. Serves its page (editor/web/index.html and the bundle the build made, DIR/editor.js) and
-the mesh it was given; every edit the page sends is a solve on the solver factored once at start. Arrays travel
+Binds 127.0.0.1 only. Serves its page (editor/web/index.html and the bundle the build made, DIR/editor.js with
+its source map DIR/editor.js.map: these three files by name, never a path taken from the URL) and the mesh it was
+given; every edit the page sends is a solve on the solver factored once at start. Arrays travel
 as binary (see `frame`), never as JSON numbers. The only files it reads or writes for the page are in --folder
 (default: the current directory at start).
 
@@ -621,7 +622,11 @@ class Handler(http.server.BaseHTTPRequestHandler):
     bundle = None
     protocol_version = "HTTP/1.1"
     disable_nagle_algorithm = True  # no 40 ms wait for the client's delayed ACK between packets of a reply
-    GETS = ("/", "/editor.js", "/api/mesh")
+    GETS = ("/", "/editor.js", "/editor.js.map", "/api/mesh")
+    # the static files: URL -> (the file, from the page's folder or the bundle's, never a path from the request; type)
+    FILES = {"/": ("web", "index.html", "text/html; charset=utf-8"),
+             "/editor.js": ("bundle", "editor.js", "text/javascript"),
+             "/editor.js.map": ("bundle", "editor.js.map", "application/json")}
     POSTS = {"/api/solve": "solve_frame", "/api/place": "place_frame", "/api/streamlines": "streamlines_frame",
              "/api/save": "save_frame", "/api/load": "load_frame", "/api/features": "features_frame"}
 
@@ -672,8 +677,8 @@ class Handler(http.server.BaseHTTPRequestHandler):
             return self.not_allowed(body_read=True)  # (or the connection closes, as just said)
         if self.path == "/api/mesh":
             return self.reply(200, self.session.mesh_frame(), "application/octet-stream")
-        path, kind = {"/": (os.path.join(HERE, "web", "index.html"), "text/html; charset=utf-8"),
-                      "/editor.js": (os.path.join(self.bundle, "editor.js"), "text/javascript")}[self.path]
+        where, name, kind = self.FILES[self.path]
+        path = os.path.join(os.path.join(HERE, "web") if where == "web" else self.bundle, name)
         try:
             with open(path, "rb") as f:
                 body = f.read()

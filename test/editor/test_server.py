@@ -867,6 +867,45 @@ def test_a_missing_bundle_is_a_404_line(server, capfd):
     assert "Traceback" not in capfd.readouterr().err
 
 
+def test_the_bundle_and_its_source_map_are_served_by_name_only(tmp_path, capfd):
+    """GET /editor.js.map: the source map esbuild writes beside editor.js (--sourcemap), from the bundle folder,
+    as application/json; no other file of that folder, nor a path built from the URL"""
+    bundle, files = tmp_path / "bundle", tmp_path / "files"
+    bundle.mkdir()
+    files.mkdir()
+    (bundle / "editor.js").write_text("//# sourceMappingURL=editor.js.map\n")
+    source_map = json.dumps({"version": 3, "sources": ["main.js"], "mappings": ""}).encode()
+    (bundle / "editor.js.map").write_bytes(source_map)
+    (bundle / "secret.txt").write_text("not served\n")
+    httpd = start(octahedron_file(str(files)), str(files))
+    httpd.RequestHandlerClass.bundle = str(bundle)
+    port = httpd.server_address[1]
+    try:
+        c = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+        for method in ["GET", "HEAD"]:
+            c.request(method, "/editor.js.map")
+            r = c.getresponse()
+            body = r.read()
+            assert r.status == 200 and r.getheader("Content-Type") == "application/json"
+            assert int(r.getheader("Content-Length")) == len(source_map)
+            assert body == (source_map if method == "GET" else b"")
+        c.close()
+        assert request(port, "GET", "/editor.js")[0] == 200
+        for path in ["/secret.txt", "/bundle/editor.js.map", "/editor.js.map/", "/editor.js.map/../secret.txt",
+                     "/../bundle/editor.js.map", "/%2e%2e/bundle/secret.txt", "/editor.js.map?x=1", "/editor.map"]:
+            status, data = request(port, "GET", path)
+            assert status == 404 and one_line(data), (path, status, data)
+        status, data = post(port, "/editor.js.map", {})
+        assert status == 405 and one_line(data)
+        (bundle / "editor.js.map").unlink()  # a bundle built without it: a 404 line, the page still served
+        status, data = request(port, "GET", "/editor.js.map")
+        assert status == 404 and one_line(data) and b"trivial_connections_editor" in data
+        assert request(port, "GET", "/")[0] == 200
+    finally:
+        httpd.shutdown()
+    assert "Traceback" not in capfd.readouterr().err
+
+
 # ---- issue 37: pins are cheap (no cap), the sharp features' pins, placement under pins --------------------------
 
 

@@ -11,12 +11,13 @@ as binary (see `frame`), never as JSON numbers. The only files it reads or write
 
 API. Requests are JSON objects (UTF-8, sent with a Content-Length); replies are frames (`frame`: a JSON header,
 then arrays), or, when refused, a text/plain line giving the reason: 400 malformed request (not JSON, not an object,
-nested too deeply, an integer of more than MAX_DIGITS digits, NaN or Infinity, a field of the wrong type, a bad
+nested too deeply, an integer of more than {MAX_DIGITS} digits, NaN or Infinity, a field of the wrong type, a bad
 Content-Length or a body shorter than it), 403 a path outside the folder or the mesh itself, 404 unknown URL or
 missing file, 405 a method the URL does not take (with an Allow header), 408 the body did not arrive within
-BODY_TIMEOUT seconds, 409 saving over an existing file without "overwrite": true, 411 a POST without Content-Length
-(a chunked body is not read), 413 body too large, 422 refused by the library ("code: message", e.g.
-"poincare_hopf_violated: ..."). GET and HEAD (the headers of the GET) on the page and the mesh, POST on the rest.
+{BODY_TIMEOUT} seconds, 409 saving over an existing file without "overwrite": true, 411 a POST without Content-Length
+(a chunked body is not read), 413 a body longer than max_body (see Size below), 422 refused by the library
+("code: message", e.g. "poincare_hopf_violated: ..."). GET and HEAD (the headers of the GET) on the page, its
+bundle and the mesh, POST on the rest.
   GET  /api/mesh         header {vertices, faces, n, chi, closed (per component), singularities (placed at start)};
                          arrays V <f4 (V, 3), F <u4 (F, 3), component <i4 (V,) (-1: no face), boundary <u4 (b, 2)
                          (boundary edges), angle_defect <f4 (V,) (2 pi minus the corner angles at the vertex)
@@ -25,8 +26,8 @@ BODY_TIMEOUT seconds, 409 saving over an existing file without "overwrite": true
                          directions (and the boundary, with align_boundary), as the module's place_singularities()
   POST /api/features     {threshold?, n?, align_boundary?}: the pins of the sharp features (the module's
                          feature_aligned_faces(): the faces beside the feature curves whose normals differ by more than
-                         `threshold` degrees, default 30, each pinned to the curve's direction) -> header {threshold,
-                         constraints: [[f, [x, y, z]]] (increasing f; with align_boundary, none on the boundary: the
+                         `threshold` degrees, default {DEFAULT_FEATURE_ANGLE}, each pinned to the curve's direction)
+                         -> header {threshold, constraints: [[f, [x, y, z]]] (increasing f; with align_boundary, none on the boundary: the
                          field follows the boundary there), on_aligned_boundary (the faces left out for it), report (the
                          module's dict: number_of_sharp_edges, number_of_curves, disagreeing_pairs, ...)}. A
                          threshold that is not a number is a 400, one outside [0, 180] a 422 (invalid_argument). The
@@ -39,10 +40,11 @@ BODY_TIMEOUT seconds, 409 saving over an existing file without "overwrite": true
                          decided (True: a link between touching pins, its integer by rounding)}]
   POST /api/streamlines  {SOLVE, seeds?} -> header {n, energy, lines, seeds, maximum_faces_per_ray, timings};
                          arrays points <f4 (k, 3), offsets <u4 (lines + 1,): line i is points[offsets[i]:offsets[i+1]].
-                         seeds: the number of seed faces asked for (1 to 100000, default min(faces, 3000)), spread
-                         over the mesh the same way every time; header seeds: the number used. The rays are cut (to
-                         maximum_faces_per_ray faces, at least 8), then seeds left out, so that all of them cross
-                         at most RAY_STEPS faces: about half a second at most on 100k faces
+                         seeds: the number of seed faces asked for (1 to {MAX_SEEDS}, default
+                         min(faces, {DEFAULT_SEEDS})), spread over the mesh the same way every time; header seeds:
+                         the number used. The rays are cut (to maximum_faces_per_ray faces, at least 8), then seeds
+                         left out, so that all of them cross at most {RAY_STEPS} faces: about half a second at most
+                         on 100k faces
   POST /api/save         {kind, path, overwrite?, SOLVE, seeds?}: solves, then writes (completely or not at all)
                          `path` in the folder -> header {saved: the path relative to the folder, bytes}. kind:
                          "singularities", "constraints" (lines "f x y z"), "field" (the program's field file, path
@@ -54,19 +56,19 @@ BODY_TIMEOUT seconds, 409 saving over an existing file without "overwrite": true
   POST /api/load         {kind: "singularities" | "constraints", path} -> header {singularities: [[v, "p/q"]]} or
                          {constraints: [[f, [x, y, z]]]}, in file order, checked by the library's readers against the
                          mesh (vertex and face numbers in range, no repeat)
-SOLVE: n (1 to 64, default --n); singularities [[vertex, "p/q" or integer]] (default []); constraints
+SOLVE: n (1 to {MAX_N}, default --n); singularities [[vertex, "p/q" or integer]] (default []); constraints
 [[face, [x, y, z]]] (default []: faces in range and each once, so at most one per face, directions three finite numbers,
 not all zero; the field points along the direction projected onto the face); align_boundary (default false: true follows
 the boundary, with a second solver made on first use; on a mesh without boundary it is the same solve).
 Paths (save, load): a non-empty relative path; with symbolic links resolved it must lie in the folder (403
 otherwise); to save, its directory must exist (404), it must not be the mesh (403) and, if it exists, it must be a
 regular file (400) and overwrite must be true (409); to load, it must be a regular file (404 if missing, 400
-otherwise, 413 above 64 MB). Nothing is written when a request is refused.
+otherwise, 413 above {MAX_LOAD}). Nothing is written when a request is refused.
 Constraints and alignment: each solver (plain, aligned) keeps the constrained faces of its last request; a request
 with another set of faces calls set_constraints() first (cheap: pins cost about what the faces they pin cost, and
 thousands are fine), under a lock held until its solve is done, so concurrent requests each get their own answer.
 Size: there is no limit on the number of pins other than one per face; the body of a request is limited to
-max_body bytes (MAX_BODY plus BODY_PER_FACE per face of the mesh: every face pinned with 17-digit numbers fits),
+max_body bytes ({MAX_BODY} plus {BODY_PER_FACE} per face of the mesh: every face pinned with 17-digit numbers fits),
 because it is read whole into memory and parsed before anything is checked.
 """
 import argparse
@@ -92,12 +94,27 @@ MAX_SEEDS = 100000
 DEFAULT_SEEDS = 3000
 RAY_STEPS = 500_000  # faces crossed by all the rays of a streamline request together, at most (~0.5 s at worst)
 MAX_LOAD = 64 << 20  # bytes of a file to load
+MAX_N = 64  # the largest symmetry order n a request may ask for
 MAX_DIGITS = 1000  # digits of an integer in a request (Python refuses to convert more than 4300: a ValueError)
 BODY_TIMEOUT = 30  # seconds for a request body to arrive once its headers have (408 after)
 # save kinds: the ending their path must have ("" for any)
 SAVE_KINDS = {"singularities": "", "constraints": "", "field": ".txt", "vtk": ".vtk", "ply": ".ply",
               "streamlines": ""}
 HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def megabytes(size):
+    return f"{size / (1 << 20):g} MB"
+
+
+# the limits the docstring states, as it states them: written into it from the constants (its {NAME}s), so that
+# the text (and --help) says what the code does
+DOCUMENTED = {"MAX_DIGITS": MAX_DIGITS, "BODY_TIMEOUT": BODY_TIMEOUT, "MAX_SEEDS": MAX_SEEDS,
+              "DEFAULT_SEEDS": DEFAULT_SEEDS, "RAY_STEPS": RAY_STEPS, "MAX_N": MAX_N, "MAX_LOAD": megabytes(MAX_LOAD),
+              "MAX_BODY": megabytes(MAX_BODY), "BODY_PER_FACE": f"{BODY_PER_FACE} bytes",
+              "DEFAULT_FEATURE_ANGLE": f"{tc.DEFAULT_FEATURE_ANGLE:g}"}
+for _name, _value in DOCUMENTED.items():
+    __doc__ = __doc__.replace("{" + _name + "}", str(_value))
 
 
 class Refusal(Exception):
@@ -247,8 +264,8 @@ class Session:
         if not isinstance(request, dict):
             raise ValueError("the body must be a JSON object")
         n = request.get("n", self.n)
-        if not isinstance(n, int) or isinstance(n, bool) or not 1 <= n <= 64:
-            raise ValueError(f"n must be an integer from 1 to 64, got {n!r}")
+        if not isinstance(n, int) or isinstance(n, bool) or not 1 <= n <= MAX_N:
+            raise ValueError(f"n must be an integer from 1 to {MAX_N}, got {shown(n)}")
         return n
 
     def align_boundary(self, request):

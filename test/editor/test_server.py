@@ -3,12 +3,14 @@ saved and loaded in its folder, the mesh's angle defects) checked against the mo
 one-line reason, the session keeps working, nothing written; saves that never replace the mesh, nor another file
 without "overwrite": true; malformed bodies, framings and methods answered, never a dropped connection. Runs editor/serve.py in this process on generated
 meshes (PYTHONPATH: the module)."""
+import ast
 import fractions
 import http.client
 import importlib.util
 import json
 import math
 import os
+import re
 import socket
 import threading
 
@@ -865,6 +867,30 @@ def test_a_missing_bundle_is_a_404_line(server, capfd):
     assert status == 404 and one_line(data) and b"trivial_connections_editor" in data
     assert request(port, "GET", "/")[0] == 200
     assert "Traceback" not in capfd.readouterr().err
+
+
+def test_the_docstring_states_the_limits_of_the_code():
+    """every limit the server's docstring (and so --help) states is written into it from its constant"""
+    with open(serve.__file__) as f:
+        raw = ast.get_docstring(ast.parse(f.read()), clean=False)
+    named = set(re.findall(r"\{([A-Z][A-Z_]*)\}", raw)) - {"SOLVE"}  # {SOLVE}: the API's notation
+    assert named == set(serve.DOCUMENTED)
+    doc = serve.__doc__
+    assert not any("{" + name + "}" in doc for name in named)
+    assert f"(1 to {serve.MAX_SEEDS}, default\n" in doc and f"min(faces, {serve.DEFAULT_SEEDS})" in doc
+    assert f"SOLVE: n (1 to {serve.MAX_N}," in doc and f"more than {serve.MAX_DIGITS} digits" in doc
+    assert f"413 above {serve.MAX_LOAD >> 20} MB" in doc and f"at most {serve.RAY_STEPS} faces" in doc
+    assert f"({serve.MAX_BODY >> 20} MB plus {serve.BODY_PER_FACE} bytes per face" in doc
+    assert f"{serve.BODY_TIMEOUT} seconds" in doc and f"default {tc.DEFAULT_FEATURE_ANGLE:g}," in doc
+    # the code keeps to them
+    session = serve.Session.__new__(serve.Session)
+    session.n, session.F = 4, np.zeros((10, 3), int)
+    assert session.symmetry_order({"n": serve.MAX_N}) == serve.MAX_N
+    with pytest.raises(ValueError, match=f"from 1 to {serve.MAX_N}"):
+        session.symmetry_order({"n": serve.MAX_N + 1})
+    with pytest.raises(ValueError, match=f"from 1 to {serve.MAX_SEEDS}"):
+        session.seed_count({"seeds": serve.MAX_SEEDS + 1})
+    assert session.seed_count({}) == min(10, serve.DEFAULT_SEEDS)
 
 
 def test_the_bundle_and_its_source_map_are_served_by_name_only(tmp_path, capfd):

@@ -27,11 +27,12 @@ bundle and the mesh, POST on the rest.
   POST /api/features     {threshold?, n?, align_boundary?}: the pins of the sharp features (the module's
                          feature_aligned_faces(): the faces beside the feature curves whose normals differ by more than
                          `threshold` degrees, default {DEFAULT_FEATURE_ANGLE}, each pinned to the curve's direction)
-                         -> header {threshold, constraints: [[f, [x, y, z]]] (increasing f; with align_boundary, none on the boundary: the
-                         field follows the boundary there), on_aligned_boundary (the faces left out for it), report (the
-                         module's dict: number_of_sharp_edges, number_of_curves, disagreeing_pairs, ...)}. A
-                         threshold that is not a number is a 400, one outside [0, 180] a 422 (invalid_argument). The
-                         page adds them where the user has no pin of their own (the user's pins win)
+                         -> header {threshold, constraints: [[f, [x, y, z]]] (increasing f; with align_boundary,
+                         none on the boundary: the field follows the boundary there), on_aligned_boundary (the
+                         faces left out for it), report (the module's dict: number_of_sharp_edges, number_of_curves,
+                         disagreeing_pairs, ...)}. A threshold that is not a number is a 400, one outside [0, 180]
+                         a 422 (invalid_argument). The page adds them where the user has no pin of their own (the
+                         user's pins win)
   POST /api/solve        {SOLVE} -> header {n, energy, max_residual, timings, constraints}; array angle <f4 (F,):
                          one direction per face, as its angle counter-clockwise from the face's first edge (F[f, 0]
                          to F[f, 1]) about its normal (the page turns it by 2 pi / n for the others). constraints: the
@@ -56,10 +57,12 @@ bundle and the mesh, POST on the rest.
   POST /api/load         {kind: "singularities" | "constraints", path} -> header {singularities: [[v, "p/q"]]} or
                          {constraints: [[f, [x, y, z]]]}, in file order, checked by the library's readers against the
                          mesh (vertex and face numbers in range, no repeat)
-SOLVE: n (1 to {MAX_N}, default --n); singularities [[vertex, "p/q" or integer]] (default []); constraints
-[[face, [x, y, z]]] (default []: faces in range and each once, so at most one per face, directions three finite numbers,
-not all zero; the field points along the direction projected onto the face); align_boundary (default false: true follows
-the boundary, with a second solver made on first use; on a mesh without boundary it is the same solve).
+SOLVE: n (1 to {MAX_N}, default --n); singularities [[vertex, "p/q" or integer]] (default []: each vertex once, a
+vertex listed twice is a 422 duplicate_singularity, never last-wins); constraints
+[[face, [x, y, z]]] (default []: faces in range and each once, a face listed twice is a 422 invalid_constraint
+(the library's code for it); directions three finite numbers, not all zero; the field points along the direction
+projected onto the face); align_boundary (default false: true follows the boundary, with a second solver made on
+first use; on a mesh without boundary it is the same solve).
 Paths (save, load): a non-empty relative path; with symbolic links resolved it must lie in the folder (403
 otherwise); to save, its directory must exist (404), it must not be the mesh (403) and, if it exists, it must be a
 regular file (400) and overwrite must be true (409); to load, it must be a regular file (404 if missing, 400
@@ -317,6 +320,8 @@ class Session:
             if not (isinstance(item, list) and len(item) == 2 and type(item[0]) is int
                     and type(item[1]) in (int, str)):
                 raise ValueError(f"a singularity must be [vertex, index], got {shown(item)}")
+            if item[0] in singularities:  # not last-wins: the library's code for a vertex listed twice
+                raise Refusal(422, f"duplicate_singularity: vertex {shown(item[0])} is listed twice")
             singularities[item[0]] = str(item[1])
         faces, directions = self.constraints(request.get("constraints", []))
         return Problem(n, singularities, faces, directions, self.align_boundary(request))

@@ -301,6 +301,36 @@ def test_constraint_sets_switch_and_each_request_gets_its_own(server):
     assert wrong == []
 
 
+@pytest.mark.parametrize("endpoint, extra", [("/api/solve", {}), ("/api/streamlines", {}),
+                                             ("/api/save", {"kind": "singularities", "path": "twice.sing"}),
+                                             ("/api/save", {"kind": "field", "path": "twice.txt"})])
+@pytest.mark.parametrize("singularities, vertex", [
+    ([[0, 1], [1, 1], [1, 1]], 1),          # last-wins would be {0: 1, 1: 1}: balanced, and solved
+    ([[0, 1], [1, "1/4"], [1, "3/4"]], 1),  # last-wins would be balanced too
+    ([[0, 1], [0, "1"], [1, 1]], 0),        # the same index, written two ways
+    ([[3, 2], [3, -1], [3, 1]], 3),
+])
+def test_a_vertex_listed_twice_is_refused(server, endpoint, extra, singularities, vertex):
+    port, folder = server
+    before = tree(str(folder))
+    status, data = post(port, endpoint, dict({"n": 4, "singularities": singularities}, **extra))
+    assert status == 422 and one_line(data), (status, data)
+    assert data == f"duplicate_singularity: vertex {vertex} is listed twice\n".encode()
+    assert solve(port, [[0, 1], [1, 1]])[0] == 200
+    assert tree(str(folder)) == before
+
+
+@pytest.mark.parametrize("endpoint, extra", [("/api/solve", {}), ("/api/place", {}), ("/api/streamlines", {}),
+                                             ("/api/save", {"kind": "constraints", "path": "twice.dirs"})])
+def test_a_face_listed_twice_is_refused(server, endpoint, extra):
+    port, folder = server
+    before = tree(str(folder))
+    body = {"n": 4, "singularities": [[0, 1], [1, 1]], "constraints": [[5, [1, 0, 0]], [2, [0, 0, 1]], [5, [0, 1, 0]]]}
+    status, data = post(port, endpoint, dict(body, **extra))
+    assert status == 422 and data == b"invalid_constraint: face 5 is constrained twice\n", (status, data)
+    assert tree(str(folder)) == before
+
+
 @pytest.mark.parametrize("constraints, code", [
     ({"2": [1, 0, 0]}, 400),                  # not a list
     ([2, [1, 0, 0]], 400),                    # not a list of pairs

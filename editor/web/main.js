@@ -481,12 +481,17 @@ $("n").onchange = e => placeFor(Number(e.target.value));
 $("place").onclick = () => placeFor(state.n);
 $("undo").onclick = () => travel(undoStack, redoStack);
 $("redo").onclick = () => travel(redoStack, undoStack);
-window.addEventListener("keydown", e => { // ctrl-z undoes, ctrl-shift-z and ctrl-y redo (not while typing a name)
-  if (!(e.ctrlKey || e.metaKey) || e.target instanceof HTMLInputElement) return;
-  const key = e.key.toLowerCase();
-  if (key === "z" && !e.shiftKey) travel(undoStack, redoStack);
-  else if (key === "y" || (key === "z" && e.shiftKey)) travel(redoStack, undoStack);
-  else return;
+// the keyboard's shortcuts, all with ctrl (cmd on a Mac), not while typing a name or an angle: the legend on the
+// page (#shortcuts, one [data-keys] element each) lists them, and the browser test checks it against this table
+const KEYS = [{ keys: "Ctrl+Z", key: "z", shift: false, does: "undo" },
+              { keys: "Ctrl+Shift+Z", key: "z", shift: true, does: "redo" },
+              { keys: "Ctrl+Y", key: "y", shift: false, does: "redo" }];
+window.addEventListener("keydown", e => {
+  const typing = e.target instanceof HTMLInputElement && e.target.type !== "checkbox";
+  if (!(e.ctrlKey || e.metaKey) || e.altKey || typing) return;
+  const k = KEYS.find(k => k.key === e.key.toLowerCase() && k.shift === e.shiftKey);
+  if (!k) return;
+  if (k.does === "undo") travel(undoStack, redoStack); else travel(redoStack, undoStack);
   e.preventDefault();
 });
 $("balance-move").onclick = () => balancingMove();
@@ -615,7 +620,7 @@ async function start() {
   angleDefect = frame.arrays.angle_defect;
   window.__editor = {
     component: frame.arrays.component, solves: 0, state, edit, solve, balance, balancingMove, screenOf, screenOfFace,
-    placeFor, alignFeatures, measure: false, latencies: [], faces: F.length / 3, idle: () => queue,
+    placeFor, alignFeatures, keys: KEYS, measure: false, latencies: [], faces: F.length / 3, idle: () => queue,
     get directions() { return fieldView.directions(); },
     singularities: () => [...state.singularities].map(([v, k]) => [v, indexText(k)]),
     constraints: () => [...state.constraints],

@@ -3,7 +3,8 @@
 //   node editor_test.mjs SERVE MESH BORDERED_MESH OUTDIR     (ctest editor_browser; NODE_PATH: the build's npm packages)
 //
 // SERVE: the launcher (trivial_connections-serve). On MESH (closed): load, a click adding +1/n, a shift-click adding
-// -1/n elsewhere, two undos, two redos, a drag, a pinned direction, a stroke, an undo, an unbalancing click completed
+// -1/n elsewhere, two undos, two redos, the legend of the shortcuts (every modifier key the code reads, every tool,
+// exactly the keyboard shortcuts of the page's table) and those shortcuts pressed, a drag, a pinned direction, a stroke, an undo, an unbalancing click completed
 // by the balancing move, save and load of singularities and constraints, a save over an existing file (the page asks:
 // declined, the file is kept; accepted, replaced), n = 6, streamlines, a PNG. After each step
 // the field the page holds is checked against the library's answer for the same request (check_field.py, beside
@@ -95,6 +96,61 @@ async function open(browser, address) {
   return page;
 }
 
+// the legend of the shortcuts (#shortcuts): in view without hovering anything, it names every modifier key the
+// page's code reads (e.shiftKey, e.altKey, e.ctrlKey, e.metaKey in editor/web/main.js), every tool of the tool menu,
+// and exactly the keyboard shortcuts of the page's table (window.__editor.keys), each spelt out in <kbd>s; returns
+// the table
+async function checkLegend(page) {
+  const source = readFileSync(path.join(here, "..", "..", "editor", "web", "main.js"), "utf8");
+  const names = { shiftKey: "Shift", altKey: "Alt", ctrlKey: "Ctrl", metaKey: "⌘" };
+  const modifiers = [...new Set([...source.matchAll(/\.(shiftKey|altKey|ctrlKey|metaKey)\b/g)].map(m => names[m[1]]))];
+  const legend = await page.evaluate(() => {
+    const box = document.querySelector("#shortcuts"), r = box.getBoundingClientRect();
+    const kbd = e => [...e.querySelectorAll("kbd")].map(k => k.textContent.trim());
+    const shown = e => e.checkVisibility() && e.getBoundingClientRect().width > 0;
+    return { inView: shown(box) && r.top >= 0 && r.bottom <= innerHeight && r.right <= innerWidth,
+             kbd: kbd(box), tools: [...box.querySelectorAll("[data-tool]")].filter(shown).map(e => e.dataset.tool),
+             keys: [...box.querySelectorAll("[data-keys]")].filter(shown)
+               .map(e => ({ keys: e.dataset.keys, does: e.dataset.does, spelt: kbd(e).join("+") })),
+             options: [...document.querySelectorAll("#tool option")].map(o => o.value),
+             table: window.__editor.keys.map(({ keys, does }) => ({ keys, does })) };
+  });
+  if (!legend.inView) fail("the legend of the shortcuts is not in view");
+  const missing = modifiers.filter(m => !legend.kbd.includes(m));
+  if (modifiers.length < 3 || missing.length) fail(`the legend lacks the modifiers ${missing} (the code reads ${modifiers})`);
+  const tools = legend.options.filter(t => !legend.tools.includes(t));
+  if (tools.length) fail(`the legend does not say what the tools ${tools} do`);
+  const key = k => `${k.keys} ${k.does}`;
+  const listed = new Set(legend.keys.map(key)), handled = new Set(legend.table.map(key));
+  const unlisted = legend.table.filter(k => !listed.has(key(k))), unhandled = legend.keys.filter(k => !handled.has(key(k)));
+  if (!legend.table.length || unlisted.length || unhandled.length)
+    fail(`keyboard shortcuts: handled but not in the legend ${JSON.stringify(unlisted)}, in the legend but not ` +
+         `handled ${JSON.stringify(unhandled)}`);
+  const misspelt = legend.keys.filter(k => k.spelt !== k.keys);
+  if (misspelt.length) fail(`the legend's keys are not spelt out: ${JSON.stringify(misspelt)}`);
+  console.log(`legend: modifiers ${modifiers.join(", ")}; tools ${legend.tools.join(", ")}; ` +
+              legend.keys.map(key).join(", "));
+  return legend.table;
+}
+
+// the keyboard shortcuts, pressed where two clicks are balanced: an undo leaves the unbalanced state between them,
+// each redo solves again (the first pair with ⌘, Meta, the others with Ctrl)
+async function pressShortcuts(page, table) {
+  const undo = table.find(k => k.does === "undo");
+  if (!undo) fail("no keyboard shortcut undoes");
+  for (const [i, redo] of table.filter(k => k.does === "redo").entries()) {
+    // "Ctrl+Shift+Z" -> Playwright's "Meta+Shift+z" or "Control+Shift+z"
+    const press = k => page.keyboard.press(k.keys.split("+").map((part, j, all) => j === all.length - 1
+      ? part.toLowerCase() : part === "Ctrl" ? (i === 0 ? "Meta" : "Control") : part).join("+"));
+    await press(undo);
+    await page.waitForFunction(() => window.__editor.unbalanced, null, { timeout: 10000 });
+    const before = await solves(page);
+    await press(redo);
+    await solved(page, before);
+    if (await page.evaluate(() => window.__editor.unbalanced)) fail(`${redo.keys} did not redo`);
+  }
+}
+
 async function closedMesh(browser) {
   const { server, address } = await startServer(serve, mesh, ["--n", "4", "--folder", files]);
   try {
@@ -135,6 +191,8 @@ async function closedMesh(browser) {
     await page.click("#redo");
     await solved(page, before);
     await checkField(page, mesh, "after two redos");
+    await pressShortcuts(page, await checkLegend(page));
+    await checkField(page, mesh, "undone and redone by the keyboard");
 
     // drag the +1/4 at a to a visible vertex c: solved, a is free, c has it
     const c = (await visibleVertices(page, 8, 6151)).find(v => v !== a && v !== b);

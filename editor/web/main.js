@@ -5,7 +5,7 @@ import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { MeshBVH } from "three-mesh-bvh";
 import { FieldView } from "./field_view.js";
-import { add, indexText, parseFrame, parseIndex, post } from "./protocol.js";
+import { add, fraction, indexText, parseFrame, parseIndex, post } from "./protocol.js";
 
 // ---- the state: n, singularities {vertex: [p, q]}, pinned directions {face: [x, y, z]}, boundary alignment, the
 // sharp features' pins (null, or {threshold, pins: Map face -> the direction added to constraints}) -----------------
@@ -46,6 +46,9 @@ const controls = new OrbitControls(camera, renderer.domElement);
 
 let fieldView = null, markers = null, pins = null, streamlines = null, V = null, F = null, header = null;
 let bvh = null, angleDefect = null, display = "glyphs";
+// the request of the field on the screen (the last solve that succeeded: an unbalanced state keeps it), and the
+// singularities the balancing move would add ([[vertex, [p, q]]], drawn pale; null: none to offer)
+let solvedRequest = null, proposal = null;
 const status = $("status");
 
 function draw() {
@@ -75,6 +78,52 @@ function say(text, error = false) {
   if (error) window.__editor.lastError = text;
 }
 
+// ---- the server's refusals in words: its one-line reason ("code: message" for the library's) goes to the console,
+// the page says in a sentence of its own what was not done and why --------------------------------------------------
+const REASONS = {
+  poincare_hopf_violated: "the singularities do not balance: on a closed surface their indices must add up to its " +
+                          "Euler characteristic",
+  index_not_multiple: "an index is not a multiple of 1/n for this n",
+  invalid_index: "an index cannot be read (a zero denominator, or a number too large)",
+  invalid_vertex: "a singularity is on a vertex this mesh does not have (or one of no face)",
+  duplicate_singularity: "a vertex has two singularities",
+  singularity_on_boundary: "a singularity is on the boundary, where the field can have none",
+  invalid_constraint: "a pinned direction cannot be followed (zero, along its face's normal, on the boundary the " +
+                      "field follows, or a face pinned twice)",
+  invalid_symmetry_order: "n must be a whole number from 1 up",
+  invalid_loop_periods: "the turns prescribed along the boundary do not fit the singularities",
+  invalid_argument: "a setting is out of range",
+  io_error: "the file could not be read or written (the folder's permissions, or the disk)",
+  parse_error: "the file is not one of the package's files of that kind",
+  solver_failure: "the solver failed on this mesh and these pins",
+};
+const NOT_DONE = { solve: "Not solved", place: "No automatic placement", features: "No sharp features",
+                   streamlines: "No streamlines", save: "Not saved", load: "Not loaded" };
+function explain(error, doing, path = "") {
+  console.warn(`editor: ${doing}${path ? " " + path : ""}: ${error.status ? "HTTP " + error.status + ": " : ""}` +
+               error.message);
+  const file = `“${path}”`, raw = error.message, files = doing === "save" || doing === "load";
+  let why;
+  if (error.status === undefined) why = "the server does not answer (is it still running?)";
+  else if (error.status === 422 && doing === "features" && error.code === "invalid_argument")
+    why = "the angle of the sharp features must be from 0° to 180°";
+  else if (error.status === 422) why = REASONS[error.code] ?? "the library refused it (the browser's console says why)";
+  else if (error.status === 403 && files)
+    why = /mesh being edited/.test(raw) ? `${file} is the mesh being edited, which the editor never replaces`
+                                        : `${file} is outside the server's folder, the only one it reads and writes`;
+  else if (error.status === 404 && files)
+    why = doing === "load" ? `there is no file ${file} in the server's folder` : `the folder of ${file} does not exist`;
+  else if (error.status === 413 && doing === "load") why = `${file} is too large to load`;
+  else if (error.status === 400 && files) {
+    const ending = /must end in (\.[a-z]+)/.exec(raw);
+    why = ending ? `the name of such a file must end in ${ending[1]}`
+          : /directory/.test(raw) ? `${file} is a folder`
+          : `${file} is not the name of a file in the server's folder (a relative path to a regular file)`;
+  } else if (error.status >= 500) why = "the server failed on it (its terminal says why)";
+  else why = "the server could not take the request (the browser's console says why)";
+  return `${NOT_DONE[doing] ?? "Not done"}: ${why}.`;
+}
+
 function buildScene() {
   // picking: a bounding volume hierarchy over the triangles in input order ("indirect": faces keep their numbers)
   const geometry = new THREE.BufferGeometry();
@@ -100,6 +149,11 @@ function drawMarkers() {
     if (!seen(v)) continue;
     positions.push(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
     colors.push(...(p > 0 ? [0.85, 0.1, 0.1] : [0.1, 0.45, 0.9]));
+  }
+  for (const [v, [p]] of proposal ?? []) { // what the balancing move would add: pale
+    if (!seen(v)) continue;
+    positions.push(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
+    colors.push(...(p > 0 ? [1, 0.72, 0.72] : [0.7, 0.84, 1]));
   }
   if (markers) scene.remove(markers);
   const geometry = new THREE.BufferGeometry();
@@ -161,33 +215,70 @@ function tangent(f, d) {
 }
 
 // ---- solving and showing ----------------------------------------------------------------------------------------
-// per component: the sum of the indices against its Euler characteristic (closed components must balance)
+// per component: the sum of the indices against its Euler characteristic (closed components must balance), and
+// the difference in units of 1/n (units: [p, q], whole when q = 1)
 function balance() {
   const sums = header.chi.map(() => [0, 1]);
   for (const [v, k] of state.singularities) {
     const c = window.__editor.component[v];
     if (c >= 0) sums[c] = add(sums[c], k);
   }
-  return header.chi.map((chi, c) => ({ component: c, sum: sums[c], chi, closed: header.closed[c],
-                                       balanced: !header.closed[c] || (sums[c][0] === chi && sums[c][1] === 1) }));
+  return header.chi.map((chi, c) => {
+    const excess = add(sums[c], [-chi, 1]);
+    return { component: c, sum: sums[c], chi, closed: header.closed[c], units: fraction(excess[0] * state.n, excess[1]),
+             balanced: !header.closed[c] || excess[0] === 0 };
+  });
 }
 
+// the balance of every component: a line (.unbalanced, with data-component, data-units, data-n) for each closed one
+// that is off and by how much, then the others (each, or counted when there are many); the balancing move's button
+// names what it would add, and those vertices get pale markers
 function showBalance() {
-  const rows = balance().map(b => `component ${b.component}: ${indexText(b.sum)}` +
-    (b.closed ? ` of χ = ${b.chi}${b.balanced ? "" : " (unbalanced)"}` : " (bordered)"));
-  $("balance").textContent = rows.join("\n");
-  $("balance-move").hidden = balance().every(b => b.balanced);
+  const rows = balance(), off = rows.filter(b => !b.balanced), box = $("balance");
+  box.replaceChildren();
+  for (const b of off) {
+    const line = document.createElement("div"), [p, q] = b.units;
+    line.className = "unbalanced";
+    Object.assign(line.dataset, { component: b.component, units: indexText(b.units), n: state.n });
+    line.textContent = `component ${b.component} is unbalanced by ${p > 0 ? "+" : "−"}` +
+      (q === 1 ? `${Math.abs(p)} × 1/${state.n}`
+               : `${indexText([Math.abs(p), q])} × 1/${state.n} (not a whole number)`) +
+      `: its indices sum to ${minus(indexText(b.sum))}, its Euler characteristic χ is ${minus(String(b.chi))}`;
+    box.append(line);
+  }
+  const others = rows.filter(b => b.balanced);
+  const text = others.length <= 6
+    ? others.map(b => `component ${b.component}: ${minus(indexText(b.sum))}` +
+                      (b.closed ? ` of χ = ${minus(String(b.chi))}` : " (bordered)"))
+    : [`${others.filter(b => b.closed).length} closed components balanced, ${others.filter(b => !b.closed).length} ` +
+       "bordered (no sum required)"];
+  if (text.length) {
+    const rest = document.createElement("div");
+    rest.textContent = text.join("\n");
+    box.append(rest);
+  }
+  proposal = off.length ? proposeBalance() : null;
+  const button = $("balance-move");
+  button.hidden = !proposal;
+  if (proposal)
+    button.textContent = "balance: add " + (proposal.length <= 2
+      ? proposal.map(([v, k]) => `${signed(k)} at vertex ${v}`).join(" and ")
+      : `${proposal.length} singularities of ±1/${state.n} (the pale markers)`);
 }
+const signed = k => (k[0] > 0 ? "+" : "−") + indexText([Math.abs(k[0]), k[1]]);
+const minus = text => text.replace("-", "−");
 
 async function solve() {
   const e = window.__editor, started = performance.now();
   let frame;
+  const body = request();
   try {
-    frame = await post("/api/solve", request());
+    frame = await post("/api/solve", body);
   } catch (error) {
-    say(error.message, true);
+    say(explain(error, "solve"), true);
     return false;
   }
+  solvedRequest = body;
   const received = performance.now();
   const { header: h, arrays } = frame;
   fieldView.setField(arrays.angle, h.n);
@@ -213,25 +304,31 @@ async function solve() {
   return true;
 }
 
+// the streamlines of the field on the screen (the last solved, also while the state is unbalanced)
 async function traceStreamlines() {
+  if (!solvedRequest) return;
   try {
-    const { arrays } = await post("/api/streamlines", request());
+    const { arrays } = await post("/api/streamlines", solvedRequest);
+    if (display !== "streamlines") return; // glyphs again meanwhile
     drawStreamlines(arrays.points, arrays.offsets);
     window.__editor.streamlineCount = arrays.offsets.length - 1;
     draw();
   } catch (error) {
-    say(error.message, true);
+    say(explain(error, "streamlines"), true);
   }
 }
 
-// shows the current state: solved when every closed component balances, else the markers and the reason
+// shows the current state: solved when every closed component balances; else a state the editor shows, not a
+// refusal: the markers, the balance's lines, and the last field solved stays drawn
 async function show() {
   showBalance();
   drawPins();
   if (!balance().every(b => b.balanced)) {
-    say("unbalanced: the indices of a closed component must sum to its Euler characteristic " +
-        "(edit on, or complete with the balancing move)", true);
-    window.__editor.lastError = null; // a state the editor shows, not a refusal
+    say("Unbalanced (see above): the field drawn is the last balanced one. Edit on, or " +
+        (!proposal ? "make every index a multiple of 1/n."
+         : "press “balance” to add " +
+           (proposal.length === 1 ? "the pale marker's singularity." : "the pale markers' singularities.")));
+    window.__editor.lastError = null;
     window.__editor.unbalanced = true;
     drawMarkers();
     draw();
@@ -277,7 +374,7 @@ async function placeFor(n) {
     ({ header: h } = await post("/api/place", { n, align_boundary: state.alignBoundary,
                                                 constraints: [...state.constraints] }));
   } catch (error) {
-    say(error.message, true);
+    say(explain(error, "place"), true);
     controlsShow();
     return;
   }
@@ -288,39 +385,52 @@ async function placeFor(n) {
   controlsShow();
 }
 
-// completes every unbalanced closed component with singularities of +-1/n at its vertices whose angle defect is
-// most like them (largest K_v for positive ones, most negative for negative ones: where the Levi-Civita holonomy
-// already turns the most that way), two rings apart, so that its indices sum to its Euler characteristic
-function balancingMove() {
-  const neighbours = adjacency();
-  return edit(() => {
-    let changed = false;
-    for (const b of balance()) {
-      if (b.balanced) continue;
-      const deficit = add([b.chi, 1], [-b.sum[0], b.sum[1]]); // chi - sum
-      const count = deficit[0] * state.n / deficit[1];
-      if (!Number.isInteger(count)) return false;
-      const sign = Math.sign(count);
-      const candidates = [];
-      for (let v = 0; v < V.length / 3; ++v)
-        if (window.__editor.component[v] === b.component && !state.singularities.has(v)) candidates.push(v);
-      candidates.sort((u, w) => sign * (angleDefect[w] - angleDefect[u]) || u - w);
+// what completes every unbalanced closed component: singularities of +-1/n ([[vertex, [p, q]]]) at its vertices
+// whose angle defect is most like them (largest K_v for positive ones, most negative for negative ones: where the
+// Levi-Civita holonomy already turns the most that way), two rings from each other and, where the component has
+// room, from its singularities; null when an excess is not a whole number of 1/n (no such completion)
+function proposeBalance() {
+  const neighbours = adjacency(), added = [];
+  const near = (blocked, v) => { // v's two rings into `blocked`
+    for (const u of neighbours[v]) { blocked.add(u); for (const w of neighbours[u]) blocked.add(w); }
+  };
+  for (const b of balance()) {
+    if (b.balanced) continue;
+    const [p, q] = b.units;
+    if (q !== 1) return null;
+    const sign = -Math.sign(p), count = Math.abs(p);
+    const candidates = [];
+    for (let v = 0; v < V.length / 3; ++v)
+      if (window.__editor.component[v] === b.component && !state.singularities.has(v)) candidates.push(v);
+    candidates.sort((u, w) => sign * (angleDefect[w] - angleDefect[u]) || u - w);
+    const apart = new Set(), taken = new Set();
+    for (const v of state.singularities.keys()) if (window.__editor.component[v] === b.component) near(apart, v);
+    // two rings from the singularities and from each other; then from each other only; then anywhere
+    for (const rule of [v => !apart.has(v), () => true]) {
       const blocked = new Set();
-      let placed = 0;
+      for (const v of taken) near(blocked, v);
       for (const v of candidates) {
-        if (placed === Math.abs(count)) break;
-        if (blocked.has(v)) continue;
-        state.singularities.set(v, [sign, state.n]);
-        ++placed;
-        for (const u of neighbours[v]) { blocked.add(u); for (const w of neighbours[u]) blocked.add(w); }
+        if (taken.size === count) break;
+        if (taken.has(v) || blocked.has(v) || !rule(v)) continue;
+        taken.add(v);
+        near(blocked, v);
       }
-      for (const v of candidates) { // a small component: the rest anywhere
-        if (placed === Math.abs(count)) break;
-        if (!state.singularities.has(v)) { state.singularities.set(v, [sign, state.n]); ++placed; }
-      }
-      changed = changed || placed > 0;
     }
-    return changed;
+    for (const v of candidates) { // a small component: the rest anywhere
+      if (taken.size === count) break;
+      taken.add(v);
+    }
+    for (const v of taken) added.push([v, [sign, state.n]]);
+  }
+  return added.length ? added : null;
+}
+
+// the balancing move: one edit that adds what proposeBalance() proposes
+function balancingMove() {
+  return edit(() => {
+    const more = proposeBalance();
+    if (!more) return false;
+    for (const [v, k] of more) state.singularities.set(v, k);
   });
 }
 
@@ -514,7 +624,7 @@ async function alignFeatures(on, alignBoundary = state.alignBoundary) {
       ({ header: h } = await post("/api/features", { threshold: Number.isFinite(threshold) ? threshold : null,
                                                      n: state.n, align_boundary: alignBoundary }));
     } catch (error) {
-      say(error.message, true);
+      say(explain(error, "features"), true);
       controlsShow();
       return;
     }
@@ -565,6 +675,8 @@ $("kind").onchange = e => {
 $("save").onclick = async () => {
   const kind = $("kind").value, path = $("path").value;
   if (kind === "png") return savePng(path);
+  if (!balance().every(b => b.balanced)) // the server solves before it writes, and solves balanced states only
+    return say("Not saved: the singularities are unbalanced (see above); balance them first.", true);
   const body = { ...request(), kind, path };
   let h;
   try {
@@ -579,24 +691,25 @@ $("save").onclick = async () => {
       ({ header: h } = await post("/api/save", { ...body, overwrite: true }));
     }
   } catch (error) {
-    return say(error.message, true);
+    return say(explain(error, "save", path), true);
   }
   say(`saved ${h.saved} (${h.bytes} bytes)`);
   window.__editor.saved = h.saved;
 };
 $("load").onclick = async () => {
   const kind = $("kind").value, path = $("path").value;
+  if (kind !== "singularities" && kind !== "constraints")
+    return say(`Not loaded: only singularities and constraints are loaded, not ${$("kind").selectedOptions[0].text}.`,
+               true);
   let h;
   try {
     ({ header: h } = await post("/api/load", { kind, path }));
   } catch (error) {
-    return say(error.message, true);
+    return say(explain(error, "load", path), true);
   }
   if (kind === "singularities")
     edit(() => { state.singularities = new Map(h.singularities.map(([v, k]) => [v, parseIndex(k)])); });
-  else if (kind === "constraints")
-    edit(() => { state.constraints = new Map(h.constraints.map(([f, d]) => [f, d])); });
-  else say(`only singularities and constraints are loaded, not ${kind}`, true);
+  else edit(() => { state.constraints = new Map(h.constraints.map(([f, d]) => [f, d])); });
 };
 
 // a PNG of the view, downloaded by the browser under the name given
@@ -621,6 +734,7 @@ async function start() {
   window.__editor = {
     component: frame.arrays.component, solves: 0, state, edit, solve, balance, balancingMove, screenOf, screenOfFace,
     placeFor, alignFeatures, keys: KEYS, measure: false, latencies: [], faces: F.length / 3, idle: () => queue,
+    proposal: () => proposal && proposal.map(([v, k]) => [v, indexText(k)]), // what the balancing move would add
     get directions() { return fieldView.directions(); },
     singularities: () => [...state.singularities].map(([v, k]) => [v, indexText(k)]),
     constraints: () => [...state.constraints],

@@ -19,13 +19,17 @@ export function parseFrame(buffer) {
   return { header, arrays };
 }
 
-// POSTs a JSON body; the frame of the answer, or an Error with the server's one-line reason and the HTTP status
-// (error.status: e.g. 409 when a save would replace an existing file)
+// POSTs a JSON body; the frame of the answer, or an Error with the server's one-line reason (for the console: the
+// page words it itself), the HTTP status (error.status: e.g. 409 when a save would replace an existing file) and,
+// for the library's refusals (422 "code: message"), the code (error.code: e.g. "poincare_hopf_violated"); no
+// status when the server does not answer
 export async function post(path, body) {
   const response = await fetch(path, { method: "POST", body: JSON.stringify(body) });
   if (!response.ok) {
     const error = new Error((await response.text()).trim() || `${path}: HTTP ${response.status}`);
     error.status = response.status;
+    const code = /^([a-z]+(?:_[a-z]+)*): /.exec(error.message);
+    if (response.status === 422 && code) error.code = code[1];
     throw error;
   }
   return parseFrame(await response.arrayBuffer());

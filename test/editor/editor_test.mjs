@@ -4,9 +4,11 @@
 //
 // SERVE: the launcher (trivial_connections-serve). On MESH (closed): load, a click adding +1/n, a shift-click adding
 // -1/n elsewhere, two undos, two redos, the legend of the shortcuts (every modifier key the code reads, every tool,
-// exactly the keyboard shortcuts of the page's table) and those shortcuts pressed, a drag, a pinned direction, a stroke, an undo, an unbalancing click completed
-// by the balancing move, save and load of singularities and constraints, a save over an existing file (the page asks:
-// declined, the file is kept; accepted, replaced), n = 6, streamlines, a PNG. After each step
+// exactly the keyboard shortcuts of the page's table) and those shortcuts pressed, a drag, a pinned direction, a
+// stroke, an undo, an unbalancing click (the page shows the component and by how much, keeps the field drawn, glyphs
+// or streamlines, and shows no error) completed by the balancing move (one click: the singularity its button names),
+// save and load of singularities and constraints, a save over an existing file (the page asks: declined, the file
+// is kept; accepted, replaced), n = 6, streamlines, a PNG. After each step
 // the field the page holds is checked against the library's answer for the same request (check_field.py, beside
 // this file; PYTHONPATH: the module), not pixels. The screenshot of the last step goes to OUTDIR/editor.png; its
 // structure is checked: the mesh at the centre, and each visible singularity's marker, in its colour, at the pixel
@@ -133,6 +135,28 @@ async function checkLegend(page) {
   return legend.table;
 }
 
+// the page in an unbalanced state after a click of +1/4 at vertex v: one .unbalanced line, for v's component, of
+// `units` units of 1/4, in view; no error shown, nothing that looks like the server's words (a code such as
+// poincare_hopf_violated, its "Poincare-Hopf", an HTTP status)
+async function unbalancedShown(page, v, units, what) {
+  const shown = await page.evaluate(u => ({
+    lines: [...document.querySelectorAll("#balance .unbalanced")].map(e => ({
+      component: Number(e.dataset.component), units: e.dataset.units, n: Number(e.dataset.n), text: e.textContent,
+      visible: e.checkVisibility() })),
+    component: window.__editor.component[u], lastError: window.__editor.lastError,
+    errors: [...document.querySelectorAll(".error")].filter(e => e.checkVisibility() && e.textContent.trim())
+      .map(e => e.textContent),
+    text: document.body.innerText }), v);
+  const [line] = shown.lines;
+  if (shown.lines.length !== 1 || line.component !== shown.component || line.units !== String(units) || line.n !== 4 ||
+      !line.visible || !line.text.includes(`+${units} × 1/4`))
+    fail(`${what}: the unbalanced component ${shown.component} is shown as ${JSON.stringify(shown.lines)}`);
+  const raw = /\b[a-z]+(?:_[a-z]+)+\b|Poincare-Hopf|HTTP \d{3}/.exec(shown.text);
+  if (shown.errors.length || shown.lastError || raw)
+    fail(`${what}: the page shows an error: ${JSON.stringify(shown.errors)} ${shown.lastError} ${raw}`);
+  console.log(`${what}: "${line.text}"; no error shown`);
+}
+
 // the keyboard shortcuts, pressed where two clicks are balanced: an undo leaves the unbalanced state between them,
 // each redo solves again (the first pair with ⌘, Meta, the others with Ctrl)
 async function pressShortcuts(page, table) {
@@ -230,17 +254,42 @@ async function closedMesh(browser) {
     if (await page.evaluate(() => window.__editor.state.constraints.size) !== 1) fail("undo did not remove the stroke");
     await checkField(page, mesh, "the stroke undone");
 
-    // an unbalancing click, completed by the balancing move
+    // an unbalancing click: the page says which component is off and by how much (a line of its own), the field
+    // drawn before stays (in the streamline view too), no error and no server text is shown; the balancing move,
+    // one click, adds the singularity its button names, and the state is solved
     await page.selectOption("#tool", "singularities");
     const [d] = (await visibleVertices(page, 12, 104729)).filter(v => v !== a && v !== b && v !== c);
+    const drawn = await page.evaluate(() => Array.from(window.__editor.directions));
+    before = await solves(page);
     p = await at(d);
     await page.mouse.click(p.x, p.y);
     await page.waitForFunction(() => window.__editor.unbalanced);
-    if (await page.isHidden("#balance-move")) fail("the balancing move is not offered on an unbalanced state");
+    await page.evaluate(() => window.__editor.idle());
+    await unbalancedShown(page, d, 1, "click");
+    if (await solves(page) !== before) fail("an unbalanced state was solved");
+    const kept = await page.evaluate(() => Array.from(window.__editor.directions));
+    if (kept.length !== drawn.length || kept.some((x, i) => x !== drawn[i])) fail("the field drawn before did not stay");
+    await page.evaluate(() => { window.__editor.streamlineCount = 0; });
+    await page.selectOption("#display", "streamlines"); // the last balanced field's streamlines
+    await page.waitForFunction(() => window.__editor.streamlineCount > 0 || window.__editor.lastError, null,
+                               { timeout: 30000 });
+    await unbalancedShown(page, d, 1, "click, streamlines shown");
+    const proposed = await page.evaluate(() => window.__editor.proposal());
+    const label = await page.textContent("#balance-move");
+    if (!proposed || proposed.length !== 1 || proposed[0][1] !== "-1/4" || !label.includes(`vertex ${proposed[0][0]}`) ||
+        !label.includes("−1/4"))
+      fail(`the balancing move proposes ${JSON.stringify(proposed)}, its button says "${label}"`);
     before = await solves(page);
     await page.click("#balance-move");
     await solved(page, before);
-    if (await page.evaluate(() => window.__editor.balance().some(x => !x.balanced))) fail("still unbalanced");
+    const after = await page.evaluate(([v, k]) => ({
+      off: window.__editor.balance().filter(x => !x.balanced).length, lines: document.querySelectorAll(".unbalanced").length,
+      added: window.__editor.singularities().find(s => s[0] === v)?.[1], unbalanced: window.__editor.unbalanced,
+      offered: !document.querySelector("#balance-move").hidden }), proposed[0]);
+    if (after.off || after.lines || after.unbalanced || after.offered || after.added !== proposed[0][1])
+      fail(`after the balancing move: ${JSON.stringify(after)}`);
+    console.log(`the balancing move: "${label}", solved`);
+    await page.selectOption("#display", "glyphs");
     await checkField(page, mesh, "the balancing move");
 
     // save singularities and pins in the server's folder, change things, load them back

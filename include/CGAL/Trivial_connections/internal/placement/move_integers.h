@@ -34,6 +34,11 @@ namespace internal {
   M is block diagonal by component, and a move stays in its component, so only that component's integers can
   change: one block per component, each searched in its own (small) lattice. A block costs a back-substitution
   per integer (its column of M^-1), once, for at most 64 in all; the integers of the other components are kept.
+  In a round whose solve could not prove its integers optimal, its integers are taken as the nearest all the same
+  (bound()), and each search is a descent from the rounded centre rather than an enumeration: the prices stay
+  those of actual integers, a change the solve could not find is only missed. dino's curvature guidance (63 link
+  integers, never proven): 8.8 s and energy 76.0 with every candidate enumerated, 0.5 s and 76.3 so, 0.08 s and
+  82.0 with the integers kept.
 */
 class Move_integers
 {
@@ -96,7 +101,8 @@ public:
       for(std::size_t a = 0; a < b.rows.size(); ++a)
         b.lambda[Eigen::Index(a)] = multipliers[b.rows[a]];
       b.lambda_norm = b.lambda.dot(b.inverse * b.lambda);
-      b.rho = proven ? std::sqrt((std::max)(b.lambda_norm, 0.)) / m_unit : 0.;
+      b.rho = std::sqrt((std::max)(b.lambda_norm, 0.)) / m_unit;
+      b.proven = proven;
     }
   }
 
@@ -106,7 +112,8 @@ public:
     the move, the integers now are the lattice point nearest to c0 (when the solve proved it): at distance
     rho = |c0| in the norm of G_F. The move shifts the centre by delta = |c1 - c0|, so no lattice point is nearer
     to c1 than rho - delta, and the gain is at least u^2 (rho - delta)_+^2 - |c1|^2 u^2. Without it the bound
-    would be -|c1|^2 u^2 (every integer real), and every pair would be searched.
+    would be -|c1|^2 u^2 (every integer real), and every pair would be searched. When the solve did not prove
+    its integers, rho = |c0| all the same: no longer a proof, the heuristic the solve itself settled for.
   */
   double bound(std::size_t c, int rv, int rw, double d)
   {
@@ -161,7 +168,7 @@ public:
     if(rv >= 0)
       p -= d * b.columns.row(rv).transpose();
     const Eigen::VectorXd center = -(b.inverse * p) / m_unit; // the real minimiser
-    const Closest_vector_result nearest = closest_vector(b.lattice, b.metric, center, {}, 1e5);
+    const Closest_vector_result nearest = closest_vector(b.lattice, b.metric, center, {}, b.proven ? 1e5 : 0.);
     // u^2 ((s - c)^T G_F (s - c) - c^T G_F c), c = center
     return (std::min)(kept, kept + m_unit * m_unit * (nearest.value - center.dot(b.metric * center)));
   }
@@ -177,6 +184,7 @@ private:
     Row_major columns, weighted;     // M^-1 on the free rows (C_r is row r), and C H
     Eigen::VectorXd lambda;          // per round
     double lambda_norm = 0, rho = 0; // lambda^T H lambda, and the distance of the integers to the centre
+    bool proven = true;              // this round: the solve proved its integers optimal
   };
 
   // |C_w - C_v|_H^2

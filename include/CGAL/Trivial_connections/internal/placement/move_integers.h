@@ -91,6 +91,11 @@ public:
   }
 
   bool empty() const { return m_blocks.empty(); }
+  // whether this round's solve proved its integers (start_round())
+  bool proven() const
+  {
+    return std::all_of(m_blocks.begin(), m_blocks.end(), [](const Block& b) { return b.proven; });
+  }
   std::size_t column_solves() const { return m_columns_made; }
 
   // the multipliers of the current solve; `proven`: its integers are the optimal ones

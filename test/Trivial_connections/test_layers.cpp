@@ -317,6 +317,15 @@ TEST(Closest_vector, random_lattices_exact_optimum_and_valid_bound)
     EXPECT_LE(small.lower_bound, r.value + 1e-9 * (1 + r.value)) << "k = " << k;
     EXPECT_GE(small.value, r.value - 1e-9 * (1 + r.value));
     checked_small_budget += small.proven ? 0 : 1;
+    // no budget (the refinement's searches when the integers are not proven): no enumeration, an actual lattice
+    // point at least as near as the candidate, its distance exact, and no claim
+    const TCI::Closest_vector_result none = TCI::closest_vector(G, c, {rounded}, 0.);
+    EXPECT_FALSE(none.proven);
+    EXPECT_EQ(none.lower_bound, 0.);
+    EXPECT_EQ(none.work, 0.);
+    EXPECT_NEAR(none.value, q_of(G, c, none.m), 1e-9 * (1 + none.value));
+    EXPECT_LE(none.value, none.candidate_values[0] + 1e-12);
+    EXPECT_GE(none.value, r.value - 1e-9 * (1 + r.value));
   }
   EXPECT_GE(checked, 80) << "brute force ran on most lattices";
   std::cout << "brute force on " << checked << " of 110 lattices; " << checked_small_budget

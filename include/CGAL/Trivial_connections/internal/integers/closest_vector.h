@@ -223,7 +223,8 @@ inline double greedy_descent(const Eigen::MatrixXd& H, Eigen::VectorXd& z, Eigen
 /*
   The closest vector in `lattice` (reduce_lattice() of G) to c; the result is locally optimal against every
   single-coordinate change in both bases (or proven optimal). The enumeration may do `work_budget`
-  multiply-adds, and at least k^2 (a first descent costs about k^2 / 2).
+  multiply-adds, and at least k^2 (a first descent costs about k^2 / 2); with `work_budget` <= 0 there is none:
+  the candidates and Babai's point, then a descent in the reduced basis only (lower_bound 0).
 */
 inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, const Eigen::MatrixXd& G,
                                             const Eigen::VectorXd& c,
@@ -272,6 +273,18 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
     }
   }
   best_value = greedy_descent(H, best_z, d, Hd);
+  if(!(work_budget > 0)) {
+    // no enumeration: not even the set-up of its costs (k lgamma and log), which a descent in 64 dimensions
+    // costs about as much as (the refinement's searches in rounds of unproven integers, see Move_integers)
+    const Eigen::VectorXd m = lattice.reduced ? Eigen::VectorXd(lattice.basis * best_z) : best_z;
+    best.value = best_value;
+    best.proven = false;
+    best.lower_bound = 0;
+    best.m.resize(std::size_t(k));
+    for(Eigen::Index i = 0; i < k; ++i)
+      best.m[std::size_t(i)] = std::int64_t(std::llround(m[i]));
+    return best;
+  }
 
   const double budget = (std::max)(work_budget, double(k) * double(k));
   Enumeration e(R, w, best_z, best_value);

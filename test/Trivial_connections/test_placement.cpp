@@ -824,8 +824,9 @@ TEST(Refinement, a_trial_never_loses_to_the_integers_it_moved_from)
 
 // Curvature guidance on 64 spread faces (as `--auto --align-curvature`): 63 link integers that no solve proves
 // optimal. The moves are then priced with the solve's integers taken as the nearest and a descent for each
-// candidate instead of an enumeration (see Move_integers): dino's refinement took 8.8 s so, 0.5 s now. Whatever
-// the pricing, each accepted round is a solve that lowered the energy, and the refinement ends at a local minimum.
+// candidate instead of an enumeration (see Move_integers): dino's refinement took 8.8 s so, 0.3-0.4 s now.
+// Whatever the pricing, each accepted round is a solve that lowered the energy, and the refinement ends at a local
+// minimum.
 TEST(Refinement, reaches_a_local_minimum_under_guidance_whose_integers_are_not_proven)
 {
   Surface_mesh tm;

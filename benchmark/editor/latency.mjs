@@ -12,7 +12,7 @@
 // first (faces a few pixels wide get no glyph: the whole mesh in view is the cheapest case to draw, a close view
 // the dearest). The GPU is Chromium's SwiftShader (software) unless TC_CHROMIUM_GL says otherwise.
 import { writeFileSync } from "node:fs";
-import { launchBrowser, startServer } from "../../test/editor/harness.mjs";
+import { fieldCoverage, launchBrowser, startServer } from "../../test/editor/harness.mjs";
 
 const args = process.argv.slice(2);
 const nIndex = args.indexOf("--n");
@@ -38,7 +38,8 @@ try {
   const opened = (Date.now() - t0) / 1e3;
   const faces = await page.evaluate(() => window.__editor.faces);
   if (zoom !== 1) await page.evaluate(z => window.__editor.zoom(z), zoom);
-  const glyphFaces = await page.evaluate(() => window.__editor.internals.fieldView.glyphFaces);
+  const shown = await fieldCoverage(page); // the field drawn at this view (glyphs: their number)
+  const glyphs = shown.glyphs;
   // visible vertices without a singularity, and one singularity to move among them
   const targets = await page.evaluate(() => {
     const e = window.__editor, nv = e.component.length, found = [];
@@ -91,7 +92,9 @@ try {
   }
   const l = await page.evaluate(() => window.__editor.latencies);
   const col = k => l.map(x => x[k]);
-  console.log(`${mesh}: ${faces} faces, n = ${n}, zoom ${zoom} (${glyphFaces} faces wide enough for a glyph); server ` +
+  console.log(`${mesh}: ${faces} faces, n = ${n}, zoom ${zoom} (${glyphs} glyphs; ${(100 * shown.coverage).toFixed(1)} % ` +
+              `of the ${shown.blocks} blocks of 24 x 24 pixels wholly on the mesh hold ink, ${(100 * shown.ink).toFixed(1)} % ` +
+              `of its pixels); server ` +
               `factored in ${factored.toFixed(2)} s, page opened in ${opened.toFixed(2)} s after that; ${l.length} edits`);
   const stats = {};
   for (const k of ["total", "server", "solve", "draw", "upload", "render", "calls", "finish"]) {
@@ -103,7 +106,8 @@ try {
     return i ? g.getParameter(i.UNMASKED_RENDERER_WEBGL) : g.getParameter(g.RENDERER);
   });
   if (jsonPath)
-    writeFileSync(jsonPath, JSON.stringify({ mesh, faces, n: Number(n), zoom, glyphFaces, factored, opened,
+    writeFileSync(jsonPath, JSON.stringify({ mesh, faces, n: Number(n), zoom, glyphs, coverage: shown.coverage,
+                                             ink: shown.ink, factored, opened,
                                              edits: l.length, gl, browser: browser.version(), stats,
                                              date: new Date().toISOString() }, null, 1));
 } finally {

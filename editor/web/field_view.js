@@ -1,17 +1,26 @@
-// The mesh and its field, drawn so that an edit costs the pixels that change, not the faces.
+// The mesh and its field, drawn so that the field reads at every zoom and an edit costs the glyphs, not the faces.
 //
-// When the camera moves (a "view" frame): the shaded mesh is drawn into the canvas with its depth, its colour
-// is kept in a texture, and the faces wide enough on the screen for a glyph (an inradius of 2.5 pixels or more,
-// in the view) are listed. On every frame: the kept colour is copied back within the mesh's rectangle on the
-// screen (this erases the previous glyphs and markers), then the listed faces are drawn again with their glyphs:
-// the n directions of the face as rays from its incentre, inside its incircle (a glyph never leaves its face;
-// for n = 1 the ray tapers towards its tip), the field's angle in the face's frame read from a float texture.
-// A solve changes that texture only (4 bytes per face, as the server sends it). The canvas keeps the mesh's depth between frames (the
-// drawing buffer is preserved), so markers, pins and lines drawn after it are hidden where they should be.
-// Faces a few pixels wide get no glyph (it would be noise): zoom in, or show streamlines.
+// Two layers. The WebGL canvas holds what moves with the camera only: the shaded mesh and the lines of the 3D
+// scene the caller passes (boundary loops, streamlines); it is drawn again only when the camera moves, the size
+// changes or those lines change (a "view" frame, `stale`). In the same frame the mesh is drawn a second time into a
+// render target with each pixel's face number (+1; 0 is the background), read back once.
+//
+// Over it a 2D canvas (`overlay`, no pointer events) holds what an edit changes, in screen space:
+// - the field: the screen is cut into cells of CELL CSS pixels (each centre moved by up to a quarter of a cell, the
+//   same for every frame, so that the glyphs make no grid); each cell whose centre is on the mesh gets a glyph of
+//   the face under that centre, the n directions as rays of the face's frame mapped to the screen (the derivative
+//   of the projection at the face's incentre: a direction seen edge-on is short, as on a disc lying on the
+//   surface), the longest RAY pixels long. So the field is drawn as densely at the whole-mesh view of a 100k-face
+//   mesh as on one face filling the screen, and an edit redraws a few thousand lines: the field's angle per face
+//   (4 bytes, as the server sends it) turned by the cell's 2 x 2 matrix kept from the view frame;
+// - the pinned directions: arrows of a fixed length in pixels (PIN; the sharp features' pins shorter, FEATURE_PIN)
+//   from the face's incentre, where the face is seen (its incentre near the surface under that pixel);
+// - the singularities' markers: squares of MARKER pixels on top of everything (never cut by the surface).
 import * as THREE from "three";
 
-// the same position in both mesh passes, so that the glyph pass meets the depth the view frame left
+const CELL = 16, RAY = 7, PIN = 26, FEATURE_PIN = 12, MARKER = 12;
+const INK = "#1f3a93";
+
 const shadedVertex = /* glsl */ `
 out vec3 vNormal;
 void main() {
@@ -19,78 +28,37 @@ void main() {
   gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
 }`;
 
-const shading = /* glsl */ `
-uniform vec3 surface;
-vec3 shade(vec3 normal) { return surface * (0.38 + 0.62 * abs(normalize(normal).z)); } // a headlight
-`;
-
 const shadedFragment = /* glsl */ `
 precision highp float;
-${shading}
+uniform vec3 surface;
 in vec3 vNormal;
 layout(location = 0) out highp vec4 color;
-void main() { color = vec4(shade(vNormal), 1.0); }`;
+void main() { color = vec4(surface * (0.38 + 0.62 * abs(normalize(vNormal).z)), 1.0); } // a headlight`;
 
-const glyphVertex = /* glsl */ `
-uniform highp sampler2D field;  // r: the angle of the face's direction in its frame
-uniform int textureWidth;
+// the face number + 1 in the red, green and blue bytes (16.7 million faces)
+const idVertex = /* glsl */ `
 in float faceId;
-in vec3 local;            // this corner in its face's frame (about the incentre), and the face's inradius
-flat out vec2 vRay;       // the face's direction in its frame (cos, sin): once per corner, not per pixel
-flat out float vRadius;
-out vec2 vLocal;
-out vec3 vNormal;
+flat out float vId;
 void main() {
-  int face = int(faceId);
-  float angle = texelFetch(field, ivec2(face % textureWidth, face / textureWidth), 0).r;
-  vRay = vec2(cos(angle), sin(angle));
-  vRadius = local.z;
-  vLocal = local.xy;
-  vNormal = normalMatrix * normal;
+  vId = faceId + 1.0;
   gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
 }`;
 
-const glyphFragment = /* glsl */ `
+const idFragment = /* glsl */ `
 precision highp float;
-precision highp int;
-${shading}
-uniform int n;
-uniform vec2 turn;        // cos and sin of 2 pi / n
-uniform vec3 ink;
-flat in vec2 vRay;
-flat in float vRadius;
-in vec2 vLocal;
-in vec3 vNormal;
+flat in float vId;
 layout(location = 0) out highp vec4 color;
 void main() {
-  float size = length(fwidth(vLocal)) * 0.7071; // the mesh's units per pixel here
-  vec2 p = vLocal / size;                       // in pixels
-  float r = 0.9 * vRadius / size;
-  // the nearest of the n rays (the largest projection), p's distance along it and across it
-  float along = -1.0, across = 0.0;
-  vec2 d = vRay;
-  for (int k = 0; k < 64; ++k) {
-    if (k >= n) break;
-    float a = dot(p, d);
-    if (a > along) {
-      along = a;
-      across = abs(d.x * p.y - d.y * p.x);
-    }
-    d = vec2(d.x * turn.x - d.y * turn.y, d.x * turn.y + d.y * turn.x);
-  }
-  float w = n == 1 ? mix(1.6, 0.4, clamp(along / r, 0.0, 1.0)) : 0.75; // half-width
-  float amount = along >= 0.0 && along <= r ? 1.0 - smoothstep(w - 0.5, w + 0.5, across) : 0.0;
-  color = vec4(mix(shade(vNormal), ink, amount * smoothstep(2.5, 5.0, r)), 1.0);
+  float id = vId;
+  color = vec4(mod(id, 256.0), mod(floor(id / 256.0), 256.0), floor(id / 65536.0), 255.0) / 255.0;
 }`;
 
-const copyVertex = /* glsl */ `
-void main() { gl_Position = vec4(position.xy, 0.0, 1.0); }`;
-
-const copyFragment = /* glsl */ `
-precision highp float;
-uniform lowp sampler2D kept;
-layout(location = 0) out highp vec4 color;
-void main() { color = texelFetch(kept, ivec2(gl_FragCoord.xy), 0); }`;
+// a hash of the cell (x, y) in [0, 1)
+function hash(x, y, salt) {
+  let h = Math.imul(x, 374761393) ^ Math.imul(y, 668265263) ^ Math.imul(salt, 1274126177);
+  h = Math.imul(h ^ (h >>> 13), 1103515245);
+  return ((h ^ (h >>> 16)) >>> 0) / 4294967296;
+}
 
 export class FieldView {
   // V: (nv, 3) and F: (m, 3) flat arrays, as the server sent them
@@ -104,13 +72,10 @@ export class FieldView {
     indexed.computeBoundingSphere();
     indexed.computeBoundingBox();
     this.boundingSphere = indexed.boundingSphere;
-    this.box = indexed.boundingBox;
-    const vertexNormal = indexed.getAttribute("normal").array;
 
-    // three corners per face, each with the face's data (an indexed mesh cannot carry per-face attributes); per
-    // face its frame: the unit normal, e1 along its first edge, e2 = normal x e1; its incentre and inradius
-    const position = new Float32Array(9 * m), normal = new Float32Array(9 * m), faceId = new Float32Array(3 * m);
-    const local = new Float32Array(9 * m);
+    // per face its frame: the unit normal, e1 along its first edge, e2 = normal x e1; its incentre and inradius;
+    // and three corners per face with the face's number (an indexed mesh cannot carry per-face attributes)
+    const position = new Float32Array(9 * m), faceId = new Float32Array(3 * m);
     this.normals = new Float32Array(3 * m);
     this.e1 = new Float32Array(3 * m);
     this.e2 = new Float32Array(3 * m);
@@ -128,77 +93,52 @@ export class FieldView {
       const twiceArea = Math.hypot(nx, ny, nz);
       nx /= twiceArea; ny /= twiceArea; nz /= twiceArea;
       const e1x = ux / lc, e1y = uy / lc, e1z = uz / lc;
-      const e2x = ny * e1z - nz * e1y, e2y = nz * e1x - nx * e1z, e2z = nx * e1y - ny * e1x;
       this.normals[3 * f] = nx; this.normals[3 * f + 1] = ny; this.normals[3 * f + 2] = nz;
       this.e1[3 * f] = e1x; this.e1[3 * f + 1] = e1y; this.e1[3 * f + 2] = e1z;
-      this.e2[3 * f] = e2x; this.e2[3 * f + 1] = e2y; this.e2[3 * f + 2] = e2z;
-      const ix = (la * ax + lb * bx + lc * cx) / perimeter, iy = (la * ay + lb * by + lc * cy) / perimeter;
-      const iz = (la * az + lb * bz + lc * cz) / perimeter, r = twiceArea / perimeter;
-      this.incircles[4 * f] = ix; this.incircles[4 * f + 1] = iy; this.incircles[4 * f + 2] = iz;
-      this.incircles[4 * f + 3] = r;
+      this.e2[3 * f] = ny * e1z - nz * e1y; this.e2[3 * f + 1] = nz * e1x - nx * e1z;
+      this.e2[3 * f + 2] = nx * e1y - ny * e1x;
+      this.incircles[4 * f] = (la * ax + lb * bx + lc * cx) / perimeter;
+      this.incircles[4 * f + 1] = (la * ay + lb * by + lc * cy) / perimeter;
+      this.incircles[4 * f + 2] = (la * az + lb * bz + lc * cz) / perimeter;
+      this.incircles[4 * f + 3] = twiceArea / perimeter;
       edgeSum += lc;
       for (let k = 0; k < 3; ++k) {
         const v = F[3 * f + k], o = 9 * f + 3 * k;
-        const px = V[3 * v], py = V[3 * v + 1], pz = V[3 * v + 2];
-        position[o] = px; position[o + 1] = py; position[o + 2] = pz;
-        normal[o] = vertexNormal[3 * v]; normal[o + 1] = vertexNormal[3 * v + 1]; normal[o + 2] = vertexNormal[3 * v + 2];
+        position[o] = V[3 * v]; position[o + 1] = V[3 * v + 1]; position[o + 2] = V[3 * v + 2];
         faceId[3 * f + k] = f;
-        local[o] = (px - ix) * e1x + (py - iy) * e1y + (pz - iz) * e1z;
-        local[o + 1] = (px - ix) * e2x + (py - iy) * e2y + (pz - iz) * e2z;
-        local[o + 2] = r;
       }
     }
     this.meanEdge = edgeSum / m;
 
-    // the field: one angle per face, rows of textureWidth
-    this.textureWidth = 2048;
-    const rows = Math.max(1, Math.ceil(m / this.textureWidth));
-    this.angles = new Float32Array(this.textureWidth * rows);
-    this.texture = new THREE.DataTexture(this.angles, this.textureWidth, rows, THREE.RedFormat, THREE.FloatType);
-    this.texture.minFilter = this.texture.magFilter = THREE.NearestFilter;
-    this.texture.generateMipmaps = false;
-    this.texture.needsUpdate = true;
-
-    const surface = { value: new THREE.Color(0xc3ccd9) };
     const offset = { side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 };
     this.viewScene = new THREE.Scene();
     this.viewScene.add(new THREE.Mesh(indexed, new THREE.ShaderMaterial({
-      glslVersion: THREE.GLSL3, vertexShader: shadedVertex, fragmentShader: shadedFragment, uniforms: { surface },
-      ...offset })));
-
+      glslVersion: THREE.GLSL3, vertexShader: shadedVertex, fragmentShader: shadedFragment,
+      uniforms: { surface: { value: new THREE.Color(0xc3ccd9) } }, ...offset })));
     const corners = new THREE.BufferGeometry();
     corners.setAttribute("position", new THREE.BufferAttribute(position, 3));
-    corners.setAttribute("normal", new THREE.BufferAttribute(normal, 3));
     corners.setAttribute("faceId", new THREE.BufferAttribute(faceId, 1));
-    corners.setAttribute("local", new THREE.BufferAttribute(local, 3));
-    corners.setIndex(new THREE.BufferAttribute(new Uint32Array(0), 1));
     corners.boundingSphere = this.boundingSphere;
-    this.glyphUniforms = { surface, field: { value: this.texture }, textureWidth: { value: this.textureWidth },
-                           n: { value: 1 }, turn: { value: new THREE.Vector2(1, 0) },
-                           ink: { value: new THREE.Color(0x1f3a93) } };
-    this.glyphMesh = new THREE.Mesh(corners, new THREE.ShaderMaterial({
-      glslVersion: THREE.GLSL3, vertexShader: glyphVertex, fragmentShader: glyphFragment,
-      uniforms: this.glyphUniforms, ...offset, depthFunc: THREE.LessEqualDepth, depthWrite: false }));
-    this.glyphMesh.frustumCulled = false;
-    this.glyphScene = new THREE.Scene();
-    this.glyphScene.add(this.glyphMesh);
+    this.idScene = new THREE.Scene();
+    this.idScene.add(new THREE.Mesh(corners, new THREE.ShaderMaterial({
+      glslVersion: THREE.GLSL3, vertexShader: idVertex, fragmentShader: idFragment, side: THREE.DoubleSide })));
+    this.idTarget = null;
+    this.ids = null; // per pixel of the drawing buffer (rows from the bottom): the face number + 1, 0: background
 
-    this.kept = null; // the colour of the view frame
-    this.copyUniforms = { kept: { value: null } };
-    const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.ShaderMaterial({
-      glslVersion: THREE.GLSL3, vertexShader: copyVertex, fragmentShader: copyFragment, uniforms: this.copyUniforms,
-      depthTest: false, depthWrite: false }));
-    quad.frustumCulled = false;
-    this.copyScene = new THREE.Scene();
-    this.copyScene.add(quad);
-    this.screenCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+    this.overlay = document.createElement("canvas");
+    this.overlay.style.cssText = "position: absolute; left: 0; top: 0; pointer-events: none";
+    this.context = this.overlay.getContext("2d");
 
     this.field = null;
     this.n = 1;
     this.showGlyphs = true;
-    this.stale = true; // the view frame no longer matches the camera or the size
-    this.rectangle = null; // where the mesh is on the screen (CSS pixels, from the bottom left), null: anywhere
-    this.glyphFaces = 0;
+    this.stale = true; // the view frame no longer matches the camera, the size or the 3D lines
+    // the glyphs' cells of the view frame: per cell its centre (overlay pixels, from the top left), its face and the
+    // 2 x 2 matrix from the face's frame to the overlay's pixels (scaled: the longest direction RAY pixels)
+    this.cells = { count: 0, centre: new Float32Array(0), face: new Int32Array(0), matrix: new Float32Array(0) };
+    this.pins = [];     // [{face, direction: [x, y, z], feature: bool}]
+    this.markers = [];  // [{position: [x, y, z], color: "css"}]
+    this.camera = null;
   }
 
   // "glyphs", or "none" (the surface alone, e.g. under streamlines)
@@ -207,88 +147,226 @@ export class FieldView {
   // the field of a solve: per face the angle of one of its n directions, counter-clockwise from its first edge
   // (float32, as the server sends it)
   setField(angles, n) {
-    this.angles.set(angles);
-    this.texture.needsUpdate = true;
     this.field = angles;
     this.n = n;
-    this.glyphUniforms.n.value = n;
-    this.glyphUniforms.turn.value.set(Math.cos(2 * Math.PI / n), Math.sin(2 * Math.PI / n));
   }
 
-  // draws the mesh and its field into the canvas (see the top of this file); the caller draws overlays after it
-  // with the same camera, without writing depth
-  render(camera, background) {
+  setPins(pins) { this.pins = pins; }
+  setMarkers(markers) { this.markers = markers; }
+
+  // draws the view frame if it is stale (then `lines`, a scene of 3D lines, over the mesh with the same camera),
+  // then the overlay
+  render(camera, background, lines) {
     const renderer = this.renderer, size = renderer.getDrawingBufferSize(new THREE.Vector2());
-    if (!this.kept || this.kept.image.width !== size.x || this.kept.image.height !== size.y) {
-      this.kept?.dispose();
-      this.kept = new THREE.FramebufferTexture(size.x, size.y);
-      this.kept.minFilter = this.kept.magFilter = THREE.NearestFilter;
-      this.copyUniforms.kept.value = this.kept;
+    this.camera = camera;
+    if (this.overlay.width !== size.x || this.overlay.height !== size.y) {
+      this.overlay.width = size.x;
+      this.overlay.height = size.y;
+      const css = renderer.getSize(new THREE.Vector2());
+      this.overlay.style.width = css.x + "px";
+      this.overlay.style.height = css.y + "px";
       this.stale = true;
     }
-    const autoClear = renderer.autoClear;
-    renderer.autoClear = false;
     if (this.stale) {
+      const autoClear = renderer.autoClear;
+      renderer.autoClear = false;
       renderer.setClearColor(background, 1);
       renderer.clear(true, true, true);
       renderer.render(this.viewScene, camera);
-      renderer.copyFramebufferToTexture(this.kept);
-      this.rectangle = this.screenRectangle(camera);
-      this.selectGlyphFaces(camera);
+      if (lines) renderer.render(lines, camera);
+      this.readIds(camera, size);
+      renderer.autoClear = autoClear;
+      this.selectCells(camera, size);
       this.stale = false;
-    } else {
-      const r = this.rectangle;
-      if (r) {
-        renderer.setScissor(r.x, r.y, r.width, r.height);
-        renderer.setScissorTest(true);
-      }
-      renderer.render(this.copyScene, this.screenCamera);
-      renderer.setScissorTest(false);
     }
-    if (this.showGlyphs && this.field && this.glyphFaces) renderer.render(this.glyphScene, camera);
-    renderer.autoClear = autoClear;
+    this.drawOverlay();
   }
 
-  // the faces in front of the camera, near the view, whose inradius at their incentre's depth is 2.5 pixels or more
-  selectGlyphFaces(camera) {
+  // the face number of every pixel, into this.ids
+  readIds(camera, size) {
+    const renderer = this.renderer;
+    if (!this.idTarget || this.idTarget.width !== size.x || this.idTarget.height !== size.y) {
+      this.idTarget?.dispose();
+      this.idTarget = new THREE.WebGLRenderTarget(size.x, size.y, { minFilter: THREE.NearestFilter,
+        magFilter: THREE.NearestFilter, depthBuffer: true, generateMipmaps: false });
+      this.ids = new Uint8Array(4 * size.x * size.y);
+    }
+    renderer.setRenderTarget(this.idTarget);
+    renderer.setClearColor(0x000000, 0);
+    renderer.clear(true, true, true);
+    renderer.render(this.idScene, camera);
+    renderer.setRenderTarget(null);
+    renderer.readRenderTargetPixels(this.idTarget, 0, 0, size.x, size.y, this.ids);
+  }
+
+  // the face seen at overlay pixel (x, y) (from the top left), or -1
+  faceAt(x, y) {
+    const w = this.overlay.width, h = this.overlay.height;
+    x = Math.floor(x); y = Math.floor(y);
+    if (!this.ids || x < 0 || y < 0 || x >= w || y >= h) return -1;
+    const o = 4 * ((h - 1 - y) * w + x), ids = this.ids;
+    return ids[o] + 256 * ids[o + 1] + 65536 * ids[o + 2] - 1;
+  }
+
+  // the projection of face f's frame at its incentre: [x, y] of the incentre in overlay pixels and the overlay
+  // pixels per unit of e1 and of e2 (the derivative of the projection), or null behind the camera
+  frameOnScreen(f, P) {
+    const c = this.incircles, w = this.overlay.width, h = this.overlay.height, e = P.elements;
+    const x = c[4 * f], y = c[4 * f + 1], z = c[4 * f + 2];
+    const cw = e[3] * x + e[7] * y + e[11] * z + e[15];
+    if (cw <= 0) return null;
+    const cx = (e[0] * x + e[4] * y + e[8] * z + e[12]) / cw, cy = (e[1] * x + e[5] * y + e[9] * z + e[13]) / cw;
+    const along = (t, i) => {
+      const tx = t[3 * f], ty = t[3 * f + 1], tz = t[3 * f + 2];
+      const dw = e[3] * tx + e[7] * ty + e[11] * tz;
+      const dx = (e[0] * tx + e[4] * ty + e[8] * tz - cx * dw) / cw, dy = (e[1] * tx + e[5] * ty + e[9] * tz - cy * dw) / cw;
+      return [dx * w / 2, -dy * h / 2];
+    };
+    return { x: (cx + 1) / 2 * w, y: (1 - cy) / 2 * h, u: along(this.e1), v: along(this.e2) };
+  }
+
+  // the cells whose centre is on the mesh, their faces and matrices (see the top of this file)
+  selectCells(camera, size) {
     camera.updateMatrixWorld();
-    const e = camera.matrixWorldInverse.elements, m = this.faces, c = this.incircles;
-    const height = this.renderer.getDrawingBufferSize(new THREE.Vector2()).y;
-    const pixelsPerUnit = height / 2 / Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2); // at depth 1
-    const slopeX = camera.aspect * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2) * 1.05;
-    const slopeY = Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2) * 1.05;
-    const selected = [];
-    for (let f = 0; f < m; ++f) {
-      const x = c[4 * f], y = c[4 * f + 1], z = c[4 * f + 2], r = c[4 * f + 3];
-      const depth = -(e[2] * x + e[6] * y + e[10] * z + e[14]);
-      if (depth <= camera.near || 0.9 * r * pixelsPerUnit < 2.5 * depth) continue;
-      const vx = e[0] * x + e[4] * y + e[8] * z + e[12], vy = e[1] * x + e[5] * y + e[9] * z + e[13];
-      if (Math.abs(vx) - r > slopeX * depth || Math.abs(vy) - r > slopeY * depth) continue;
-      selected.push(3 * f, 3 * f + 1, 3 * f + 2);
-    }
-    this.glyphMesh.geometry.setIndex(new THREE.BufferAttribute(new Uint32Array(selected), 1));
-    this.glyphFaces = selected.length / 3;
+    const P = new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
+    const cell = CELL * this.renderer.getPixelRatio(), ray = RAY * this.renderer.getPixelRatio();
+    const nx = Math.ceil(size.x / cell), ny = Math.ceil(size.y / cell), capacity = nx * ny;
+    if (this.cells.centre.length < 2 * capacity)
+      this.cells = { count: 0, centre: new Float32Array(2 * capacity), face: new Int32Array(capacity),
+                     matrix: new Float32Array(4 * capacity) };
+    const { centre, face, matrix } = this.cells;
+    let count = 0;
+    for (let j = 0; j < ny; ++j)
+      for (let i = 0; i < nx; ++i) {
+        const x = (i + 0.25 + 0.5 * hash(i, j, 1)) * cell, y = (j + 0.25 + 0.5 * hash(i, j, 2)) * cell;
+        const f = this.faceAt(x, y);
+        if (f < 0) continue;
+        const s = this.frameOnScreen(f, P);
+        if (!s) continue;
+        // the largest singular value of [u v]: the longest direction drawn RAY pixels long
+        const [a, b] = s.u, [c, d] = s.v, q = a * a + b * b + c * c + d * d, det = a * d - b * c;
+        const sigma = Math.sqrt((q + Math.sqrt(Math.max(0, q * q - 4 * det * det))) / 2);
+        if (!(sigma > 0)) continue;
+        centre[2 * count] = x; centre[2 * count + 1] = y;
+        face[count] = f;
+        const k = ray / sigma;
+        matrix[4 * count] = a * k; matrix[4 * count + 1] = b * k; matrix[4 * count + 2] = c * k;
+        matrix[4 * count + 3] = d * k;
+        ++count;
+      }
+    this.cells.count = count;
   }
 
-  // the rectangle (CSS pixels, from the bottom left) holding the projection of the mesh's bounding box, or null
-  // when the box reaches behind the camera
-  screenRectangle(camera) {
-    const box = this.box, view = this.renderer.getSize(new THREE.Vector2()), p = new THREE.Vector3();
-    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
-    for (let i = 0; i < 8; ++i) {
-      p.set(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z);
-      if (p.clone().applyMatrix4(camera.matrixWorldInverse).z >= -camera.near) return null;
-      p.project(camera);
-      x0 = Math.min(x0, p.x); x1 = Math.max(x1, p.x); y0 = Math.min(y0, p.y); y1 = Math.max(y1, p.y);
+  // the overlay: glyphs, pins, markers
+  drawOverlay() {
+    const g = this.context, ratio = this.renderer.getPixelRatio();
+    g.clearRect(0, 0, this.overlay.width, this.overlay.height);
+    g.lineCap = "round";
+    if (this.showGlyphs && this.field) this.drawGlyphs(g, ratio);
+    if (this.pins.length && this.camera) this.drawPins(g, ratio);
+    for (const { position, color } of this.markers) {
+      const p = new THREE.Vector3().fromArray(position).project(this.camera);
+      const x = (p.x + 1) / 2 * this.overlay.width, y = (1 - p.y) / 2 * this.overlay.height, s = MARKER * ratio;
+      g.fillStyle = "#202020";
+      g.fillRect(x - s / 2 - ratio, y - s / 2 - ratio, s + 2 * ratio, s + 2 * ratio);
+      g.fillStyle = color;
+      g.fillRect(x - s / 2, y - s / 2, s, s);
     }
-    const left = Math.max(0, Math.floor((x0 + 1) / 2 * view.x) - 1);
-    const bottom = Math.max(0, Math.floor((y0 + 1) / 2 * view.y) - 1);
-    const right = Math.min(view.x, Math.ceil((x1 + 1) / 2 * view.x) + 1);
-    const top = Math.min(view.y, Math.ceil((y1 + 1) / 2 * view.y) + 1);
-    return { x: left, y: bottom, width: Math.max(0, right - left), height: Math.max(0, top - bottom) };
   }
 
-  // the n directions of every face as the shader draws them (n per face, 3 numbers each): at the angle of the field
+  // the n directions of each cell's face: n rays from its centre (for an even n, n / 2 lines through it); n = 1 an
+  // arrow
+  drawGlyphs(g, ratio) {
+    const { count, centre, face, matrix } = this.cells, field = this.field, n = this.n;
+    const lines = n % 2 === 0 ? n / 2 : n, through = n % 2 === 0;
+    const turnC = Math.cos(2 * Math.PI / n), turnS = Math.sin(2 * Math.PI / n);
+    g.beginPath();
+    for (let i = 0; i < count; ++i) {
+      const t = field[face[i]], x = centre[2 * i], y = centre[2 * i + 1];
+      const a = matrix[4 * i], b = matrix[4 * i + 1], c = matrix[4 * i + 2], d = matrix[4 * i + 3];
+      let cos = Math.cos(t), sin = Math.sin(t);
+      for (let k = 0; k < lines; ++k) {
+        const dx = a * cos + c * sin, dy = b * cos + d * sin;
+        if (through) { g.moveTo(x - dx, y - dy); g.lineTo(x + dx, y + dy); }
+        else {
+          g.moveTo(x, y); g.lineTo(x + dx, y + dy);
+          if (n === 1) { // the head
+            g.moveTo(x + 0.5 * dx - 0.3 * dy, y + 0.5 * dy + 0.3 * dx); g.lineTo(x + dx, y + dy);
+            g.lineTo(x + 0.5 * dx + 0.3 * dy, y + 0.5 * dy - 0.3 * dx);
+          }
+        }
+        const next = cos * turnC - sin * turnS;
+        sin = cos * turnS + sin * turnC;
+        cos = next;
+      }
+    }
+    g.strokeStyle = INK;
+    g.lineWidth = 1.3 * ratio;
+    g.stroke();
+  }
+
+  // each pin whose face is seen: an arrow from its incentre along the direction on the face, PIN pixels long
+  // (FEATURE_PIN for the sharp features'); seen: the face under the incentre's pixel is the pin's, or its incentre
+  // is within two mean edges or two pixels' width of the pin's
+  drawPins(g, ratio) {
+    const camera = this.camera, P = new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix,
+                                                                          camera.matrixWorldInverse);
+    const c = this.incircles, h = this.overlay.height;
+    const perPixel = 2 * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2) / h;
+    const arrows = { false: [], true: [] };
+    for (const { face: f, direction, feature } of this.pins) {
+      const s = this.frameOnScreen(f, P);
+      if (!s) continue;
+      const seenFace = this.faceAt(s.x, s.y);
+      if (seenFace < 0) continue;
+      if (seenFace !== f) {
+        const dx = c[4 * seenFace] - c[4 * f], dy = c[4 * seenFace + 1] - c[4 * f + 1];
+        const dz = c[4 * seenFace + 2] - c[4 * f + 2];
+        const depth = camera.position.distanceTo(new THREE.Vector3(c[4 * f], c[4 * f + 1], c[4 * f + 2]));
+        if (Math.hypot(dx, dy, dz) > Math.max(2 * this.meanEdge, 2 * perPixel * depth)) continue;
+      }
+      // the direction in the face's frame, then on the screen
+      const e1 = this.e1, e2 = this.e2, [px, py, pz] = direction;
+      const u = px * e1[3 * f] + py * e1[3 * f + 1] + pz * e1[3 * f + 2];
+      const v = px * e2[3 * f] + py * e2[3 * f + 1] + pz * e2[3 * f + 2];
+      const dx = s.u[0] * u + s.v[0] * v, dy = s.u[1] * u + s.v[1] * v, length = Math.hypot(dx, dy);
+      if (!(length > 0)) continue;
+      arrows[!!feature].push([s.x, s.y, dx / length, dy / length]);
+    }
+    for (const feature of [true, false]) {
+      const list = arrows[feature];
+      if (!list.length) continue;
+      const L = (feature ? FEATURE_PIN : PIN) * ratio, head = (feature ? 4 : 7) * ratio;
+      g.beginPath();
+      for (const [x, y, dx, dy] of list) {
+        const tx = x + L * dx, ty = y + L * dy;
+        g.moveTo(x, y); g.lineTo(tx, ty);
+        g.moveTo(tx - head * (dx - 0.6 * dy), ty - head * (dy + 0.6 * dx)); g.lineTo(tx, ty);
+        g.lineTo(tx - head * (dx + 0.6 * dy), ty - head * (dy - 0.6 * dx));
+      }
+      g.lineJoin = "round";
+      g.strokeStyle = "rgba(255, 255, 255, 0.85)"; // a halo over the glyphs
+      g.lineWidth = (feature ? 3 : 5) * ratio;
+      g.stroke();
+      g.strokeStyle = "#e0700b";
+      g.lineWidth = (feature ? 1.5 : 2.5) * ratio;
+      g.stroke();
+    }
+  }
+
+  // the WebGL canvas with the overlay over it, in a canvas of the drawing buffer's size (the PNG of the view, and the
+  // tests' pixels)
+  composite() {
+    const out = document.createElement("canvas");
+    out.width = this.overlay.width;
+    out.height = this.overlay.height;
+    const g = out.getContext("2d", { willReadFrequently: true });
+    g.drawImage(this.renderer.domElement, 0, 0);
+    g.drawImage(this.overlay, 0, 0);
+    return out;
+  }
+
+  // the n directions of every face as the glyphs draw them (n per face, 3 numbers each): at the angle of the field
   // plus 2 pi k / n in the face's frame; for the tests, which check them against the library
   directions() {
     const { field, n, e1, e2 } = this, m = this.faces;

@@ -32,19 +32,19 @@ function request() {
 // ---- the scene ------------------------------------------------------------------------------------------------
 const $ = id => document.getElementById(id);
 const view = $("view");
-// no multisampling: the shader smooths its own lines, and a software GL pays for every sample; the drawing buffer
-// is preserved: the field view keeps the mesh's depth and colour in it between edits
+// no multisampling: a software GL pays for every sample; the drawing buffer is preserved: it is drawn again only
+// when the camera moves (the field, pins and markers are in the field view's 2D overlay over it)
 const renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
 renderer.setPixelRatio(window.devicePixelRatio);
 renderer.setSize(view.clientWidth, view.clientHeight);
 view.appendChild(renderer.domElement);
 const BACKGROUND = new THREE.Color(0xf4f4f4);
-// what is drawn over the mesh (markers, pins, boundary loops, streamlines), depth-tested against it, writing no depth
+// the 3D lines drawn over the mesh (boundary loops, streamlines), depth-tested against it, writing no depth
 const scene = new THREE.Scene();
 const camera = new THREE.PerspectiveCamera(40, view.clientWidth / view.clientHeight, 1e-3, 1e3);
 const controls = new OrbitControls(camera, renderer.domElement);
 
-let fieldView = null, markers = null, pins = null, streamlines = null, V = null, F = null, header = null;
+let fieldView = null, streamlines = null, V = null, F = null, header = null;
 let bvh = null, angleDefect = null, display = "glyphs";
 // the request of the field on the screen (the last solve that succeeded: an unbalanced state keeps it), and the
 // singularities the balancing move would add ([[vertex, [p, q]]], drawn pale; null: none to offer)
@@ -53,10 +53,7 @@ const status = $("status");
 
 function draw() {
   if (fieldView.stale) drawMarkers(); // the camera moved: other vertices are in sight
-  fieldView.render(camera, BACKGROUND);
-  renderer.autoClear = false;
-  renderer.render(scene, camera);
-  renderer.autoClear = true;
+  fieldView.render(camera, BACKGROUND, scene);
 }
 controls.addEventListener("change", () => {
   fieldView.stale = true;
@@ -131,6 +128,7 @@ function buildScene() {
   geometry.setIndex(new THREE.BufferAttribute(F, 1));
   bvh = new MeshBVH(geometry, { indirect: true });
   fieldView = new FieldView(renderer, V, F);
+  view.appendChild(fieldView.overlay);
   const { center, radius } = fieldView.boundingSphere;
   controls.target.copy(center);
   camera.position.copy(center).add(new THREE.Vector3(0, 0, 2.8 * radius));
@@ -140,47 +138,25 @@ function buildScene() {
   controls.update();
 }
 
-// the singularities whose vertex the camera sees (a marker is a square of 12 pixels: one behind the surface would
-// show beside the silhouette), red for positive indices, blue for negative ones
+// the singularities whose vertex the camera sees (a marker is a square of 12 pixels over everything: one behind the
+// surface would show through it), red for positive indices, blue for negative ones; pale: what the balancing move
+// would add
 function drawMarkers() {
-  const positions = [], colors = [];
+  const markers = [];
   camera.updateMatrixWorld();
-  for (const [v, [p]] of state.singularities) {
-    if (!seen(v)) continue;
-    positions.push(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
-    colors.push(...(p > 0 ? [0.85, 0.1, 0.1] : [0.1, 0.45, 0.9]));
-  }
-  for (const [v, [p]] of proposal ?? []) { // what the balancing move would add: pale
-    if (!seen(v)) continue;
-    positions.push(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
-    colors.push(...(p > 0 ? [1, 0.72, 0.72] : [0.7, 0.84, 1]));
-  }
-  if (markers) scene.remove(markers);
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
-  geometry.setAttribute("color", new THREE.Float32BufferAttribute(colors, 3));
-  markers = new THREE.Points(geometry, new THREE.PointsMaterial({ size: 12, sizeAttenuation: false, vertexColors: true, depthWrite: false }));
-  scene.add(markers);
+  for (const [v, [p]] of state.singularities)
+    if (seen(v)) markers.push({ position: [V[3 * v], V[3 * v + 1], V[3 * v + 2]], color: p > 0 ? "#d91a1a" : "#1a73e6" });
+  for (const [v, [p]] of proposal ?? [])
+    if (seen(v)) markers.push({ position: [V[3 * v], V[3 * v + 1], V[3 * v + 2]], color: p > 0 ? "#ffb8b8" : "#b3d6ff" });
+  fieldView.setMarkers(markers);
 }
 
-// the pinned directions: an arrow from the face's centroid, along the direction projected on the face
+// the pinned directions (arrows of a fixed size on the screen, drawn by the field view where their face is seen);
+// the sharp features' pins shorter
 function drawPins() {
-  const positions = [];
-  const length = 4 * fieldView.meanEdge;
-  for (const [f, d] of state.constraints) {
-    const c = centroid(f), t = tangent(f, d);
-    const tip = c.clone().addScaledVector(t, length);
-    const side = new THREE.Vector3().fromArray(fieldView.normals, 3 * f).cross(t).multiplyScalar(0.3 * length);
-    const back = c.clone().addScaledVector(t, 0.65 * length);
-    positions.push(...c.toArray(), ...tip.toArray(), ...tip.toArray(), ...back.clone().add(side).toArray(),
-                   ...tip.toArray(), ...back.sub(side).toArray());
-  }
-  if (pins) scene.remove(pins);
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
-  pins = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0xe0700b, depthTest: false, depthWrite: false }));
-  pins.renderOrder = 1;
-  scene.add(pins);
+  const features = state.features?.pins;
+  fieldView.setPins([...state.constraints].map(([f, d]) => ({ face: f, direction: d,
+                                                              feature: features?.get(f) === d })));
 }
 
 function drawBoundary(edges) {
@@ -193,7 +169,7 @@ function drawBoundary(edges) {
 }
 
 function drawStreamlines(points, offsets) {
-  if (streamlines) { scene.remove(streamlines); streamlines = null; }
+  if (streamlines) { scene.remove(streamlines); streamlines = null; fieldView.stale = true; }
   if (!points) return;
   const segments = [];
   for (let i = 0; i + 1 < offsets.length; ++i)
@@ -203,6 +179,7 @@ function drawStreamlines(points, offsets) {
   geometry.setIndex(segments);
   streamlines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0x1f3a93, depthWrite: false }));
   scene.add(streamlines);
+  fieldView.stale = true; // the 3D lines are in the view frame
 }
 
 // ---- geometry of faces ------------------------------------------------------------------------------------------
@@ -287,8 +264,10 @@ async function solve() {
   const built = performance.now();
   draw();
   if (e.measure) {
-    // the frame on the screen: reading a pixel waits for the GPU to finish drawing it
+    // the frame drawn: reading a pixel of the overlay waits for its drawing (and a pixel of the WebGL canvas for the
+    // GPU, when the camera had moved)
     const called = performance.now();
+    fieldView.context.getImageData(0, 0, 1, 1);
     const gl = renderer.getContext();
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
     const now = performance.now();
@@ -715,7 +694,7 @@ $("load").onclick = async () => {
 // a PNG of the view, downloaded by the browser under the name given
 function savePng(path) {
   draw();
-  renderer.domElement.toBlob(blob => {
+  fieldView.composite().toBlob(blob => {
     const a = document.createElement("a");
     a.href = URL.createObjectURL(blob);
     a.download = (path.split("/").pop() || "field").replace(/\.png$/i, "") + ".png";

@@ -20,7 +20,7 @@ import { execFileSync } from "node:child_process";
 import { copyFileSync, existsSync, linkSync, mkdirSync, readdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import path from "node:path";
 import { fileURLToPath } from "node:url";
-import { launchBrowser, startServer } from "./harness.mjs";
+import { fieldCoverage, launchBrowser, startServer } from "./harness.mjs";
 
 const [serve, mesh, bordered, outdir] = process.argv.slice(2);
 const here = path.dirname(fileURLToPath(import.meta.url));
@@ -383,21 +383,21 @@ async function closedMesh(browser) {
 
 // the screenshot: the mesh covers the centre (the background is #f4f4f4), and the marker of every singularity a
 // click would pick (its vertex in front) is where the camera projects it (within 3 pixels), red for positive, blue
-// for negative
+// for negative (drawn over the surface: never cut at the silhouette)
 async function structure(page) {
   const shot = path.join(outdir, "editor.png");
   await page.screenshot({ path: shot });
   const found = await page.evaluate(() => {
-    const e = window.__editor, c = document.querySelector("#view canvas");
-    const gl = c.getContext("webgl2"), rect = c.getBoundingClientRect();
-    // the pixels of the canvas in the (2 r + 1)-square about (x, y) (CSS pixels of the page), as [r, g, b] lists
+    const e = window.__editor, rect = document.querySelector("#view canvas").getBoundingClientRect();
+    e.internals.draw();
+    // the view as shown: the WebGL canvas and the overlay over it
+    const g = e.internals.fieldView.composite().getContext("2d");
+    // the pixels in the (2 r + 1)-square about (x, y) (CSS pixels of the page), as [r, g, b] lists
     const block = (x, y, r) => {
-      const size = 2 * r + 1, p = new Uint8Array(4 * size * size);
-      gl.readPixels(Math.round(x - rect.left) - r, Math.round(rect.bottom - y - 1) - r, size, size, gl.RGBA,
-                    gl.UNSIGNED_BYTE, p);
+      const size = 2 * r + 1;
+      const p = g.getImageData(Math.round(x - rect.left) - r, Math.round(y - rect.top) - r, size, size).data;
       return Array.from({ length: size * size }, (_, i) => Array.from(p.subarray(4 * i, 4 * i + 3)));
     };
-    e.internals.draw(); // read in the task that drew
     const markers = [];
     for (const [v, [sign]] of e.state.singularities) {
       const s = e.screenOf(v);
@@ -489,8 +489,51 @@ async function borderedMesh(browser) {
   }
 }
 
+// the field at the whole-mesh view of a large mesh (LARGE_MESH beside MESH, CGAL's refined_elephant: 89k faces,
+// most a pixel or two wide): ink in at least COVERAGE of the blocks of 24 x 24 pixels wholly on the mesh, and a
+// share of its pixels between INK[0] and INK[1] (the field drawn, the shading still seen); a pinned direction is an
+// arrow of at least PIN_PIXELS orange pixels about its face's projection (its size on the screen, not in edges)
+const LARGE_MESH = "refined_elephant.off", COVERAGE = 0.95, INK = [0.03, 0.5], PIN_PIXELS = 25;
+async function largeMesh(browser) {
+  const large = path.join(path.dirname(mesh), LARGE_MESH);
+  const { server, address } = await startServer(serve, large, ["--n", "4", "--folder", files]);
+  try {
+    const page = await open(browser, address);
+    const shown = await fieldCoverage(page);
+    console.log(`${LARGE_MESH}: ${shown.faces} faces at the whole-mesh view: ${shown.glyphs} glyphs, ink in ` +
+                `${(100 * shown.coverage).toFixed(1)} % of the ${shown.blocks} blocks wholly on the mesh, ` +
+                `${(100 * shown.ink).toFixed(1)} % of its ${shown.meshPixels} pixels`);
+    if (shown.blocks < 20 || shown.coverage < COVERAGE || shown.ink < INK[0] || shown.ink > INK[1])
+      fail(`${LARGE_MESH}: the field is not drawn over the mesh at the whole-mesh view: ${JSON.stringify(shown)}`);
+    const [f] = await visibleFaces(page, 1);
+    if (f === undefined) fail(`${LARGE_MESH}: no visible face to pin`);
+    const before = await solves(page);
+    await page.evaluate(g => window.__editor.edit(() => {
+      const n = window.__editor.internals.fieldView.normals, t = [n[3 * g + 1], -n[3 * g], 0]; // a tangent
+      window.__editor.state.constraints.set(g, t[0] || t[1] ? t : [1, 0, 0]);
+    }), f);
+    await solved(page, before);
+    await checkField(page, large, `${LARGE_MESH}: a pin`);
+    const orange = await page.evaluate(g => {
+      const e = window.__editor, s = e.screenOfFace(g), rect = document.querySelector("#view canvas").getBoundingClientRect();
+      e.internals.draw();
+      const r = 30, p = e.internals.fieldView.composite().getContext("2d")
+        .getImageData(Math.round(s.x - rect.left) - r, Math.round(s.y - rect.top) - r, 2 * r + 1, 2 * r + 1).data;
+      let count = 0;
+      for (let i = 0; i < p.length; i += 4) if (p[i] > 180 && p[i + 1] > 80 && p[i + 1] < 150 && p[i + 2] < 60) ++count;
+      return count;
+    }, f);
+    if (orange < PIN_PIXELS) fail(`${LARGE_MESH}: the pin of face ${f} shows ${orange} orange pixels`);
+    console.log(`${LARGE_MESH}: the pin of face ${f}: ${orange} orange pixels about its projection`);
+    await page.screenshot({ path: path.join(outdir, "editor_large.png") });
+  } finally {
+    server.kill();
+  }
+}
+
 const browser = await launchBrowser();
 try {
+  await largeMesh(browser);
   await closedMesh(browser);
   await borderedMesh(browser);
   console.log("editor_test: passed");

@@ -216,10 +216,11 @@ export class FieldView {
     const cw = e[3] * x + e[7] * y + e[11] * z + e[15];
     if (cw <= 0) return null;
     const cx = (e[0] * x + e[4] * y + e[8] * z + e[12]) / cw, cy = (e[1] * x + e[5] * y + e[9] * z + e[13]) / cw;
-    const along = (t, i) => {
+    const along = t => {
       const tx = t[3 * f], ty = t[3 * f + 1], tz = t[3 * f + 2];
       const dw = e[3] * tx + e[7] * ty + e[11] * tz;
-      const dx = (e[0] * tx + e[4] * ty + e[8] * tz - cx * dw) / cw, dy = (e[1] * tx + e[5] * ty + e[9] * tz - cy * dw) / cw;
+      const dx = (e[0] * tx + e[4] * ty + e[8] * tz - cx * dw) / cw;
+      const dy = (e[1] * tx + e[5] * ty + e[9] * tz - cy * dw) / cw;
       return [dx * w / 2, -dy * h / 2];
     };
     return { x: (cx + 1) / 2 * w, y: (1 - cy) / 2 * h, u: along(this.e1), v: along(this.e2) };

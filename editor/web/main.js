@@ -144,10 +144,11 @@ function buildScene() {
 function drawMarkers() {
   const markers = [];
   camera.updateMatrixWorld();
+  const at = v => [V[3 * v], V[3 * v + 1], V[3 * v + 2]];
   for (const [v, [p]] of state.singularities)
-    if (seen(v)) markers.push({ position: [V[3 * v], V[3 * v + 1], V[3 * v + 2]], color: p > 0 ? "#d91a1a" : "#1a73e6" });
+    if (seen(v)) markers.push({ position: at(v), color: p > 0 ? "#d91a1a" : "#1a73e6" });
   for (const [v, [p]] of proposal ?? [])
-    if (seen(v)) markers.push({ position: [V[3 * v], V[3 * v + 1], V[3 * v + 2]], color: p > 0 ? "#ffb8b8" : "#b3d6ff" });
+    if (seen(v)) markers.push({ position: at(v), color: p > 0 ? "#ffb8b8" : "#b3d6ff" });
   fieldView.setMarkers(markers);
 }
 

@@ -2,7 +2,9 @@
 //
 //   node editor_test.mjs SERVE MESH BORDERED_MESH OUTDIR     (ctest editor_browser; NODE_PATH: the build's npm packages)
 //
-// SERVE: the launcher (trivial_connections-serve). On MESH (closed): load, a click adding +1/n, a shift-click adding
+// SERVE: the launcher (trivial_connections-serve). First, on CGAL's refined_elephant beside MESH (89k faces), the
+// field at the whole-mesh view, by structure: the share of the mesh's 24-pixel blocks that hold the glyphs' ink, and
+// a pin's arrow (see largeMesh()). On MESH (closed): load, a click adding +1/n, a shift-click adding
 // -1/n elsewhere, two undos, two redos, the legend of the shortcuts (every modifier key the code reads, every tool,
 // exactly the keyboard shortcuts of the page's table) and those shortcuts pressed, a drag, a pinned direction, a
 // stroke, an undo, an unbalancing click (the page shows the component and by how much, keeps the field drawn, glyphs

@@ -18,7 +18,7 @@
 // - the singularities' markers: squares of MARKER pixels on top of everything (never cut by the surface).
 import * as THREE from "three";
 
-const CELL = 16, RAY = 7, PIN = 26, FEATURE_PIN = 12, MARKER = 12;
+const CELL = 16, RAY = 7, PIN = 26, FEATURE_PIN = 12, MARKER = 12, ID_SCALE = 2;
 const INK = "#1f3a93";
 
 const shadedVertex = /* glsl */ `
@@ -123,7 +123,9 @@ export class FieldView {
     this.idScene.add(new THREE.Mesh(corners, new THREE.ShaderMaterial({
       glslVersion: THREE.GLSL3, vertexShader: idVertex, fragmentShader: idFragment, side: THREE.DoubleSide })));
     this.idTarget = null;
-    this.ids = null; // per pixel of the drawing buffer (rows from the bottom): the face number + 1, 0: background
+    // per pixel of the face buffer (ID_SCALE times coarser than the drawing buffer, rows from the bottom): the face
+    // number + 1, 0: the background
+    this.ids = null;
 
     this.overlay = document.createElement("canvas");
     this.overlay.style.cssText = "position: absolute; left: 0; top: 0; pointer-events: none";
@@ -184,26 +186,27 @@ export class FieldView {
 
   // the face number of every pixel, into this.ids
   readIds(camera, size) {
-    const renderer = this.renderer;
-    if (!this.idTarget || this.idTarget.width !== size.x || this.idTarget.height !== size.y) {
+    const renderer = this.renderer, w = Math.ceil(size.x / ID_SCALE), h = Math.ceil(size.y / ID_SCALE);
+    if (!this.idTarget || this.idTarget.width !== w || this.idTarget.height !== h) {
       this.idTarget?.dispose();
-      this.idTarget = new THREE.WebGLRenderTarget(size.x, size.y, { minFilter: THREE.NearestFilter,
+      this.idTarget = new THREE.WebGLRenderTarget(w, h, { minFilter: THREE.NearestFilter,
         magFilter: THREE.NearestFilter, depthBuffer: true, generateMipmaps: false });
-      this.ids = new Uint8Array(4 * size.x * size.y);
+      this.ids = new Uint8Array(4 * w * h);
     }
     renderer.setRenderTarget(this.idTarget);
     renderer.setClearColor(0x000000, 0);
     renderer.clear(true, true, true);
     renderer.render(this.idScene, camera);
     renderer.setRenderTarget(null);
-    renderer.readRenderTargetPixels(this.idTarget, 0, 0, size.x, size.y, this.ids);
+    renderer.readRenderTargetPixels(this.idTarget, 0, 0, w, h, this.ids);
   }
 
   // the face seen at overlay pixel (x, y) (from the top left), or -1
   faceAt(x, y) {
-    const w = this.overlay.width, h = this.overlay.height;
-    x = Math.floor(x); y = Math.floor(y);
-    if (!this.ids || x < 0 || y < 0 || x >= w || y >= h) return -1;
+    if (!this.ids) return -1;
+    const w = this.idTarget.width, h = this.idTarget.height;
+    x = Math.floor(x / ID_SCALE); y = Math.floor(y / ID_SCALE);
+    if (x < 0 || y < 0 || x >= w || y >= h) return -1;
     const o = 4 * ((h - 1 - y) * w + x), ids = this.ids;
     return ids[o] + 256 * ids[o + 1] + 65536 * ids[o + 2] - 1;
   }

@@ -268,14 +268,19 @@ export class FieldView {
     g.lineCap = "round";
     if (this.showGlyphs && this.field) this.drawGlyphs(g, ratio);
     if (this.pins.length && this.camera) this.drawPins(g, ratio);
-    for (const { position, color } of this.markers) {
-      const p = new THREE.Vector3().fromArray(position).project(this.camera);
-      const x = (p.x + 1) / 2 * this.overlay.width, y = (1 - p.y) / 2 * this.overlay.height, s = MARKER * ratio;
-      g.fillStyle = "#202020";
-      g.fillRect(x - s / 2 - ratio, y - s / 2 - ratio, s + 2 * ratio, s + 2 * ratio);
+    // the squares on whole pixels (no blended edges), every outline before every square: markers side by side
+    // overlap, none cuts another with its outline
+    const s = Math.round(MARKER * ratio), p = new THREE.Vector3(), w = this.overlay.width, h = this.overlay.height;
+    const corners = this.markers.map(({ position }) => {
+      p.fromArray(position).project(this.camera);
+      return [Math.round((p.x + 1) / 2 * w - s / 2), Math.round((1 - p.y) / 2 * h - s / 2)];
+    });
+    g.fillStyle = "#202020";
+    for (const [x, y] of corners) g.fillRect(x - ratio, y - ratio, s + 2 * ratio, s + 2 * ratio);
+    this.markers.forEach(({ color }, i) => {
       g.fillStyle = color;
-      g.fillRect(x - s / 2, y - s / 2, s, s);
-    }
+      g.fillRect(corners[i][0], corners[i][1], s, s);
+    });
   }
 
   // the n directions of each cell's face: n rays from its centre (for an even n, n / 2 lines through it); n = 1 an

@@ -14,7 +14,8 @@
 //   mesh as on one face filling the screen, and an edit redraws a few thousand lines: the field's angle per face
 //   (4 bytes, as the server sends it) turned by the cell's 2 x 2 matrix kept from the view frame;
 // - the pinned directions: arrows of a fixed length in pixels (PIN; the sharp features' pins shorter, FEATURE_PIN)
-//   from the face's incentre, where the face is seen (its incentre near the surface under that pixel);
+//   from the face's incentre, where the face is seen (its incentre near the surface under that pixel); of the
+//   sharp features' pins, one a cell of FEATURE_PIN pixels;
 // - the singularities' markers: squares of MARKER pixels on top of everything (never cut by the surface).
 import * as THREE from "three";
 
@@ -322,7 +323,7 @@ export class FieldView {
                                                                           camera.matrixWorldInverse);
     const c = this.incircles, h = this.overlay.height;
     const perPixel = 2 * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2) / h;
-    const arrows = { false: [], true: [] };
+    const arrows = { false: [], true: [] }, taken = new Set();
     for (const { face: f, direction, feature } of this.pins) {
       const s = this.frameOnScreen(f, P);
       if (!s) continue;
@@ -340,6 +341,11 @@ export class FieldView {
       const v = px * e2[3 * f] + py * e2[3 * f + 1] + pz * e2[3 * f + 2];
       const dx = s.u[0] * u + s.v[0] * v, dy = s.u[1] * u + s.v[1] * v, length = Math.hypot(dx, dy);
       if (!(length > 0)) continue;
+      if (feature) { // one arrow a cell of FEATURE_PIN pixels: thousands of them along the edges would be a band
+        const key = Math.floor(s.x / (FEATURE_PIN * ratio)) + "," + Math.floor(s.y / (FEATURE_PIN * ratio));
+        if (taken.has(key)) continue;
+        taken.add(key);
+      }
       arrows[!!feature].push([s.x, s.y, dx / length, dy / length]);
     }
     for (const feature of [true, false]) {

@@ -15,6 +15,7 @@
 #include <CGAL/Trivial_connections/internal/field/field_propagation.h>
 #include <CGAL/Trivial_connections/internal/integers/closest_vector.h>
 #include <CGAL/Trivial_connections/internal/integers/loop_periods.h>
+#include <CGAL/Trivial_connections/internal/placement/move_integers.h>
 #include <CGAL/Trivial_connections/internal/system/constraint_links.h>
 #include <CGAL/Trivial_connections/internal/system/constraint_rows.h>
 #include <CGAL/Trivial_connections/internal/system/system_assembly.h>
@@ -210,6 +211,96 @@ TEST(Closest_vector, out_of_budget_never_worse_than_candidates_and_locally_optim
       m[i] += step;
       EXPECT_GE(q_of(G, c, m), r.value - 1e-9 * (1 + r.value));
     }
+}
+
+// The refinement's price of a move with the free integers changed (Move_integers::best) is the energy change
+// E(b') - E(b), E(b) = b^T M^-1 b, of actual integers s: b' = b + d (e_w - e_v) + u sum_a s_a e_{F_a}. Proven
+// rounds (the integers of b nearest to the real minimiser): the best s. Unproven ones (any b): a descent from the
+// integers kept and from Babai's point, never worse than keeping them.
+TEST(Move_integers, prices_are_energy_changes_of_actual_integers)
+{
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u01(-1, 1);
+  const Eigen::Index rows = 14;
+  const std::vector<int> free = {2, 5, 7, 11};
+  const double unit = 2 * CGAL_PI / 4;
+  int exact = 0, priced = 0, improved = 0;
+  for(int trial = 0; trial < 40; ++trial) {
+    Eigen::MatrixXd B(rows, rows);
+    for(Eigen::Index i = 0; i < rows; ++i)
+      for(Eigen::Index j = 0; j < rows; ++j)
+        B(i, j) = u01(rng);
+    const Eigen::MatrixXd M = B * B.transpose() + 0.5 * Eigen::MatrixXd::Identity(rows, rows);
+    const Eigen::MatrixXd G = M.inverse();
+    const bool proven = trial % 2 == 0;
+    // proven: lambda small on the free rows (the integers kept are the nearest); otherwise anything
+    Eigen::VectorXd lambda(rows);
+    for(Eigen::Index i = 0; i < rows; ++i)
+      lambda[i] = 3 * u01(rng);
+    if(proven)
+      for(int r : free)
+        lambda[r] *= 1e-3;
+    const Eigen::VectorXd b = M * lambda;
+    TCI::Move_integers integers({free}, rows, unit, [&](const Eigen::VectorXd& e) { return Eigen::VectorXd(G * e); });
+    ASSERT_FALSE(integers.empty());
+    integers.start_round(lambda, proven);
+    auto energy = [&](const Eigen::VectorXd& v) { return v.dot(G * v); };
+    for(int move = 0; move < 8; ++move) {
+      const int rv = int(rng() % rows), rw = int(rng() % rows);
+      if(rv == rw || std::count(free.begin(), free.end(), rv) || std::count(free.begin(), free.end(), rw))
+        continue;
+      const double d = unit * (1 + int(rng() % 3)) * (move % 2 == 0 ? 1 : -1);
+      Eigen::VectorXd moved = b;
+      moved[rw] += d;
+      moved[rv] -= d;
+      const double kept = energy(moved) - energy(b);
+      const double price = integers.best(0, rv, rw, d, kept, 1e-12);
+      EXPECT_LE(price, kept + 1e-9);
+      // E(moved + u S s) = E(moved) + 2 u s^T (G moved)_F + u^2 s^T G_FF s; the real minimiser c1 within 3 of 0
+      const Eigen::Index k = Eigen::Index(free.size());
+      Eigen::MatrixXd G_FF(k, k);
+      Eigen::VectorXd g_F(k);
+      const Eigen::VectorXd g_moved = G * moved;
+      for(Eigen::Index a = 0; a < k; ++a) {
+        g_F[a] = g_moved[free[a]];
+        for(Eigen::Index c = 0; c < k; ++c)
+          G_FF(a, c) = G(free[a], free[c]);
+      }
+      const Eigen::VectorXd c1 = -G_FF.llt().solve(g_F) / unit;
+      if(c1.lpNorm<Eigen::Infinity>() > 3)
+        continue;
+      // every integer change in a box around 0 that holds the optimum (the metric is well conditioned)
+      double lowest = std::numeric_limits<double>::infinity(), nearest_to_price = lowest;
+      const int span = 6;
+      std::vector<int> s(free.size(), -span);
+      while(true) {
+        Eigen::VectorXd sv(k);
+        for(Eigen::Index a = 0; a < k; ++a)
+          sv[a] = s[std::size_t(a)];
+        const double change = kept + 2 * unit * sv.dot(g_F) + unit * unit * sv.dot(G_FF * sv);
+        lowest = (std::min)(lowest, change);
+        nearest_to_price = (std::min)(nearest_to_price, std::abs(change - price));
+        std::size_t a = 0;
+        while(a < s.size() && ++s[a] > span)
+          s[a++] = -span;
+        if(a == s.size())
+          break;
+      }
+      EXPECT_LT(nearest_to_price, 1e-8 * (1 + std::abs(price))) << "trial " << trial; // actual integers
+      EXPECT_GE(price, lowest - 1e-8 * (1 + std::abs(lowest)));
+      // proven: exact whenever some integers make the move pay off (best() searches only then)
+      if(proven && lowest < -1e-9) {
+        EXPECT_NEAR(price, lowest, 1e-8 * (1 + std::abs(lowest))) << "trial " << trial;
+        ++exact;
+      }
+      priced += proven ? 0 : 1;
+      improved += price < kept - 1e-9 ? 1 : 0;
+    }
+  }
+  // the cases this test is for: moves that pay off with proven integers, and unproven searches that found some
+  EXPECT_GT(exact, 5);
+  EXPECT_GT(priced, 20);
+  EXPECT_GT(improved, 5);
 }
 
 // LLL with deep insertions: U unimodular with U^-1 exact, H = U^T G U, and the basis size reduced and Lovasz

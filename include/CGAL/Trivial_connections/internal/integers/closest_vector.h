@@ -42,7 +42,9 @@ namespace internal {
        min(1, a d / k) of the best value) with a = 4, 64, 1024, ...: a heuristic search for better points whose
        last pass, once a >= k, is complete and proves the optimum.
   `proven`: the optimum is certain (up to rounding); `lower_bound` <= q of every integer point, = `value`
-  when proven.
+  when proven. With `wanted_below`, points with q >= it are of no interest: when the candidates, Babai's point
+  and the descent give none below it, only the ball q < wanted_below is enumerated, and a pass that finds it
+  empty ends the search (lower_bound = wanted_below, not proven): the usual answer to "can q get below this?".
 */
 struct Closest_vector_result
 {
@@ -229,7 +231,8 @@ inline double greedy_descent(const Eigen::MatrixXd& H, Eigen::VectorXd& z, Eigen
 inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, const Eigen::MatrixXd& G,
                                             const Eigen::VectorXd& c,
                                             const std::vector<std::vector<std::int64_t>>& candidates,
-                                            double work_budget = 2e6)
+                                            double work_budget = 2e6,
+                                            double wanted_below = std::numeric_limits<double>::infinity())
 {
   const Eigen::Index k = c.size();
   Closest_vector_result best;
@@ -287,14 +290,16 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
   }
 
   const double budget = (std::max)(work_budget, double(k) * double(k));
-  Enumeration e(R, w, best_z, best_value);
+  // the ball searched: below the best point, or below what is wanted when that is less
+  const bool bounded = wanted_below < best_value;
+  Enumeration e(R, w, best_z, bounded ? (std::max)(wanted_below, 0.) : best_value);
   // 1. complete passes in growing balls, for the lower bound (and the optimum when the ball of the best value
   // fits), with half the budget: the first in the ball whose expected work is an eighth of it, each next one
   // in a ball of about twice the expected work, until a pass runs out or proves the optimum
   const Enumeration_cost cost(R);
-  double rho = best_value;
+  double rho = e.best_value;
   if(cost.log_work(rho) > std::log(budget / 2))
-    rho = cost.radius_for(budget / 8, best_value);
+    rho = cost.radius_for(budget / 8, e.best_value);
   double used = 0, lower_bound = 0;
   bool proven = false;
   for(int pass = 0; pass < 4; ++pass) { // each pass starts with a descent of about k^2 / 2
@@ -306,15 +311,20 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
     if(e.out_of_budget)
       break;
     if(e.best_value <= rho) {
-      proven = true;
+      proven = true; // the optimum, or (bounded, nothing found) no point below wanted_below
       break;
     }
     if(used >= budget / 4)
       break; // the next pass would likely not finish
     rho = (std::min)(e.best_value, (std::max)(1.01 * rho, cost.radius_for(2 * std::exp(cost.log_work(rho)), e.best_value)));
   }
+  const bool none_below = bounded && proven && !e.improved;
+  if(none_below)
+    proven = false; // best_value stands, unproven, above lower_bound = wanted_below
   // 2. pruned passes with the rest of the budget, each wider than the one before
   e.radius = std::numeric_limits<double>::infinity();
+  if(none_below)
+    used = budget;
   for(double a = 4; !proven && used < budget; a *= 16) {
     e.pruning = a >= double(k) ? 0. : a;
     e.start(budget - used);

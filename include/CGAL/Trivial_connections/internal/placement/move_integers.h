@@ -173,7 +173,8 @@ public:
     return (std::min)(0., m_unit * m_unit * gap * gap - relaxed);
   }
 
-  // the energy change of that move with the integers kept (`kept`), or with the best of them
+  // the energy change of that move with the integers kept (`kept`), or with the best of them when some make it
+  // pay (below -tolerance); otherwise a change at most `kept`, not below -tolerance
   double best(std::size_t c, int rv, int rw, double d, double kept, double tolerance)
   {
     const int block = m_block_of_component[c];
@@ -188,9 +189,13 @@ public:
     if(rv >= 0)
       p -= d * b.columns.row(rv).transpose();
     const Eigen::VectorXd center = -(b.inverse * p) / m_unit; // the real minimiser
-    const Closest_vector_result nearest = closest_vector(b.lattice, b.metric, center, {}, 1e5);
-    // u^2 ((s - c)^T G_F (s - c) - c^T G_F c), c = center
-    return (std::min)(kept, kept + m_unit * m_unit * (nearest.value - center.dot(b.metric * center)));
+    // the change is kept + u^2 ((s - c)^T G_F (s - c) - c^T G_F c), c = center: below -tolerance only for the
+    // points within the ball searched (most moves pay with none: bunny00's curvature guidance, a first round's
+    // 877 searches 66 -> 29 ms, the same 471 candidates)
+    const double centre_norm = center.dot(b.metric * center);
+    const Closest_vector_result nearest = closest_vector(b.lattice, b.metric, center, {}, 1e5,
+                                                         centre_norm - (kept + tolerance) / (m_unit * m_unit));
+    return (std::min)(kept, kept + m_unit * m_unit * (nearest.value - centre_norm));
   }
 
 private:

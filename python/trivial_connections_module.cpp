@@ -17,6 +17,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <CGAL/Trivial_connections/IO/atomic_file.h>
+#include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/IO/face_directions.h>
 #include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
@@ -34,8 +35,10 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <future>
 #include <limits>
@@ -158,6 +161,18 @@ std::pair<Point_array, Face_array> checked_arrays(const py::handle& v_in, const 
   const py::array V = as_array(v_in, "V"), F = as_array(f_in, "F");
   check_rows_of_three(V, "V", "fiu", "real numbers");
   check_rows_of_three(F, "F", "iu", "integers (vertex indices)");
+  if(F.dtype().kind() == 'u' && F.dtype().itemsize() == 8) { // uint64: values over int64's range, said as they are
+    const auto u = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(F);
+    const std::uint64_t limit = std::uint64_t((std::numeric_limits<std::int64_t>::max)());
+    const std::size_t nv = std::size_t(V.shape(0));
+    for(std::size_t i = 0; i < std::size_t(u.size()); ++i)
+      if(u.data()[i] > limit)
+        throw TC::Invalid_input(TC::Error_code::invalid_vertex,
+                                "face " + std::to_string(i / 3) + " uses vertex " + std::to_string(u.data()[i]) +
+                                  " but the mesh has only " + std::to_string(nv) + " vertices (0-based indices 0 to " +
+                                  (nv == 0 ? std::string("none") : std::to_string(nv - 1)) + ")",
+                                i / 3);
+  }
   auto points = Point_array::ensure(V);
   auto faces = Face_array::ensure(F);
   if(!points || !faces)
@@ -226,6 +241,90 @@ std::int64_t int64_of(const py::handle& h, TC::Error_code too_large, const std::
     throw py::error_already_set();
   return std::int64_t(value);
 }
+
+// The largest symmetry order n the module accepts: the program's (--n takes at most nine digits). Beyond 2^30 the
+// library's bound on n times an index (internal::max_scaled_index()) would refuse even an index of 1.
+constexpr std::int64_t max_symmetry_order = 999999999;
+
+// A symmetry order given in Python (`n`, `feature_n`): an int (or numpy integer, not a bool) from 1 to
+// max_symmetry_order, else InvalidInput (a ValueError) with the library's code invalid_symmetry_order, naming the
+// range (TypeError for another type)
+int symmetry_order_of(const py::handle& h, const char* name)
+{
+  if(py::isinstance<py::bool_>(h) || !PyIndex_Check(h.ptr()))
+    throw py::type_error(std::string(name) + " must be an integer from 1 to " + std::to_string(max_symmetry_order) +
+                         ", got " + std::string(py::repr(h)));
+  const py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(h.ptr()));
+  if(!i)
+    throw py::error_already_set();
+  int overflow = 0;
+  const long long value = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+  if(value == -1 && PyErr_Occurred())
+    throw py::error_already_set();
+  if(overflow != 0 || value < 1 || value > max_symmetry_order)
+    throw TC::Invalid_input(TC::Error_code::invalid_symmetry_order,
+                            std::string(name) + " must be an integer from 1 to " + std::to_string(max_symmetry_order) +
+                              " (the program's --n; 1 vectors, 2 lines, 4 crosses, ...), got " + std::string(py::str(i)));
+  return int(value);
+}
+
+// A file name given in Python: str, bytes or any os.PathLike (pathlib.Path), as the bytes the file system takes
+// (os.fsencode); anything else is the TypeError of os.fspath()
+std::string path_of(const py::handle& path)
+{
+  const py::object os = py::module_::import("os");
+  return std::string(py::bytes(os.attr("fsencode")(os.attr("fspath")(path))));
+}
+
+// ---- progress, logging and Ctrl-C during long calls ------------------------------------------------------
+
+// What the progress callback of one call reports to: the user's callable (or None) and the logger
+// "trivial_connections". The callback the library gets holds a pointer to it, so that copying the callback
+// (the library does, without the GIL) copies no Python object; it lives as long as the call.
+struct Progress_context
+{
+  std::string call; // "Solver()", "solve()", ...
+  py::object callable, logger;
+  std::chrono::steady_clock::time_point phase_start;
+
+  Progress_context(std::string c, py::object f) : call(std::move(c)), callable(std::move(f))
+  {
+    if(!callable.is_none() && !PyCallable_Check(callable.ptr()))
+      throw py::type_error("progress must be a callable progress(phase, fraction) or None, got " +
+                           std::string(py::repr(callable)));
+    logger = py::module_::import("logging").attr("getLogger")("trivial_connections");
+  }
+
+  // Called by the library between phases and iterations, on the calling thread, without the GIL: takes it,
+  // raises a pending KeyboardInterrupt (or whatever a signal handler raised) by throwing, which aborts the C++
+  // call; logs the phase (INFO when it starts and ends, DEBUG in between); calls the user's callable, whose
+  // exception aborts the call too.
+  TC::Progress_callback callback()
+  {
+    Progress_context* self = this;
+    return [self](TC::Phase phase, double fraction) {
+      py::gil_scoped_acquire gil;
+      if(PyErr_CheckSignals() != 0)
+        throw py::error_already_set();
+      const char* name = TC::phase_name(phase);
+      const auto now = std::chrono::steady_clock::now();
+      if(fraction <= 0)
+        self->phase_start = now;
+      const int level = (fraction <= 0 || fraction >= 1) ? 20 : 10; // logging.INFO, logging.DEBUG
+      if(self->logger.attr("isEnabledFor")(level).cast<bool>()) {
+        if(fraction <= 0)
+          self->logger.attr("log")(level, "%s %s: started", self->call, name);
+        else if(fraction >= 1)
+          self->logger.attr("log")(level, "%s %s: done in %.3f s", self->call, name,
+                                   std::chrono::duration<double>(now - self->phase_start).count());
+        else
+          self->logger.attr("log")(level, "%s %s: %.0f %%", self->call, name, 100 * fraction);
+      }
+      if(!self->callable.is_none())
+        self->callable(name, fraction);
+    };
+  }
+};
 
 // An index: an int (or numpy integer), a fractions.Fraction, or a "p/q" string; exact, never a float.
 TC::Singularity_index index_of(const py::handle& k)
@@ -352,6 +451,19 @@ py::object fraction(const TC::Singularity_index& k)
   return py::module_::import("fractions").attr("Fraction")(k.numerator(), k.denominator());
 }
 
+// The vertices of each face, 3 per face, as the arrays or the file gave them: a mesh built by the package's
+// build_mesh() (triangle_soup_to_mesh(), read_triangle_mesh(), Solver(V, F)) has as the halfedge of face f the one
+// from its corner 0 to its corner 1, so the sources of its halfedges from there are the face's row, in order.
+std::vector<std::int64_t> corners_in_input_order(const Mesh& mesh)
+{
+  std::vector<std::int64_t> t;
+  t.reserve(3 * mesh.number_of_faces());
+  for(auto f : mesh.faces())
+    for(auto h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh))
+      t.push_back(std::int64_t(mesh.source(h)));
+  return t;
+}
+
 // ---- the solver, whatever its backend ------------------------------------------------------------------
 
 struct Solve_output
@@ -370,26 +482,31 @@ public:
   // all_directions: also the n directions per face (Solve_output::directions), for n > 1
   virtual Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities,
                              int n, const std::vector<Kernel::Vector_3>* directions,
-                             const Loop_periods* loop_periods, bool all_directions) = 0;
+                             const Loop_periods* loop_periods, bool all_directions,
+                             const TC::Progress_callback& progress) = 0;
   virtual std::size_t number_of_loops() const = 0;
   virtual std::vector<double> weights() const = 0; // w_e per interior edge, in edges() order
   // per loop of the solver: a boundary loop?, its component, the halfedges it crosses
   virtual std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> loops() const = 0;
   virtual TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide,
                                      double strength, const Singularities& fixed, const Loop_periods* periods,
-                                     const std::vector<Kernel::Vector_3>* directions, Singularities& placed) const = 0;
+                                     const std::vector<Kernel::Vector_3>* directions, Singularities& placed,
+                                     const TC::Progress_callback& progress) const = 0;
   virtual std::vector<Kernel::Vector_3> curvature_guide(std::vector<std::pair<double, double>>& curvatures) const = 0;
   virtual std::vector<std::size_t> spread(const std::vector<Kernel::Vector_3>& guide, std::size_t count) const = 0;
   virtual TC::Refinement_report<vertex_descriptor> refine(const Singularities& start, int n,
                                                           const std::vector<Kernel::Vector_3>* directions,
                                                           const Loop_periods* periods,
                                                           const std::vector<std::size_t>& fixed, bool cancel_pairs,
-                                                          std::size_t trials) = 0;
+                                                          std::size_t trials, const TC::Progress_callback& progress) = 0;
   // `known`: the targets known already (per face, zero where not known; empty: none), with their n
   virtual TC::Constraint_update set_constraints(const std::vector<face_descriptor>& constrained,
                                                 const std::vector<face_descriptor>& guided,
                                                 const std::vector<Kernel::Vector_3>& known, int known_n) = 0;
   virtual const char* backend() const = 0;
+  // the topology of each connected component, and the component of each face (Trivial_connection_solver's)
+  virtual std::vector<TC::Component_report> components() const = 0;
+  virtual std::vector<std::size_t> face_components() const = 0;
   // the vertices of each interior edge, two per edge (smaller first), in the order of Result.connection
   virtual const std::vector<std::int64_t>& edge_vertices() const = 0;
 };
@@ -494,6 +611,7 @@ struct Options
   // disagree are then left to the lattice rather than rounded
   std::vector<Kernel::Vector_3> known_directions;
   int known_n = 1;
+  TC::Progress_callback progress; // the constructor's phases (empty: none)
 };
 
 // Per face, the direction of `directions` (one per face), or the zero vector everywhere without them
@@ -516,7 +634,7 @@ public:
   {
     const Mesh& mesh = *source.mesh;
     const auto known_map = face_direction_map(o.known_directions.empty() ? nullptr : &o.known_directions);
-    const auto np = TC::parameters::weighting(
+    const auto np = TC::parameters::progress(o.progress, TC::parameters::weighting(
       o.weighting,
       TC::parameters::constrained_faces(
         o.constrained,
@@ -527,7 +645,7 @@ public:
                                            TC::parameters::face_directions(
                                              known_map, TC::parameters::symmetry_order(
                                                           o.known_n, CGAL::parameters::vertex_point_map(
-                                                                       Point_source{source.points, &mesh}))))))));
+                                                                       Point_source{source.points, &mesh})))))))));
     if(source.arrays)
       m_solver = TC::internal::Solver_access<Solver>::make(mesh, std::move(*source.arrays), np);
     else
@@ -546,7 +664,7 @@ public:
 
   Solve_output solve(const std::vector<std::pair<std::size_t, TC::Singularity_index>>& singularities, int n,
                      const std::vector<Kernel::Vector_3>* directions, const Loop_periods* loop_periods,
-                     bool all_directions) override
+                     bool all_directions, const TC::Progress_callback& progress) override
   {
     const auto s = vertex_descriptors(m_mesh, singularities);
     Solve_output out;
@@ -560,7 +678,8 @@ public:
     using Clock = std::chrono::steady_clock;
     const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     Clock::time_point start = Clock::now();
-    const auto np = TC::parameters::symmetry_order(n, TC::parameters::face_directions(target_map));
+    const auto np = TC::parameters::symmetry_order(
+      n, TC::parameters::face_directions(target_map, TC::parameters::progress(progress)));
     out.report = loop_periods != nullptr ? m_solver->solve(s, halfedge_x, TC::parameters::loop_periods(*loop_periods, np))
                                          : m_solver->solve(s, halfedge_x, np);
     out.solve_seconds = seconds_since(start);
@@ -602,14 +721,16 @@ public:
 
   TC::Placement_report place(int n, bool align_boundary, const std::vector<Kernel::Vector_3>* guide, double strength,
                              const Singularities& fixed, const Loop_periods* periods,
-                             const std::vector<Kernel::Vector_3>* directions, Singularities& placed) const override
+                             const std::vector<Kernel::Vector_3>* directions, Singularities& placed,
+                             const TC::Progress_callback& progress) const override
   {
     namespace P = TC::parameters;
     const auto kept = descriptors(fixed);
     std::vector<std::pair<vertex_descriptor, TC::Singularity_index>> out;
     const Loop_periods none(m_solver->loops().size()); // every integer chosen, as without the parameter
-    const auto np = P::symmetry_order(n, P::align_with_boundary(align_boundary, P::fixed_singularities(
-                                                                  kept, P::loop_periods(periods ? *periods : none))));
+    const auto np = P::progress(
+      progress, P::symmetry_order(n, P::align_with_boundary(align_boundary, P::fixed_singularities(
+                                                              kept, P::loop_periods(periods ? *periods : none)))));
     TC::Placement_report report;
     auto place_with = [&](const auto& with) {
       if(guide != nullptr) {
@@ -655,7 +776,8 @@ public:
   TC::Refinement_report<vertex_descriptor> refine(const Singularities& start, int n,
                                                   const std::vector<Kernel::Vector_3>* directions,
                                                   const Loop_periods* periods, const std::vector<std::size_t>& fixed,
-                                                  bool cancel_pairs, std::size_t trials) override
+                                                  bool cancel_pairs, std::size_t trials,
+                                                  const TC::Progress_callback& progress) override
   {
     namespace P = TC::parameters;
     std::vector<double> x(m_mesh.number_of_halfedges(), 0.);
@@ -670,7 +792,7 @@ public:
     return TC::refine_singularities(
       *m_solver, descriptors(start), halfedge_x,
       P::symmetry_order(n, P::face_directions(target_map, P::loop_periods(periods ? *periods : none,
-        P::fixed_vertices(fixed_vertices, P::cancel_pairs(cancel_pairs, P::maximum_trials(trials)))))));
+        P::fixed_vertices(fixed_vertices, P::cancel_pairs(cancel_pairs, P::maximum_trials(trials, P::progress(progress))))))));
   }
 
   std::vector<std::tuple<bool, std::size_t, std::vector<halfedge_descriptor>>> loops() const override
@@ -701,6 +823,16 @@ public:
   }
 
   const char* backend() const override { return m_name; }
+
+  std::vector<TC::Component_report> components() const override { return m_solver->components(); }
+  std::vector<std::size_t> face_components() const override
+  {
+    std::vector<std::size_t> c;
+    c.reserve(m_mesh.number_of_faces());
+    for(auto f : m_mesh.faces())
+      c.push_back(m_solver->component(f));
+    return c;
+  }
 
   const std::vector<std::int64_t>& edge_vertices() const override { return m_edge_vertices; }
 
@@ -855,7 +987,7 @@ public:
   // for the mesh's construction before freeing it
   Python_solver(Mesh_of_arrays mesh, const std::string& weights, const std::string& backend,
                 const py::object& constrained, const py::object& guided, double guidance_weight, bool align_boundary,
-                const Feature_options& features = Feature_options())
+                const Feature_options& features, const TC::Progress_callback& progress)
   {
     Options o;
     if(weights == "unit")
@@ -864,6 +996,8 @@ public:
       throw py::value_error("weights must be \"hodge\" or \"unit\", got \"" + weights + "\"");
     o.constrained = faces_of(constrained, mesh.number_of_faces, "constrained_faces");
     o.guided = faces_of(guided, mesh.number_of_faces, "guided_faces");
+    m_user_pins = o.constrained.size() + o.guided.size();
+    o.progress = progress;
     o.guidance_weight = guidance_weight;
     o.align_boundary = align_boundary;
     check_backend(backend);
@@ -873,6 +1007,7 @@ public:
     if(features.on) { // the feature pins need the whole mesh (from arrays, it is still being built)
       mesh.wait_for_mesh();
       m_features.emplace();
+      m_align_features = true;
       m_features->all = feature_pins_of(*mesh.mesh, features.threshold, features.n, features.smoothing);
       o.constrained = merge_feature_pins(*mesh.mesh, o.constrained, o.guided, *m_features);
       m_feature_n = features.n;
@@ -883,15 +1018,22 @@ public:
     m_mesh = std::move(mesh.mesh);
   }
 
-  Result solve(const py::object& singularities, int n, const py::object& directions, const py::object& loop_periods,
-               bool all_directions)
+  Result solve(const py::object& singularities, const py::object& n_in, const py::object& directions,
+               const py::object& loop_periods, bool all_directions, const py::object& progress)
   {
+    const int n = symmetry_order_of(n_in, "n");
     const auto s = singularities_of(singularities);
+    check_directions_are_read(directions, "solve()");
     const Optional_inputs in = optional_inputs(directions, loop_periods);
+    if(all_directions && n > 1)
+      check_directions_fit(n);
+    Progress_context context("solve()", progress);
     Solve_output out = reading([&] {
       const auto targets = with_feature_targets(in.directions);
-      return m_solver->solve(s, n, targets ? &*targets : nullptr, in.periods_or_null(), all_directions);
+      return m_solver->solve(s, n, targets ? &*targets : nullptr, in.periods_or_null(), all_directions,
+                             context.callback());
     });
+    m_last_n = n;
     return result_of(std::move(out), n);
   }
 
@@ -899,6 +1041,7 @@ public:
   {
     auto c = faces_of(constrained, m_mesh->number_of_faces(), "constrained_faces");
     const auto g = faces_of(guided, m_mesh->number_of_faces(), "guided_faces");
+    const std::size_t user_pins = c.size() + g.size();
     TC::Constraint_update u;
     {
       py::gil_scoped_release unlocked;
@@ -912,6 +1055,7 @@ public:
         m_features = std::move(merged);
       } else
         u = m_solver->set_constraints(c, g, {}, 1);
+      m_user_pins = user_pins; // after the solver took them (it may refuse them)
     }
     py::dict d;
     d["refactored"] = u.refactored;
@@ -921,17 +1065,21 @@ public:
     return d;
   }
 
-  py::tuple place_singularities(int n, bool align_boundary, const py::object& alignment_guide, double strength,
-                                const py::object& fixed, const py::object& loop_periods, const py::object& directions)
+  py::tuple place_singularities(const py::object& n_in, bool align_boundary, const py::object& alignment_guide,
+                                double strength, const py::object& fixed, const py::object& loop_periods,
+                                const py::object& directions, const py::object& progress)
   {
+    const int n = symmetry_order_of(n_in, "n");
+    check_directions_are_read(directions, "place_singularities()");
     const Singularities kept = singularities_of(fixed);
     const Optional_inputs in = optional_inputs(alignment_guide, loop_periods);
     const Optional_inputs targets = optional_inputs(directions, py::none());
     Singularities placed;
+    Progress_context context("place_singularities()", progress);
     const TC::Placement_report report = reading([&] {
       const auto pinned = with_feature_targets(targets.directions);
       return m_solver->place(n, align_boundary, in.directions_or_null(), strength, kept, in.periods_or_null(),
-                             pinned ? &*pinned : nullptr, placed);
+                             pinned ? &*pinned : nullptr, placed, context.callback());
     });
     py::dict d;
     d["n"] = report.symmetry_order;
@@ -978,10 +1126,12 @@ public:
     return m_solver->spread(g, count);
   }
 
-  py::tuple refine_singularities(const py::object& start, int n, const py::object& directions,
+  py::tuple refine_singularities(const py::object& start, const py::object& n_in, const py::object& directions,
                                  const py::object& loop_periods, const py::object& fixed_vertices, bool cancel_pairs,
-                                 const py::object& maximum_trials_or_none)
+                                 const py::object& maximum_trials_or_none, const py::object& progress)
   {
+    const int n = symmetry_order_of(n_in, "n");
+    check_directions_are_read(directions, "refine_singularities()");
     // None: no budget, to a local minimum
     const std::size_t maximum_trials = maximum_trials_or_none.is_none()
                                          ? (std::numeric_limits<std::size_t>::max)()
@@ -993,10 +1143,11 @@ public:
       for(const py::handle v : py::iter(fixed_vertices))
         fixed.push_back(vertex_number(v));
     // it solves again and again on the solver: as a solve, beside other solves
+    Progress_context context("refine_singularities()", progress);
     const TC::Refinement_report<vertex_descriptor> r = reading([&] {
       const auto targets = with_feature_targets(in.directions);
       return m_solver->refine(s, n, targets ? &*targets : nullptr, in.periods_or_null(), fixed, cancel_pairs,
-                              maximum_trials);
+                              maximum_trials, context.callback());
     });
     Singularities refined;
     for(const auto& [v, k] : r.singularities)
@@ -1065,8 +1216,9 @@ public:
 
   // the field of `result` as a field file (.txt), or the mesh with it and the singularities as a VTK (.vtk) or PLY
   // (.ply) file, written completely or not at all
-  void write_field(const std::string& path, const Result& result, const py::object& singularities) const
+  void write_field(const py::object& path_in, const Result& result, const py::object& singularities) const
   {
+    const std::string path = path_of(path_in);
     const Singularities s = singularities_of(singularities);
     const auto singular = vertex_descriptors(*m_mesh, s);
     const std::vector<Kernel::Vector_3> field = field_of(result);
@@ -1108,6 +1260,56 @@ public:
     return out;
   }
 
+  // per connected component: its faces, Euler characteristic, genus and boundary loops (as the program prints them)
+  py::list topology() const
+  {
+    const std::vector<TC::Component_report> reports = m_solver->components();
+    const std::vector<std::size_t> of_face = m_solver->face_components();
+    std::vector<std::vector<std::int64_t>> faces(reports.size());
+    for(std::size_t f = 0; f < of_face.size(); ++f)
+      faces[of_face[f]].push_back(std::int64_t(f));
+    py::list out;
+    for(std::size_t c = 0; c < reports.size(); ++c) {
+      py::dict d;
+      d["number_of_faces"] = reports[c].number_of_faces;
+      d["euler_characteristic"] = reports[c].euler_characteristic;
+      d["genus"] = reports[c].genus;
+      d["number_of_boundary_loops"] = reports[c].number_of_boundary_loops;
+      d["closed"] = reports[c].number_of_boundary_loops == 0;
+      const py::ssize_t k = py::ssize_t(faces[c].size());
+      d["faces"] = owning_array(std::move(faces[c]), {k});
+      out.append(d);
+    }
+    return out;
+  }
+
+  std::string repr() const
+  {
+    const std::vector<TC::Component_report> reports = m_solver->components();
+    std::string chi;
+    for(std::size_t c = 0; c < reports.size() && c < 4; ++c)
+      chi += (c ? ", " : "") + std::to_string(reports[c].euler_characteristic);
+    if(reports.size() > 4)
+      chi += ", ...";
+    const auto plural = [](std::size_t k, const char* word) {
+      return std::to_string(k) + " " + word + (k == 1 ? "" : "s");
+    };
+    std::string out = "<trivial_connections.Solver: " + std::to_string(m_mesh->number_of_vertices()) +
+          (m_mesh->number_of_vertices() == 1 ? " vertex, " : " vertices, ") + plural(m_mesh->number_of_faces(), "face") +
+          ", " + plural(reports.size(), "component") + " (chi " + chi + "), " +
+          plural(m_solver->number_of_loops(), "loop") + ", backend \"" + m_solver->backend() + "\"";
+    if(m_user_pins > 0)
+      out += ", " + std::to_string(m_user_pins.load()) + " constrained or guided faces";
+    const std::optional<std::size_t> feature_pins =
+      reading([&] { return m_features ? std::optional<std::size_t>(m_features->pinned.size()) : std::nullopt; });
+    if(feature_pins)
+      out += ", " + std::to_string(*feature_pins) + " feature pins";
+    const int last = m_last_n;
+    if(last > 0)
+      out += ", last solve n=" + std::to_string(last);
+    return out + ">";
+  }
+
   std::size_t number_of_vertices() const { return m_mesh->number_of_vertices(); }
   std::size_t number_of_faces() const { return m_mesh->number_of_faces(); }
   std::size_t number_of_loops() const { return m_solver->number_of_loops(); }
@@ -1123,11 +1325,7 @@ public:
   }
   py::array_t<std::int64_t> faces() const
   {
-    std::vector<std::int64_t> t;
-    t.reserve(3 * m_mesh->number_of_faces());
-    for(auto f : m_mesh->faces())
-      for(auto v : CGAL::vertices_around_face(m_mesh->halfedge(f), *m_mesh))
-        t.push_back(std::int64_t(v));
+    std::vector<std::int64_t> t = corners_in_input_order(*m_mesh);
     return owning_array(std::move(t), {py::ssize_t(m_mesh->number_of_faces()), 3});
   }
   py::array_t<double> weights() const
@@ -1253,6 +1451,53 @@ private:
     for(std::size_t i : m_features->pinned)
       (*out)[m_features->all.faces[i]] = Kernel::Vector_3(d[3 * i], d[3 * i + 1], d[3 * i + 2]);
     return out;
+  }
+
+  // directions= of a call is read only for the user's constrained and guided faces: given (not None, not empty)
+  // to a solver without any, it would be ignored; a ValueError says so rather than a field that ignores it
+  void check_directions_are_read(const py::object& directions, const char* call) const
+  {
+    if(directions.is_none() || m_user_pins > 0)
+      return;
+    if(py::isinstance<py::dict>(directions) && py::len(directions) == 0)
+      return;
+    throw py::value_error(std::string(call) + ": directions= is given but this solver has no constrained or guided "
+                          "face, so it would be ignored: give the faces it is for as constrained_faces= or "
+                          "guided_faces= (to Solver() or set_constraints()), or leave directions=None" +
+                          (m_align_features ? std::string(" (the feature pins of align_features take their directions "
+                                                    "themselves)")
+                                      : std::string()));
+  }
+
+  // Result.directions holds 3 n numbers per face: refused, before the solve, when it could not fit in the
+  // machine's memory (n = 10^6 on a mesh of 10^4 faces would be 240 GB), with the way out
+  void check_directions_fit(int n) const
+  {
+    const double bytes = 3. * double(n) * double(m_mesh->number_of_faces()) * sizeof(double);
+    double memory = std::numeric_limits<double>::infinity(); // MemAvailable, else the physical memory
+#ifdef __linux__
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    if(pages > 0 && page > 0)
+      memory = double(pages) * double(page);
+    if(std::FILE* meminfo = std::fopen("/proc/meminfo", "r")) {
+      char line[256];
+      double kb = 0;
+      while(std::fgets(line, sizeof line, meminfo))
+        if(std::sscanf(line, "MemAvailable: %lf kB", &kb) == 1) {
+          memory = kb * 1024;
+          break;
+        }
+      std::fclose(meminfo);
+    }
+#endif
+    if(bytes > memory || bytes > double((std::numeric_limits<py::ssize_t>::max)())) {
+      const std::string text = "Result.directions for n = " + std::to_string(n) + " on " +
+                               std::to_string(m_mesh->number_of_faces()) + " faces would take " +
+                               std::to_string(std::llround(bytes / 1e9)) + " GB (3 n numbers per face), more than " +
+                               "the memory available: pass all_directions=False (Result.field alone)";
+      PyErr_SetString(PyExc_MemoryError, text.c_str());
+      throw py::error_already_set();
+    }
   }
 
   // x per halfedge from a Result of this solver (its edges are the mesh's interior edges, in order)
@@ -1434,6 +1679,9 @@ private:
   std::unique_ptr<Mesh> m_mesh; // before the solver, which refers to it
   std::unique_ptr<Solver_interface> m_solver;
   bool m_align_boundary = false;
+  bool m_align_features = false;       // Solver(align_features=...) on (m_features is engaged for good)
+  std::atomic<std::size_t> m_user_pins{0}; // the user's constrained and guided faces (not the feature pins)
+  std::atomic<int> m_last_n{0};        // n of the last solve (0: none yet), for repr()
   std::optional<Features> m_features; // Solver(align_features=...); changed by set_constraints() under m_mutex
   int m_feature_n = 4;                 // the n of the feature pins (feature_n)
   mutable py::object m_edges_array; // made on first use, with the GIL
@@ -1450,19 +1698,42 @@ std::unique_ptr<Mesh> mesh_of_file(const std::string& path, bool triangulate)
 
 }  // namespace
 
+#ifndef TC_VERSION
+#error "TC_VERSION (the project's version) must be defined by the build (CMakeLists.txt, setup.py)"
+#endif
+
 PYBIND11_MODULE(trivial_connections, m)
 {
+  // numpy at import, not at the first call that needs it
+  try {
+    py::module_::import("numpy");
+  } catch(py::error_already_set& e) {
+    if(!e.matches(PyExc_ImportError))
+      throw;
+    throw py::import_error("trivial_connections needs numpy, which this python3 (" +
+                           std::string(py::str(py::module_::import("sys").attr("executable"))) +
+                           ") cannot import: install it (Debian: apt install python3-numpy; in a virtual "
+                           "environment made with --system-site-packages, or pip install numpy). The error: " +
+                           std::string(e.what()));
+  }
+  m.attr("__version__") = TC_VERSION;
+  m.attr("MAX_SYMMETRY_ORDER") = max_symmetry_order;
   m.doc() = R"(Trivial connections on triangle meshes (CGAL Trivial Connections).
 
 Direction fields with exactly the singularities you prescribe, closest to Levi-Civita transport
 (Crane, Desbrun, Schroeder, "Trivial Connections on Discrete Surfaces", SGP 2010).
 
-    import numpy as np, trivial_connections as tc
-    solver = tc.Solver(V, F)                      # V: (n, 3) floats, F: (m, 3) vertex indices
-    result = solver.solve({0: 1, 17: 1})          # indices summing to the Euler characteristic
-    result.connection, result.edges, result.field
+    import trivial_connections as tc
+    V, F = tc.read_mesh("sphere.off")             # V: (n, 3) float64, F: (m, 3) int64 (or any numpy arrays)
+    solver = tc.Solver(V, F)                      # factored once
+    solver.topology                               # per component: faces, euler_characteristic, genus, ...
+    result = solver.solve({0: 1, 17: 1})          # on each closed component the indices sum to its
+    result.connection, result.edges, result.field # euler_characteristic (2 here: a sphere)
 
-Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .code and .where.)";
+Errors in the data raise trivial_connections.InvalidInput (a ValueError) with .code and .where; a bad n, a
+directions= that would be ignored, a bad type are ValueError / TypeError. Paths may be str, bytes or os.PathLike.
+Long calls take progress=callable(phase, fraction), log their phases to the logger "trivial_connections" and
+honour Ctrl-C (KeyboardInterrupt) between phases. Type stubs: trivial_connections.pyi beside the module.)";
 
   static py::exception<TC::Invalid_input> invalid_input(m, "InvalidInput", PyExc_ValueError);
   invalid_input.doc() = "Bad input data: .code names the error (e.g. \"poincare_hopf_violated\"), .where is the "
@@ -1517,8 +1788,39 @@ holding V and F does, triangle_soup_to_mesh() into a Surface_mesh, then the Triv
 constructor on it, with default options. Returns the seconds of each: {"soup_to_mesh": s, "solver": s}.)");
 
   m.def(
+    "read_mesh",
+    [](const py::object& path_in, bool triangulate) {
+      const std::string path = path_of(path_in);
+      std::unique_ptr<Mesh> mesh = mesh_of_file(path, triangulate);
+      std::vector<double> p;
+      std::vector<std::int64_t> t;
+      {
+        py::gil_scoped_release unlocked;
+        p.reserve(3 * mesh->number_of_vertices());
+        for(auto v : mesh->vertices())
+          for(int i = 0; i < 3; ++i)
+            p.push_back(CGAL::to_double(mesh->point(v)[i]));
+        t = corners_in_input_order(*mesh);
+      }
+      const py::ssize_t nv = py::ssize_t(mesh->number_of_vertices()), nf = py::ssize_t(mesh->number_of_faces());
+      return py::make_tuple(owning_array(std::move(p), {nv, 3}), owning_array(std::move(t), {nf, 3}));
+    },
+    py::arg("path"), py::arg("triangulate") = false,
+    R"(Reads a triangle mesh file into (V, F) numpy arrays, without building a solver.
+
+path: str, bytes or os.PathLike; the extension gives the format: .off, .obj, .ply, .stl or .ts (GOCAD), the
+formats the program reads, with the same validating reader (TC::read_triangle_mesh()). V is an (n, 3) float64
+array of points, F an (m, 3) int64 array of vertex indices (0-based), vertex i and face f of the file being row i
+and row f. triangulate=True splits faces of more than three vertices (as the program's --triangulate; the
+triangles of one face are consecutive rows), else such a face is InvalidInput not_triangle_mesh. Solver(V, F)
+then gives the same solver as Solver.from_file(path, triangulate). Raises InvalidInput (io_error for a file that
+cannot be read or an unknown extension, parse_error, not_triangle_mesh, non_manifold_vertex, degenerate_face,
+non_finite_point, ...) with the file's name, as the program.)");
+
+  m.def(
     "read_singularities",
-    [](const std::string& path, const py::object& number_of_vertices) {
+    [](const py::object& path_in, const py::object& number_of_vertices) {
+      const std::string path = path_of(path_in);
       const std::size_t count =
         number_of_vertices.is_none() ? TC::unchecked_vertex_count : number_of_vertices.cast<std::size_t>();
       std::vector<std::pair<std::size_t, TC::Singularity_index>> s;
@@ -1536,7 +1838,8 @@ constructor on it, with default options. Returns the seconds of each: {"soup_to_
     "InvalidInput (parse_error, duplicate_singularity, invalid_vertex, io_error) with the file and line.");
   m.def(
     "write_singularities",
-    [](const std::string& path, const py::object& singularities) {
+    [](const py::object& path_in, const py::object& singularities) {
+      const std::string path = path_of(path_in);
       const Singularities s = singularities_of(singularities);
       py::gil_scoped_release unlocked;
       TC::write_file_atomically(path, [&](std::ostream& os) { TC::write_singularities(os, s); });
@@ -1547,7 +1850,8 @@ constructor on it, with default options. Returns the seconds of each: {"soup_to_
 
   m.def(
     "read_face_directions",
-    [](const std::string& path, const py::object& number_of_faces) {
+    [](const py::object& path_in, const py::object& number_of_faces) {
+      const std::string path = path_of(path_in);
       const std::size_t count =
         number_of_faces.is_none() ? TC::unchecked_vertex_count : number_of_faces.cast<std::size_t>();
       std::vector<std::int64_t> faces;
@@ -1574,7 +1878,8 @@ constructor on it, with default options. Returns the seconds of each: {"soup_to_
     "face out of range, listed twice or with a zero vector; io_error) with the file and line.");
   m.def(
     "write_face_directions",
-    [](const std::string& path, const py::object& faces, const py::object& directions) {
+    [](const py::object& path_in, const py::object& faces, const py::object& directions) {
+      const std::string path = path_of(path_in);
       const std::vector<TC::Face_direction> d = face_directions_of(faces, directions);
       py::gil_scoped_release unlocked;
       TC::write_file_atomically(path, [&](std::ostream& os) { TC::write_face_directions(os, d); });
@@ -1589,7 +1894,8 @@ constructor on it, with default options. Returns the seconds of each: {"soup_to_
   m.attr("DEFAULT_FEATURE_SMOOTHING") = TC::default_feature_smoothing;
   m.def(
     "feature_aligned_faces",
-    [](const py::object& V, const py::object& F, double threshold, int n, int smoothing) {
+    [](const py::object& V, const py::object& F, double threshold, const py::object& n_in, int smoothing) {
+      const int n = symmetry_order_of(n_in, "n");
       Mesh_of_arrays mesh = mesh_of_arrays(V, F);
       Feature_pins p;
       {
@@ -1667,7 +1973,8 @@ number_of_sharp_edges (of kept and dropped curves), number_of_curves, dropped_cu
 
   m.def(
     "write_streamlines",
-    [](const std::string& path, const py::list& lines) {
+    [](const py::object& path_in, const py::list& lines) {
+      const std::string path = path_of(path_in);
       std::vector<TC::Streamline<Mesh>> s;
       for(const py::handle line : lines) {
         const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(line);
@@ -1739,37 +2046,48 @@ solve(), place_singularities() and refine_singularities() then take the feature 
 (directions= is needed only for the user's own constrained and guided faces); set_constraints() merges the
 feature pins again with its new faces. feature_pins and feature_alignment say what was pinned. A mesh with no
 sharp edge pins nothing (feature_alignment["number_of_sharp_edges"] == 0), which is not an error.
+progress: None or a callable progress(phase, fraction) for the constructor's phases ("mesh setup", "geometry",
+"trees", "assembly", "factorization", "loop metric"; fraction 0 at a phase's start, 1 at its end), also logged to
+the logger "trivial_connections"; Ctrl-C (KeyboardInterrupt) is honoured between them (no solver is made).
 Raises InvalidInput for a mesh the package refuses (code and where say why), and (invalid_argument) for a
-threshold that is negative, over 180 or NaN, feature_n < 1 or feature_smoothing < 0.)")
+threshold that is negative, over 180 or NaN or feature_smoothing < 0, and (invalid_symmetry_order) for feature_n
+outside 1 to MAX_SYMMETRY_ORDER.)")
     .def(py::init([](const py::object& V, const py::object& F, const std::string& weights, const std::string& backend,
                      const py::object& constrained, const py::object& guided, double mu, bool align,
-                     const py::object& align_features, int feature_smoothing, int feature_n) {
-           const Feature_options features = feature_options_of(align_features, feature_n, feature_smoothing);
+                     const py::object& align_features, int feature_smoothing, const py::object& feature_n,
+                     const py::object& progress) {
+           const Feature_options features =
+             feature_options_of(align_features, symmetry_order_of(feature_n, "feature_n"), feature_smoothing);
+           Progress_context context("Solver()", progress);
            const auto start = std::chrono::steady_clock::now();
            Mesh_of_arrays mesh = mesh_of_arrays(V, F);
            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
            auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu,
-                                                         align, features);
+                                                         align, features, context.callback());
            solver->m_mesh_seconds = seconds;
            return solver;
          }),
          py::arg("V"), py::arg("F"), py::kw_only(), py::arg("weights") = "hodge", py::arg("backend") = "auto",
          py::arg("constrained_faces") = py::none(), py::arg("guided_faces") = py::none(),
          py::arg("guidance_weight") = 1.0, py::arg("align_boundary") = false, py::arg("align_features") = py::none(),
-         py::arg("feature_smoothing") = TC::default_feature_smoothing, py::arg("feature_n") = 4)
+         py::arg("feature_smoothing") = TC::default_feature_smoothing, py::arg("feature_n") = 4,
+         py::arg("progress") = py::none())
     .def_static(
       "from_file",
-      [](const std::string& path, bool triangulate, const std::string& weights, const std::string& backend,
+      [](const py::object& path, bool triangulate, const std::string& weights, const std::string& backend,
          const py::object& constrained, const py::object& guided, double mu, bool align,
-         const py::object& align_features, int feature_smoothing, int feature_n) {
-        const Feature_options features = feature_options_of(align_features, feature_n, feature_smoothing);
+         const py::object& align_features, int feature_smoothing, const py::object& feature_n,
+         const py::object& progress) {
+        const Feature_options features =
+          feature_options_of(align_features, symmetry_order_of(feature_n, "feature_n"), feature_smoothing);
+        Progress_context context("Solver.from_file()", progress);
         const auto start = std::chrono::steady_clock::now();
         Mesh_of_arrays mesh;
-        mesh.mesh = mesh_of_file(path, triangulate);
+        mesh.mesh = mesh_of_file(path_of(path), triangulate);
         mesh.number_of_faces = mesh.mesh->number_of_faces();
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto solver = std::make_unique<Python_solver>(std::move(mesh), weights, backend, constrained, guided, mu,
-                                                      align, features);
+                                                      align, features, context.callback());
         solver->m_mesh_seconds = seconds;
         return solver;
       },
@@ -1777,20 +2095,29 @@ threshold that is negative, over 180 or NaN, feature_n < 1 or feature_smoothing 
       py::arg("backend") = "auto", py::arg("constrained_faces") = py::none(), py::arg("guided_faces") = py::none(),
       py::arg("guidance_weight") = 1.0, py::arg("align_boundary") = false, py::arg("align_features") = py::none(),
       py::arg("feature_smoothing") = TC::default_feature_smoothing, py::arg("feature_n") = 4,
-      "A solver for the mesh of an OFF, OBJ, PLY, STL or GOCAD file (the package's validating reader; "
-      "triangulate=True splits polygons). Options as Solver(), align_features included (the program's "
-      "--align-features [DEGREES]).")
+      py::arg("progress") = py::none(),
+      "A solver for the mesh of an OFF, OBJ, PLY, STL or GOCAD file (path: str, bytes or os.PathLike; the "
+      "package's validating reader, as read_mesh(); triangulate=True splits polygons). Options as Solver(), "
+      "align_features and progress included (the program's --align-features [DEGREES]).")
     .def("solve", &Python_solver::solve, py::arg("singularities"), py::arg("n") = 1, py::arg("directions") = py::none(),
          py::arg("loop_periods") = py::none(), py::kw_only(), py::arg("all_directions") = true,
+         py::arg("progress") = py::none(),
          R"(The trivial connection with exactly these singularities, and its field.
 
 singularities: {vertex: index} or a sequence of (vertex, index) pairs (e.g. a (k, 2) integer array); an index
 is an int, a fractions.Fraction or a string "p/q", a multiple of 1/n. On every closed component the indices
-must sum to its Euler characteristic (Poincare-Hopf). n: 1 vectors, 2 lines, 4 crosses, ...
+must sum to its Euler characteristic (Poincare-Hopf; see Solver.topology). n: 1 vectors, 2 lines, 4 crosses,
+..., an integer from 1 to MAX_SYMMETRY_ORDER (else InvalidInput invalid_symmetry_order, a ValueError).
 directions: for constrained or guided faces, an (m, 3) array (one row per face; the other rows are not read)
-or {face: (3,) vector}. loop_periods: one int (or None: chosen by the solver) per loop.
+or {face: (3,) vector}; a ValueError when the solver has no constrained or guided face (it would be ignored).
+loop_periods: one int (or None: chosen by the solver) per loop.
 all_directions: False leaves Result.directions None (Result.field alone), which saves 3 n numbers per face and
-their time (most of a solve's for large n).
+their time (most of a solve's for large n); with True, a MemoryError before the solve when those numbers would
+not fit in the memory available.
+progress: None or a callable progress(phase, fraction), called between the phases ("solve", "loop integers",
+"field") with fraction 0 at a phase's start, 1 at its end; the phases are also logged to the logger
+"trivial_connections" (INFO, DEBUG in between). Ctrl-C (KeyboardInterrupt) is honoured between phases: the call
+is abandoned and the solver stays usable; an exception raised by progress abandons it too.
 Returns a Result. Releases the GIL: solves from several threads run concurrently.)")
     .def("set_constraints", &Python_solver::set_constraints, py::arg("constrained_faces") = py::none(),
          py::arg("guided_faces") = py::none(),
@@ -1808,7 +2135,7 @@ Returns a Result. Releases the GIL: solves from several threads run concurrently
     .def("place_singularities", &Python_solver::place_singularities, py::kw_only(), py::arg("n") = 1,
          py::arg("align_boundary") = false, py::arg("alignment_guide") = py::none(),
          py::arg("alignment_strength") = 100.0, py::arg("fixed_singularities") = py::none(),
-         py::arg("loop_periods") = py::none(), py::arg("directions") = py::none(),
+         py::arg("loop_periods") = py::none(), py::arg("directions") = py::none(), py::arg("progress") = py::none(),
          R"(Automatic placement: the singularities of the globally smoothest n-direction field (Knoeppel et al. 2013).
 
 Returns (singularities, report): {vertex: Fraction}, which satisfies Poincare-Hopf on every closed component and
@@ -1816,7 +2143,9 @@ can be given to solve() as it is, and a dict (field_energy, singularities_per_in
 (m, 3) array (or {face: vector}) of guide directions whose length weighs them (principal_curvature_guide()), for
 Knoeppel's aligned field, with alignment_strength. fixed_singularities: kept as they are, the automatic ones nearest
 give way. align_boundary, loop_periods: as for the solver and solve(). directions: as for solve(), required when
-the solver has constrained faces: the field is held at their directions (report["pinned"] counts them).)")
+the solver has constrained faces: the field is held at their directions (report["pinned"] counts them); a
+ValueError when it has none. n: as for solve(). progress: as for solve() (phase "placement", with fractions in
+between for the eigensolver's iterations); Ctrl-C is honoured there.)")
     .def("principal_curvature_guide", &Python_solver::principal_curvature_guide,
          "Per face, the direction of largest principal curvature times the anisotropy |k1 - k2| ((m, 3) array), "
          "and the two principal curvatures ((m, 2) array, larger absolute value first): a guide for n = 2 or 4.")
@@ -1825,18 +2154,21 @@ the solver has constrained faces: the field is held at their directions (report[
     .def("refine_singularities", &Python_solver::refine_singularities, py::arg("singularities"), py::kw_only(),
          py::arg("n") = 1, py::arg("directions") = py::none(), py::arg("loop_periods") = py::none(),
          py::arg("fixed_vertices") = py::none(), py::arg("cancel_pairs") = false, py::arg("maximum_trials") = py::none(),
+         py::arg("progress") = py::none(),
          "Moves singularities to neighbouring vertices (and, with cancel_pairs, cancels opposite pairs) until no "
          "single move or cancellation lowers the trivial connection's energy: a local minimum (maximum_trials: a "
          "budget of solves; None: none). Returns (singularities, report) with energy_before, energy_after, moves, "
          "cancellations, rounds, trials, singularities_before, local_minimum and stop ('local_minimum', "
-         "'maximum_trials' or 'rejected_moves').")
+         "'maximum_trials' or 'rejected_moves'). n, directions: as for solve(). progress: as for solve(), called in "
+         "every trial solve; Ctrl-C is honoured between them (the refinement is abandoned, the solver stays "
+         "usable).")
     .def("trace_streamlines", &Python_solver::trace_streamlines, py::arg("result"), py::arg("singularities"),
          py::arg("seed_faces") = py::none(), py::arg("maximum_faces_per_ray") = 0,
          "The streamlines of result's field from the barycentres of seed_faces (default: every face): a list of "
          "(k, 3) polylines on the surface; a ray stops at the boundary, at a face with a singular vertex, when it "
          "closes, or after maximum_faces_per_ray faces (0: n times the number of faces).")
     .def("write_field", &Python_solver::write_field, py::arg("path"), py::arg("result"), py::arg("singularities"),
-         "Writes result's field, by the file name's ending: .txt the program's field file (one line \"x y z\" per "
+         "Writes result's field to path (str, bytes or os.PathLike), by the file name's ending: .txt the program's field file (one line \"x y z\" per "
          "face, in face order, numbers that read back exactly; the singularities are checked but not written); .vtk "
          "or .ply the mesh, the field (its n directions) and the singularities as a legacy VTK or PLY file for "
          "ParaView, MeshLab or Blender. Completely or not at all.")
@@ -1856,15 +2188,25 @@ the solver has constrained faces: the field is held at their directions (report[
       "seconds in C++ while the solver was built: mesh (the arrays validated and made into a Surface_mesh and the "
       "solver's arrays, or the file read into a validated Surface_mesh) and solver (the C++ constructor: from "
       "those arrays, or from the Surface_mesh of the file)")
-    .def_property_readonly("number_of_vertices", &Python_solver::number_of_vertices)
-    .def_property_readonly("number_of_faces", &Python_solver::number_of_faces)
+    .def_property_readonly("number_of_vertices", &Python_solver::number_of_vertices,
+                           "the mesh's vertices: the rows of V (and of Solver.vertices)")
+    .def_property_readonly("number_of_faces", &Python_solver::number_of_faces,
+                           "the mesh's triangles: the rows of F (and of Solver.faces, Result.field)")
+    .def_property_readonly("topology", &Python_solver::topology,
+                           "One dict per connected component, in the order of the components of Result and loops: "
+                           "number_of_faces, euler_characteristic (V - E + F), genus ((2 - chi - b) / 2), "
+                           "number_of_boundary_loops (b), closed (b == 0) and faces ((k,) int64, its face numbers). "
+                           "On a closed component the singularity indices of solve() must sum to "
+                           "euler_characteristic (2 on a sphere, 0 on a torus); the program prints the same lines.")
+    .def("__repr__", &Python_solver::repr)
     .def_property_readonly("number_of_loops", &Python_solver::number_of_loops,
                            "boundary loops and homology generators: the entries of loop_periods")
     .def_property_readonly("backend", &Python_solver::backend, "\"ldlt\", \"cholmod\" or \"auto\"")
     .def_property_readonly("edges", &Python_solver::edges, "(e, 2) int64: the interior edges, as in Result.edges")
     .def_property_readonly("vertices", &Python_solver::vertices, "(n, 3) float64: the mesh's points (V)")
     .def_property_readonly("faces", &Python_solver::faces,
-                           "(m, 3) int64: the mesh's triangles (F), counter-clockwise from its first halfedge")
+                           "(m, 3) int64: the mesh's triangles, each row as in F or the file (its corners in their order; the "
+                           "triangles of a face split by from_file(triangulate=True) in their order)")
     .def_property_readonly("weights", &Python_solver::weights,
                            "(e,) float64: the weight w_e of each interior edge in the energy, as in Result.edges");
 }

@@ -15,7 +15,7 @@ cmake --build "$work/consumer" > "$work/build.log"
 "$work/consumer/consumer"
 # the Python module, when the build has it (TC_PYTHON_SITE: its folder under the prefix)
 if [ -n "${TC_PYTHON_SITE:-}" ]; then
-  ls "$work/prefix/$TC_PYTHON_SITE"/trivial_connections*.so > /dev/null
+  ls "$work/prefix/$TC_PYTHON_SITE"/trivial_connections*.so "$work/prefix/$TC_PYTHON_SITE"/trivial_connections.pyi > /dev/null
   (cd "$work" && PYTHONPATH="$work/prefix/$TC_PYTHON_SITE" "$TC_PYTHON" -c \
-    "import trivial_connections as tc; assert tc.__file__.startswith('$work/prefix/'), tc.__file__")
+    "import trivial_connections as tc; assert tc.__file__.startswith('$work/prefix/'), tc.__file__; assert tc.__version__")
 fi

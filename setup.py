@@ -43,6 +43,8 @@ class CMakeBuild(build_ext):
 setup(
     version=VERSION,
     ext_modules=[Extension("trivial_connections", sources=[])],
+    packages=[],  # the module alone: no automatic discovery of the folders of the source tree
+    py_modules=[],
     cmdclass={"build_ext": CMakeBuild},
     # setuptools' own build folder: not build/, the README's CMake build folder
     options={"build": {"build_base": "build-python"}},

@@ -8,6 +8,7 @@
 # python3-venv, python3-pip, python3-setuptools (>= 61), python3-wheel or cmake (scripts/install_dependencies.sh
 # installs them). The module is built unoptimised here (-O0), to save time: what is tested is the installation.
 
+import importlib.metadata
 import importlib.util
 import os
 import pathlib
@@ -26,12 +27,11 @@ def missing_prerequisites():
         missing.append("python3-venv (python3 -m venv)")
     if importlib.util.find_spec("pip") is None:
         missing.append("python3-pip")
-    try:
-        import setuptools
-
-        if int(setuptools.__version__.split(".")[0]) < 61:
-            missing.append(f"python3-setuptools >= 61 (found {setuptools.__version__})")
-    except ImportError:
+    try:  # not imported here: its distutils hack would clash with pytest's distutils
+        version = importlib.metadata.version("setuptools")
+        if int(version.split(".")[0]) < 61:
+            missing.append(f"python3-setuptools >= 61 (found {version})")
+    except importlib.metadata.PackageNotFoundError:
         missing.append("python3-setuptools")
     if importlib.util.find_spec("wheel") is None:
         missing.append("python3-wheel")
@@ -65,10 +65,10 @@ def test_pip_install_into_a_virtual_environment(tmp_path):
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV")}
     subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(venv)], check=True, env=env)
     python = venv / "bin" / "python"
-    env["TC_CMAKE_ARGS"] = "-DCMAKE_CXX_FLAGS_RELEASE=-O0 -DNDEBUG"
+    env["TC_CMAKE_ARGS"] = "'-DCMAKE_CXX_FLAGS_RELEASE=-O0 -DNDEBUG'"  # one argument (setup.py splits as a shell)
     install = subprocess.run([str(python), "-m", "pip", "install", "--no-build-isolation", "--no-index", "-v", "."],
                              cwd=source, env=env, capture_output=True, text=True)
-    assert install.returncode == 0, install.stdout[-5000:] + install.stderr[-5000:]
+    assert install.returncode == 0, install.stdout[-20000:] + install.stderr[-5000:]
     version = [line for line in (ROOT / "CMakeLists.txt").read_text().splitlines()
                if line.startswith("project(TrivialConnections VERSION ")][0].split()[2]
     check = f"""

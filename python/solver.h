@@ -995,8 +995,10 @@ solve(), place_singularities() and refine_singularities() then take the feature 
 feature pins again with its new faces. feature_pins and feature_alignment say what was pinned. A mesh with no
 sharp edge pins nothing (feature_alignment["number_of_sharp_edges"] == 0), which is not an error.
 progress: None or a callable progress(phase, fraction) for the constructor's phases ("mesh setup", "geometry",
-"trees", "assembly", "factorization", "loop metric"; fraction 0 at a phase's start, 1 at its end), also logged to
-the logger "trivial_connections"; Ctrl-C (KeyboardInterrupt) is honoured between them (no solver is made).
+"trees", "assembly", "factorization", "loop metric"; fraction 0 at a phase's start, 1 at its end; from arrays,
+whose mesh setup the binding does, only the end of "mesh setup"), also logged to the logger "trivial_connections";
+Ctrl-C (KeyboardInterrupt) is honoured between them, and an exception of progress stops there too (no solver is
+made). A single phase (the factorization of a large mesh) is not interrupted: Ctrl-C waits for its end.
 Raises InvalidInput for a mesh the package refuses (code and where say why), and (invalid_argument) for a
 threshold that is negative, over 180 or NaN or feature_smoothing < 0, and (invalid_symmetry_order) for feature_n
 outside 1 to MAX_SYMMETRY_ORDER.)");

@@ -188,53 +188,6 @@ TEST(Closest_vector, exact_when_proven)
   }
 }
 
-// "Can q get below this?": above the optimum, the optimum, proven; at or below it, an actual point no better than
-// the optimum and the threshold as a lower bound, unproven
-TEST(Closest_vector, wanted_below_a_threshold)
-{
-  std::mt19937 rng(13);
-  std::uniform_real_distribution<double> u(-4, 4);
-  int below = 0, above = 0;
-  for(int trial = 0; trial < 60; ++trial) {
-    const Eigen::Index k = 2 + trial % 4;
-    const Eigen::MatrixXd G = random_metric(rng, k);
-    Eigen::VectorXd c(k);
-    for(Eigen::Index i = 0; i < k; ++i)
-      c[i] = u(rng);
-    std::vector<std::int64_t> rounded(k);
-    for(Eigen::Index i = 0; i < k; ++i)
-      rounded[i] = std::llround(c[i]);
-    const double lambda_min = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(G).eigenvalues()[0];
-    const int radius = int(std::ceil(std::sqrt(q_of(G, c, rounded) / lambda_min))) + 1;
-    if(std::pow(2 * radius + 1, double(k)) > 3e6)
-      continue;
-    const double optimum = brute_force_minimum(G, c, radius);
-    const Eigen::MatrixXd R = G.llt().matrixU();
-    const TCI::Reduced_lattice lattice = TCI::reduce_lattice(G, R, TCI::lattice_reduction_budget(k));
-    for(double f : {0., 0.5, 0.999, 1.001, 2.}) {
-      const double wanted = f * optimum + (f > 1 ? 1e-9 : 0.);
-      const TCI::Closest_vector_result r = TCI::closest_vector(lattice, G, c, {}, 1e5, wanted);
-      EXPECT_NEAR(r.value, q_of(G, c, r.m), 1e-9 * (1 + r.value)); // an actual point
-      if(f > 1) {
-        EXPECT_TRUE(r.proven);
-        EXPECT_NEAR(r.value, optimum, 1e-9 * (1 + optimum));
-        ++above;
-      } else {
-        EXPECT_GE(r.value, optimum - 1e-9 * (1 + optimum));
-        EXPECT_LE(r.lower_bound, optimum + 1e-9 * (1 + optimum));
-        if(!r.proven) {
-          EXPECT_NEAR(r.lower_bound, wanted, 1e-9 * (1 + wanted));
-          ++below;
-        } else {
-          EXPECT_NEAR(r.value, optimum, 1e-9 * (1 + optimum)); // the descent found the optimum (q = wanted = 0)
-        }
-      }
-    }
-  }
-  EXPECT_GT(below, 50);
-  EXPECT_GT(above, 50);
-}
-
 TEST(Closest_vector, out_of_budget_never_worse_than_candidates_and_locally_optimal)
 {
   std::mt19937 rng(11);
@@ -468,6 +421,52 @@ TEST(Closest_vector, random_lattices_exact_optimum_and_valid_bound)
   EXPECT_GE(checked, 80) << "brute force ran on most lattices";
   std::cout << "brute force on " << checked << " of 110 lattices; " << checked_small_budget
             << " searches out of budget with a valid bound\n";
+}
+
+// "Can q get below this?": above the optimum, the optimum, proven; at or below it, an actual point no better than
+// the optimum and the threshold as a lower bound, unproven
+TEST(Closest_vector, wanted_below_a_threshold)
+{
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-4, 4);
+  int below = 0, above = 0;
+  for(int trial = 0; trial < 60; ++trial) {
+    const Eigen::Index k = 2 + trial % 4;
+    const Eigen::MatrixXd G = random_metric(rng, k);
+    Eigen::VectorXd c(k);
+    for(Eigen::Index i = 0; i < k; ++i)
+      c[i] = u(rng);
+    std::vector<std::int64_t> rounded(k);
+    for(Eigen::Index i = 0; i < k; ++i)
+      rounded[i] = std::llround(c[i]);
+    const std::optional<double> brute_force = brute_force_in_ellipsoid(G, c, q_of(G, c, rounded));
+    if(!brute_force)
+      continue;
+    const double optimum = *brute_force;
+    const Eigen::MatrixXd R = G.llt().matrixU();
+    const TCI::Reduced_lattice lattice = TCI::reduce_lattice(G, R, TCI::lattice_reduction_budget(k));
+    for(double f : {0., 0.5, 0.999, 1.001, 2.}) {
+      const double wanted = f * optimum + (f > 1 ? 1e-9 : 0.);
+      const TCI::Closest_vector_result r = TCI::closest_vector(lattice, G, c, {}, 1e5, wanted);
+      EXPECT_NEAR(r.value, q_of(G, c, r.m), 1e-9 * (1 + r.value)); // an actual point
+      if(f > 1) {
+        EXPECT_TRUE(r.proven);
+        EXPECT_NEAR(r.value, optimum, 1e-9 * (1 + optimum));
+        ++above;
+      } else {
+        EXPECT_GE(r.value, optimum - 1e-9 * (1 + optimum));
+        EXPECT_LE(r.lower_bound, optimum + 1e-9 * (1 + optimum));
+        if(!r.proven) {
+          EXPECT_NEAR(r.lower_bound, wanted, 1e-9 * (1 + wanted));
+          ++below;
+        } else {
+          EXPECT_NEAR(r.value, optimum, 1e-9 * (1 + optimum)); // the descent found the optimum (q = wanted = 0)
+        }
+      }
+    }
+  }
+  EXPECT_GT(below, 50);
+  EXPECT_GT(above, 50);
 }
 
 // +-1 local search from rounding in the basis V (columns): the reference of the integer choice's tests

@@ -194,6 +194,20 @@ struct Enumeration_cost
   }
 };
 
+// Babai's nearest plane point of w for R (upper triangular, R^T R = H): z, d = z - w and R d; returns q(z) = |R d|^2
+inline double nearest_plane_point(const Eigen::MatrixXd& R, const Eigen::VectorXd& w, Eigen::VectorXd& z,
+                                  Eigen::VectorXd& d, Eigen::VectorXd& Rd)
+{
+  const Eigen::Index k = w.size();
+  for(Eigen::Index i = k - 1; i >= 0; --i) {
+    const double tail = R.row(i).tail(k - 1 - i).dot(d.tail(k - 1 - i));
+    z[i] = std::round(w[i] - tail / R(i, i));
+    d[i] = z[i] - w[i];
+    Rd[i] = R(i, i) * d[i] + tail;
+  }
+  return Rd.squaredNorm();
+}
+
 // Greedy coordinate descent in the reduced basis: shift one coordinate by its best integer step while q
 // decreases. The gradient of q is 2 H (z - w). Leaves `z` optimal against every single-coordinate change.
 // On entry and exit d = z - w and Hd = H d; returns q(z).
@@ -259,13 +273,7 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
   Eigen::VectorXd d(k), Hd(k);
   {
     Eigen::VectorXd Rd(k); // R (z - w), for q and H (z - w) = R^T R (z - w) without a product by H
-    for(Eigen::Index i = k - 1; i >= 0; --i) {
-      const double tail = R.row(i).tail(k - 1 - i).dot(d.tail(k - 1 - i));
-      z[i] = std::round(w[i] - tail / R(i, i));
-      d[i] = z[i] - w[i];
-      Rd[i] = R(i, i) * d[i] + tail;
-    }
-    const double q = Rd.squaredNorm();
+    const double q = nearest_plane_point(R, w, z, d, Rd);
     if(q < best_value) {
       best_value = q;
       best_z = z;

@@ -237,13 +237,7 @@ private:
     // Babai's nearest plane point, descended from when it is nearer
     const Eigen::MatrixXd& R = b.lattice.factor;
     Eigen::VectorXd Rd(k);
-    for(Eigen::Index i = k - 1; i >= 0; --i) {
-      const double tail = R.row(i).tail(k - 1 - i).dot(difference.tail(k - 1 - i));
-      z[i] = std::round(w[i] - tail / R(i, i));
-      difference[i] = z[i] - w[i];
-      Rd[i] = R(i, i) * difference[i] + tail;
-    }
-    if(Rd.squaredNorm() >= kept_descent)
+    if(nearest_plane_point(R, w, z, difference, Rd) >= kept_descent)
       return kept_descent - before;
     h_difference.noalias() = R.transpose().triangularView<Eigen::Lower>() * Rd;
     return (std::min)(kept_descent, greedy_descent(b.lattice.gram, z, difference, h_difference)) - before;

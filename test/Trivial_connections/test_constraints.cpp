@@ -523,6 +523,49 @@ TEST(Boundary_alignment, small_disk_every_boundary_face_aligned_integers_optimal
   }
 }
 
+// With the symmetry order given to the constructor, the boundary's clear turns (within a quarter of 2 pi / n of a
+// multiple) are decided by rounding. On an annulus of 24 sectors (turns of 15 degrees) every fan is decided for
+// n = 2 and 4, and the energy is that of a solver that leaves every turn free and proves its integers optimal. On 9
+// sectors (turns of 40 degrees) the turns are clear for n = 2 only: for n = 4 every fan stays free. On
+// elephant-with-holes (106 holes) the field meets everything a constrained solve promises.
+TEST(Boundary_alignment, clear_turns_decided_with_the_symmetry_order_given)
+{
+  const Targets none_t;
+  const Singularities none;
+  for(int sectors : {24, 9})
+    for(int n : {2, 4}) {
+      SCOPED_TRACE(std::to_string(sectors) + " sectors, n = " + std::to_string(n));
+      const Surface_mesh m = annulus(0.6, 1.4, 2, sectors);
+      const Mesh_view<Surface_mesh> view(m);
+      TC::Trivial_connection_solver<Surface_mesh> free_turns(m, TC::parameters::align_with_boundary(true));
+      TC::Trivial_connection_solver<Surface_mesh> decided(
+        m, TC::parameters::align_with_boundary(true, TC::parameters::symmetry_order(n)));
+      const auto a = solve_constrained(view, free_turns, none, n, none_t);
+      const auto b = solve_constrained(view, decided, none, n, none_t);
+      check_constrained(view, decided, none, n, none_t, true, b);
+      std::size_t fans = 0, rounded = 0;
+      for(const TC::Constraint_report& r : b.report.constraints) {
+        fans += 1;
+        rounded += r.decided ? 1 : 0;
+      }
+      EXPECT_EQ(fans, std::size_t(2 * sectors - 1)); // each loop's chain of fans, and one link between the loops
+      EXPECT_EQ(rounded, sectors == 9 && n == 4 ? 0u : fans - 1);
+      ASSERT_TRUE(a.report.integers_proven_optimal);
+      EXPECT_NEAR(b.report.energy, a.report.energy, 1e-9 * std::max(1., a.report.energy));
+    }
+  Surface_mesh m;
+  std::string why;
+  if(!read_cgal_mesh("elephant-with-holes.off", m, why)) GTEST_SKIP() << why;
+  const Mesh_view<Surface_mesh> view(m);
+  TC::Trivial_connection_solver<Surface_mesh> solver(m, TC::parameters::align_with_boundary(true, TC::parameters::symmetry_order(4)));
+  const auto s = solve_constrained(view, solver, none, 4, none_t);
+  check_constrained(view, solver, none, 4, none_t, true, s);
+  std::size_t rounded = 0;
+  for(const TC::Constraint_report& r : s.report.constraints)
+    rounded += r.decided ? 1 : 0;
+  EXPECT_GT(rounded, s.report.constraints.size() / 3);
+}
+
 TEST(Boundary_alignment, annulus_with_targets_and_prescribed_boundary_indices)
 {
   const Surface_mesh m = annulus(0.6, 1.4, 2, 9);

@@ -254,7 +254,7 @@ TEST(Move_integers, prices_are_energy_changes_of_actual_integers)
       moved[rw] += d;
       moved[rv] -= d;
       const double kept = energy(moved) - energy(b);
-      const double price = integers.best(0, rv, rw, d, kept, 1e-12);
+      const double price = integers.best(0, rv, rw, d, kept, -1e-12);
       EXPECT_LE(price, kept + 1e-9);
       // E(moved + u S s) = E(moved) + 2 u s^T (G moved)_F + u^2 s^T G_FF s; the real minimiser c1 within 3 of 0
       const Eigen::Index k = Eigen::Index(free.size());
@@ -291,6 +291,9 @@ TEST(Move_integers, prices_are_energy_changes_of_actual_integers)
       // proven: exact whenever some integers make the move pay off (best() searches only then)
       if(proven && lowest < -1e-9) {
         EXPECT_NEAR(price, lowest, 1e-8 * (1 + std::abs(lowest))) << "trial " << trial;
+        // and so whenever they bring it below a threshold (the refinement's best change so far)
+        EXPECT_NEAR(integers.best(0, rv, rw, d, kept, lowest / 2), lowest, 1e-8 * (1 + std::abs(lowest)));
+        EXPECT_GE(integers.best(0, rv, rw, d, kept, lowest), lowest - 1e-8 * (1 + std::abs(lowest)));
         ++exact;
       }
       priced += proven ? 0 : 1;

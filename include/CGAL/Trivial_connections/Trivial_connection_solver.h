@@ -172,12 +172,18 @@ public:
         closest-vector search, with the loop integers. A zero vector means not known yet (that face is linked the
         short way). Each `solve()` still takes its own directions}
     \cgalParamNEnd
-    \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{1} \cgalParamNEnd
+    \cgalParamNBegin{symmetry_order}
+      \cgalParamDescription{the n the solves will use, for `face_directions` above and `align_with_boundary`}
+      \cgalParamType{`int`} \cgalParamDefault{1, and the boundary's turns left free}
+    \cgalParamNEnd
     \cgalParamNBegin{align_with_boundary}
       \cgalParamDescription{every boundary face gets the direction of its border edge as its target (of its
         longer border edge when it has two): vectors along the boundary for n = 1, tangent lines for n = 2,
         crosses tangent and normal to it for n = 4. The targets of a boundary loop are linked through the fans of
-        its vertices, so the turn the field makes at each boundary vertex is one of the free integers}
+        its vertices: the turn the field makes at each boundary vertex is an integer. With `symmetry_order` given
+        here, a turn within a quarter of 2 pi / n of a multiple of it is decided by rounding (the field turns the
+        least at that vertex, as for touching pins; no dense block grows with the length of the boundary), the
+        others are free integers chosen with the loop integers; without it every turn is free}
       \cgalParamType{`bool`} \cgalParamDefault{`false`}
     \cgalParamNEnd
     \cgalParamNBegin{guided_faces}
@@ -262,7 +268,11 @@ private:
     {
       std::vector<double> angles;
       const int n = read_link_targets(np, user_faces, angles);
-      m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, mu, angles, n);
+      // the boundary's turns are decided for the symmetry order given here (and kept for set_constraints())
+      if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::symmetry_order_t>::value)
+        m_boundary_turn_order = n;
+      m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, mu, angles, n,
+                                           m_boundary_turn_order);
     }
     notify(Phase::trees, 1);
     notify(Phase::assembly, 0);
@@ -402,7 +412,7 @@ public:
       std::vector<double> angles;
       const int n = read_link_targets(np, user_faces, angles);
       internal::Constraint_links links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight,
-                                       angles, n);
+                                       angles, n, m_boundary_turn_order);
       // touching pins fix edges, which changes M: only links without them go outside a kept factor
       if(m_system.loop_rows_in_factor() && m_rows.decided_slots.empty() && !links.has_decided_links()) {
         m_links = std::move(links);
@@ -719,7 +729,7 @@ private:
   {
     std::vector<int> order = m_system.node_order(m_rows, m_topology.number_of_nodes);
     m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight,
-                                         angles, n);
+                                         angles, n, m_boundary_turn_order);
     std::vector<std::array<int, 2>> edge_nodes = std::move(m_rows.edge_nodes);
     m_rows = internal::Constraint_rows(m_mesh, m_geometry, m_topology, m_links);
     m_rows.edge_nodes = std::move(edge_nodes);
@@ -754,6 +764,7 @@ private:
     std::vector<double> angles;
     int n = 1;
   } m_bordered_request; // what the last set_constraints() that kept the factorization was given
+  int m_boundary_turn_order = 0; // the constructor's symmetry_order, when given (see Constraint_links)
 };
 
 namespace internal {

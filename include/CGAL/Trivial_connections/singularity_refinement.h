@@ -94,9 +94,10 @@ The entries of `G` between neighbours are on the pattern of the sparse factor, s
 the factor gives all of them; with few singularities, their paths in the elimination tree give those wanted for
 less (the cheaper of the two is predicted). A cancellation between distant vertices reads `G_vw` from the column
 of `G` at one of them (a back-substitution, kept from round to round). A move may lower the energy only with
-some free integers of its component changed: on components with few of them (64 in all, fewest first), each
-candidate is also priced with the best change of the integers (a closest vector search in their metric, when a
-bound says it may pay); elsewhere the moves are priced with them kept, and each trial solve tries them too.
+some free integers of its component changed: the rounds price the moves with the integers kept (each trial solve
+chooses them again), and when none pays so, on components with few of them (64 in all, fewest first), the moves
+are searched for the best change of the integers (a closest vector search in their metric), by increasing lower
+bound of what it may give, until that bound reaches the best change found: a round takes one such move at most.
 A round applies the best-scored candidates that lie apart (no two within one ring of each other) in one
 `solve()` that chooses the integers again, each cancellation's change corrected exactly for its interaction
 with those taken before it; when that solve does not lower the energy, half of the moves are tried, down to a
@@ -263,10 +264,6 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   internal::Move_integers integers(free_rows, system_rows, unit,
                                    [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
   auto component = [&](int v) { return std::size_t(t.component_of_node[t.node_of_vertex[v]]); };
-  // the energy change of the move of d from v to w with the integers kept (`kept`), or with the best of them
-  auto with_integers = [&](int v, int w, double d, double kept, double tolerance) {
-    return integers.empty() ? kept : integers.best(component(v), inverse.row_of(v), inverse.row_of(w), d, kept, tolerance);
-  };
 
   struct Candidate
   {
@@ -292,129 +289,163 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   for(int round = 0;; ++round) {
     // changes below this are rounding: no cycling on ties
     const double tolerance = 1e-10 * (std::max)(energy, 1e-300);
-    if(!integers.empty())
-      integers.start_round(Access::multipliers(solver), result.report.integers_proven_optimal);
     // the rows this round reads (singular vertices, where they may move): paths, and the columns kept on them
     const std::vector<int> wanted = singular_and_neighbours();
     if(inverse.paths())
       inverse.prefetch_paths(wanted);
     inverse.watch(wanted);
-    std::vector<Candidate> candidates;
-    for(int v = 0; v < m.nv; ++v) {
-      if(k[v] == 0 || fixed[v])
-        continue;
-      for(int w : neighbours[v]) {
-        if(fixed[w] || g.on_boundary[w] || w == v || k[w] != 0)
+    // The candidates that lower the energy with the integers kept; or (`search`, when there is none) the one that
+    // lowers it most with the best of them: a round can take only one move that changes integers (its integers
+    // would interact with the others'), so the moves are searched by increasing lower bound of what they may give,
+    // until that bound reaches the best change found.
+    struct Hope
+    {
+      double hoped, kept; // the lower bound, and the change with the integers kept
+      int from, to;
+      std::int64_t units;
+      bool cancels;
+    };
+    auto collect = [&](const bool search) {
+      std::vector<Candidate> candidates;
+      std::vector<Hope> hopes;
+      for(int v = 0; v < m.nv; ++v) {
+        if(k[v] == 0 || fixed[v])
           continue;
-        const double kept = score(v, w, k[v], inverse.resistance(v, w));
-        const double change = with_integers(v, w, two_pi * double(k[v]) / n, kept, tolerance);
-        if(change < -tolerance)
-          candidates.push_back({v, w, k[v], change, false, change < kept});
+        for(int w : neighbours[v]) {
+          if(fixed[w] || g.on_boundary[w] || w == v || k[w] != 0)
+            continue;
+          const double kept = score(v, w, k[v], inverse.resistance(v, w));
+          if(!search) {
+            if(kept < -tolerance)
+              candidates.push_back({v, w, k[v], kept, false, false});
+            continue;
+          }
+          const double hoped =
+            kept + integers.bound(component(v), inverse.row_of(v), inverse.row_of(w), two_pi * double(k[v]) / n);
+          if(hoped < -tolerance)
+            hopes.push_back({hoped, kept, v, w, k[v], false});
+        }
       }
-    }
-    if(cancel) {
-      // one unit of a positive singularity onto a negative one of its component, at any distance: both lose a unit
-      std::vector<int> positive, negative;
-      for(int v = 0; v < m.nv; ++v)
-        if(k[v] != 0 && !fixed[v])
-          (k[v] > 0 ? positive : negative).push_back(v);
-      // The exact change of every pair, from the columns of G at the singularities of one sign (kept from round
-      // to round: most of them stay), the integers priced as for moves.
-      std::vector<double> diagonal(std::size_t(m.nv), 0.);
-      for(int v = 0; v < m.nv; ++v)
-        if(k[v] != 0 && !fixed[v])
-          diagonal[std::size_t(v)] = inverse.diagonal(v);
-      // the columns of the smaller side; what a pair reads of the other, gathered once (tens of thousands of
-      // pairs a round); the integers searched only for the pairs their quick bound leaves
-      const bool by_positive = positive.size() <= negative.size();
-      const std::vector<int>& columns = by_positive ? positive : negative;
-      const std::vector<int>& others = by_positive ? negative : positive;
-      inverse.prefetch(columns);
-      struct End
-      {
-        int vertex, row;
-        std::size_t component;
-        double gradient, diagonal;
-        internal::Move_integers::Row_terms terms;
-      };
-      auto end_of = [&](int v) {
-        const std::size_t c = component(v);
-        return End{v, inverse.row_of(v), c, gradient[std::size_t(v)], diagonal[std::size_t(v)],
-                   integers.empty() ? internal::Move_integers::Row_terms() : integers.terms(c, inverse.row_of(v))};
-      };
-      std::vector<End> column_ends, other_ends;
-      std::vector<const double*> column_values; // null: no row, G_s. = 0
-      for(int s : columns) {
-        column_ends.push_back(end_of(s));
-        column_values.push_back(inverse.column_of(s));
+      if(cancel) {
+        // one unit of a positive singularity onto a negative one of its component, at any distance: both lose a unit
+        std::vector<int> positive, negative;
+        for(int v = 0; v < m.nv; ++v)
+          if(k[v] != 0 && !fixed[v])
+            (k[v] > 0 ? positive : negative).push_back(v);
+        // The exact change of every pair, from the columns of G at the singularities of one sign (kept from round
+        // to round: most of them stay), the integers priced as for moves.
+        std::vector<double> diagonal(std::size_t(m.nv), 0.);
+        for(int v = 0; v < m.nv; ++v)
+          if(k[v] != 0 && !fixed[v])
+            diagonal[std::size_t(v)] = inverse.diagonal(v);
+        // the columns of the smaller side; what a pair reads of the other, gathered once (tens of thousands of
+        // pairs a round); the integers searched only for the pairs their quick bound leaves
+        const bool by_positive = positive.size() <= negative.size();
+        const std::vector<int>& columns = by_positive ? positive : negative;
+        const std::vector<int>& others = by_positive ? negative : positive;
+        inverse.prefetch(columns);
+        struct End
+        {
+          int vertex, row;
+          std::size_t component;
+          double gradient, diagonal;
+          internal::Move_integers::Row_terms terms;
+        };
+        auto end_of = [&](int v) {
+          const std::size_t c = component(v);
+          return End{v, inverse.row_of(v), c, gradient[std::size_t(v)], diagonal[std::size_t(v)],
+                     search ? integers.terms(c, inverse.row_of(v)) : internal::Move_integers::Row_terms()};
+        };
+        std::vector<End> column_ends, other_ends;
+        std::vector<const double*> column_values; // null: no row, G_s. = 0
+        for(int s : columns) {
+          column_ends.push_back(end_of(s));
+          column_values.push_back(inverse.column_of(s));
+        }
+        for(int o : others)
+          other_ends.push_back(end_of(o));
+        const double unit2 = unit * unit;
+        // The pairs of a range of columns, in order: those that lower the energy with the integers kept, and those
+        // whose integers are to be searched (the search is not thread-safe: it runs after, in the same order).
+        struct Pair_price
+        {
+          std::uint32_t column, other;
+          double kept, hoped; // the change with the integers kept, and at best with them changed (quick_bound())
+          bool search;
+        };
+        auto price = [&](std::size_t begin, std::size_t end) {
+          std::vector<Pair_price> found;
+          for(std::size_t i = begin; i < end; ++i) {
+            const End& a = column_ends[i];
+            const double* column = column_values[i];
+            for(std::size_t o = 0; o < other_ends.size(); ++o) {
+              const End& b = other_ends[o];
+              if(a.component != b.component)
+                continue;
+              const End& v = by_positive ? a : b;
+              const End& w = by_positive ? b : a;
+              CGAL_assertion(b.row < 0 || inverse.watched(b.row));
+              const double g_vw = column && b.row >= 0 ? column[b.row] : 0.;
+              // score(v, w, 1, G_vv + G_ww - 2 G_vw)
+              const double kept = 1. / n * (w.gradient - v.gradient) + unit2 * (v.diagonal + w.diagonal - 2 * g_vw);
+              const double hoped = search ? kept + integers.quick_bound(a.component, v.terms, w.terms, unit) : kept;
+              const bool searched = search && hoped < -tolerance;
+              if(searched || kept < -tolerance)
+                found.push_back({std::uint32_t(i), std::uint32_t(o), kept, hoped, searched});
+            }
+          }
+          return found;
+        };
+        // hundreds of thousands of pairs a round on cheese_loop1 (N = 4): half on a second thread
+        std::vector<Pair_price> priced;
+        if(column_ends.size() >= 2 && column_ends.size() * other_ends.size() >= 20000) {
+          auto halves = second_thread.on_two_halves(column_ends.size(), price);
+          priced = std::move(halves.first);
+          priced.insert(priced.end(), halves.second.begin(), halves.second.end());
+        } else
+          priced = price(0, column_ends.size()); // fewer: not worth a thread
+        for(const Pair_price& q : priced) {
+          const End& a = column_ends[q.column];
+          const End& v = by_positive ? a : other_ends[q.other];
+          const End& w = by_positive ? other_ends[q.other] : a;
+          if(q.search)
+            hopes.push_back({q.hoped, q.kept, v.vertex, w.vertex, 1, true});
+          else if(q.kept < -tolerance)
+            candidates.push_back({v.vertex, w.vertex, 1, q.kept, true, false});
+        }
       }
-      for(int o : others)
-        other_ends.push_back(end_of(o));
-      const double unit2 = unit * unit;
-      // The pairs of a range of columns, in order: those that lower the energy with the integers kept, and those
-      // whose integers are to be searched (the search is not thread-safe: it runs after, in the same order).
-      struct Pair_price
-      {
-        std::uint32_t column, other;
-        double kept, hoped; // the change with the integers kept, and at best with them changed (quick_bound())
-        bool search;
-      };
-      auto price = [&](std::size_t begin, std::size_t end) {
-        std::vector<Pair_price> found;
-        for(std::size_t i = begin; i < end; ++i) {
-          const End& a = column_ends[i];
-          const double* column = column_values[i];
-          for(std::size_t o = 0; o < other_ends.size(); ++o) {
-            const End& b = other_ends[o];
-            if(a.component != b.component)
-              continue;
-            const End& v = by_positive ? a : b;
-            const End& w = by_positive ? b : a;
-            CGAL_assertion(b.row < 0 || inverse.watched(b.row));
-            const double g_vw = column && b.row >= 0 ? column[b.row] : 0.;
-            // score(v, w, 1, G_vv + G_ww - 2 G_vw)
-            const double kept = 1. / n * (w.gradient - v.gradient) + unit2 * (v.diagonal + w.diagonal - 2 * g_vw);
-            const double hoped = integers.empty() ? kept : kept + integers.quick_bound(a.component, v.terms, w.terms, unit);
-            const bool search = !integers.empty() && hoped < -tolerance;
-            if(search || kept < -tolerance)
-              found.push_back({std::uint32_t(i), std::uint32_t(o), kept, hoped, search});
+      if(search) {
+        // Unproven integers: their bounds are heuristic and prune few searches, so at most this many a round
+        // (ChineseDragon-10kv's curvature guidance, 64 link integers: 285k searches were 3.4 s of 3.7 s).
+        const std::size_t unproven_searches = 2000;
+        const bool proven = integers.proven();
+        std::stable_sort(hopes.begin(), hopes.end(), [](const Hope& a, const Hope& b) { return a.hoped < b.hoped; });
+        double best = -tolerance;
+        const Hope* found = nullptr;
+        for(std::size_t i = 0; i < hopes.size() && hopes[i].hoped < best; ++i) {
+          if(!proven && i >= unproven_searches)
+            break;
+          const Hope& h = hopes[i];
+          const double change = integers.best(component(h.from), inverse.row_of(h.from), inverse.row_of(h.to),
+                                              two_pi * double(h.units) / n, h.kept, best);
+          if(change < best) {
+            best = change;
+            found = &h;
           }
         }
-        return found;
-      };
-      // hundreds of thousands of pairs a round on cheese_loop1 (N = 4): half on a second thread
-      std::vector<Pair_price> priced;
-      if(column_ends.size() >= 2 && column_ends.size() * other_ends.size() >= 20000) {
-        auto halves = second_thread.on_two_halves(column_ends.size(), price);
-        priced = std::move(halves.first);
-        priced.insert(priced.end(), halves.second.begin(), halves.second.end());
-      } else
-        priced = price(0, column_ends.size()); // fewer: not worth a thread
-      // Unproven integers prune few searches (see Move_integers): then at most this many a round, the most hopeful
-      // first (ChineseDragon-10kv's curvature guidance, 64 link integers: 285k searches were 3.4 s of 3.7 s).
-      const std::size_t unproven_searches = 2000;
-      if(!integers.empty() && !integers.proven()) {
-        std::vector<std::size_t> searched;
-        for(std::size_t i = 0; i < priced.size(); ++i)
-          if(priced[i].search)
-            searched.push_back(i);
-        if(searched.size() > unproven_searches) {
-          std::nth_element(searched.begin(), searched.begin() + std::ptrdiff_t(unproven_searches), searched.end(),
-                           [&](std::size_t a, std::size_t b) {
-                             return priced[a].hoped < priced[b].hoped || (priced[a].hoped == priced[b].hoped && a < b);
-                           });
-          for(std::size_t j = unproven_searches; j < searched.size(); ++j)
-            priced[searched[j]].search = false;
-        }
+        if(found)
+          candidates.push_back({found->from, found->to, found->units, best, found->cancels, true});
       }
-      for(const Pair_price& q : priced) {
-        const End& a = column_ends[q.column];
-        const End& v = by_positive ? a : other_ends[q.other];
-        const End& w = by_positive ? other_ends[q.other] : a;
-        const double change = q.search ? integers.best(a.component, v.row, w.row, unit, q.kept, tolerance) : q.kept;
-        if(change < -tolerance)
-          candidates.push_back({v.vertex, w.vertex, 1, change, true, change < q.kept});
-      }
+      return candidates;
+    };
+    // Searching the integers of every candidate is what a step costs more under guidance (hundreds of link
+    // integers, never proven: about 1,700 searches a round on homer, 4.3 ms of a 6.5 ms round whose solve is
+    // 0.6 ms): done only when no candidate lowers the energy with them kept, before stopping, so that a step costs
+    // what it costs without and the local minimum is one with the integers chosen again.
+    std::vector<Candidate> candidates = collect(false);
+    if(candidates.empty() && !integers.empty()) {
+      integers.start_round(Access::multipliers(solver), result.report.integers_proven_optimal);
+      candidates = collect(true);
     }
     if(candidates.empty())
       break;

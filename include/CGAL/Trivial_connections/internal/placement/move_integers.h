@@ -173,12 +173,12 @@ public:
     return (std::min)(0., m_unit * m_unit * gap * gap - relaxed);
   }
 
-  // the energy change of that move with the integers kept (`kept`), or with the best of them when some make it
-  // pay (below -tolerance); otherwise a change at most `kept`, not below -tolerance
-  double best(std::size_t c, int rv, int rw, double d, double kept, double tolerance)
+  // the energy change of that move with the integers kept (`kept`), or with the best of them when some bring it
+  // below `threshold`; otherwise a change at most `kept`, not below `threshold`
+  double best(std::size_t c, int rv, int rw, double d, double kept, double threshold)
   {
     const int block = m_block_of_component[c];
-    if(block < 0 || kept + bound(c, rv, rw, d) >= -tolerance)
+    if(block < 0 || kept + bound(c, rv, rw, d) >= threshold)
       return kept;
     Block& b = m_blocks[std::size_t(block)];
     if(!b.proven)
@@ -189,12 +189,12 @@ public:
     if(rv >= 0)
       p -= d * b.columns.row(rv).transpose();
     const Eigen::VectorXd center = -(b.inverse * p) / m_unit; // the real minimiser
-    // the change is kept + u^2 ((s - c)^T G_F (s - c) - c^T G_F c), c = center: below -tolerance only for the
+    // the change is kept + u^2 ((s - c)^T G_F (s - c) - c^T G_F c), c = center: below `threshold` only for the
     // points within the ball searched (most moves pay with none: bunny00's curvature guidance, a first round's
     // 877 searches 66 -> 29 ms, the same 471 candidates)
     const double centre_norm = center.dot(b.metric * center);
     const Closest_vector_result nearest = closest_vector(b.lattice, b.metric, center, {}, 1e5,
-                                                         centre_norm - (kept + tolerance) / (m_unit * m_unit));
+                                                         centre_norm + (threshold - kept) / (m_unit * m_unit));
     return (std::min)(kept, kept + m_unit * m_unit * (nearest.value - centre_norm));
   }
 

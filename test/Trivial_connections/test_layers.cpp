@@ -287,6 +287,13 @@ TEST(Move_integers, prices_are_energy_changes_of_actual_integers)
           break;
       }
       EXPECT_LT(nearest_to_price, 1e-8 * (1 + std::abs(price))) << "trial " << trial; // actual integers
+      if(price < kept - 1e-9) { // and change() gives them
+        ASSERT_EQ(integers.change().size(), free.size());
+        Eigen::VectorXd sv(k);
+        for(Eigen::Index a = 0; a < k; ++a)
+          sv[a] = double(integers.change()[std::size_t(a)]);
+        EXPECT_NEAR(kept + 2 * unit * sv.dot(g_F) + unit * unit * sv.dot(G_FF * sv), price, 1e-8 * (1 + std::abs(price)));
+      }
       EXPECT_GE(price, lowest - 1e-8 * (1 + std::abs(lowest)));
       // proven: exact whenever some integers make the move pay off (best() searches only then)
       if(proven && lowest < -1e-9) {

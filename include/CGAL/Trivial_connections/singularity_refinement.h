@@ -252,14 +252,16 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       if(c < moving.size())
         moving[c] = 1;
     }
-  std::vector<std::vector<int>> free_rows(rows.free_slots.size());
+  std::vector<std::vector<int>> free_rows(rows.free_slots.size()), free_row_slots(rows.free_slots.size());
   for(std::size_t c = 0; c < rows.free_slots.size(); ++c)
     for(int l : rows.free_slots[c]) {
       if(!moving[c])
         break;
       const bool prescribed = std::size_t(l) < result.report.loops.size() && result.report.loops[std::size_t(l)].prescribed;
-      if(!prescribed && rows.row_of_slot[std::size_t(l)] >= 0)
+      if(!prescribed && rows.row_of_slot[std::size_t(l)] >= 0) {
         free_rows[c].push_back(rows.row_of_slot[std::size_t(l)]);
+        free_row_slots[c].push_back(l);
+      }
     }
   internal::Move_integers integers(free_rows, system_rows, unit,
                                    [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
@@ -294,6 +296,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     if(inverse.paths())
       inverse.prefetch_paths(wanted);
     inverse.watch(wanted);
+    std::vector<std::int64_t> changed_periods; // the integers of the move found with them changed
     // The candidates that lower the energy with the integers kept; or (`search`, when there is none) the one that
     // lowers it most with the best of them: a round can take only one move that changes integers (its integers
     // would interact with the others'), so the moves are searched by increasing lower bound of what they may give,
@@ -422,6 +425,8 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         std::stable_sort(hopes.begin(), hopes.end(), [](const Hope& a, const Hope& b) { return a.hoped < b.hoped; });
         double best = -tolerance;
         const Hope* found = nullptr;
+        std::size_t change_component = 0;
+        std::vector<std::int64_t> changed;
         for(std::size_t i = 0; i < hopes.size() && hopes[i].hoped < best; ++i) {
           if(!proven && i >= unproven_searches)
             break;
@@ -431,10 +436,17 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
           if(change < best) {
             best = change;
             found = &h;
+            change_component = integers.change_component();
+            changed = integers.change();
           }
         }
-        if(found)
+        if(found) {
           candidates.push_back({found->from, found->to, found->units, best, found->cancels, true});
+          // its trial solve is given these integers (see Move_integers::change())
+          changed_periods = accepted_periods;
+          for(std::size_t a = 0; a < changed.size(); ++a)
+            changed_periods[std::size_t(free_row_slots[change_component][a])] += changed[a];
+        }
       }
       return candidates;
     };
@@ -522,7 +534,9 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         kk[std::size_t(chosen[i].to)] += chosen[i].units;
       }
       ++result.trials;
-      Access::hint_periods(solver, accepted_periods);
+      // a move priced with changed integers is alone (see above): its trial starts from them
+      Access::hint_periods(solver, size == 1 && chosen[0].integers && !changed_periods.empty() ? changed_periods
+                                                                                              : accepted_periods);
       const double e = solve(as_set(kk), trial_gradient, trial_report);
       last_trial_accepted = accepted = e < energy * (1 - 1e-12);
       if(!accepted)

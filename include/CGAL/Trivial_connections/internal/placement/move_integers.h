@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -181,8 +182,17 @@ public:
     if(block < 0 || kept + bound(c, rv, rw, d) >= threshold)
       return kept;
     Block& b = m_blocks[std::size_t(block)];
-    if(!b.proven)
-      return (std::min)(kept, kept + m_unit * m_unit * local(b, rv, rw, d));
+    m_change_component = c;
+    if(!b.proven) {
+      const double change = kept + m_unit * m_unit * local(b, rv, rw, d);
+      if(!(change < kept))
+        return kept;
+      m_change.resize(b.rows.size());
+      const Eigen::VectorXd s = b.lattice.reduced ? Eigen::VectorXd(b.lattice.basis * m_reduced_change) : m_reduced_change;
+      for(std::size_t a = 0; a < m_change.size(); ++a)
+        m_change[a] = std::int64_t(std::llround(s[Eigen::Index(a)]));
+      return change;
+    }
     Eigen::VectorXd p = b.lambda;
     if(rw >= 0)
       p += d * b.columns.row(rw).transpose();
@@ -195,8 +205,18 @@ public:
     const double centre_norm = center.dot(b.metric * center);
     const Closest_vector_result nearest = closest_vector(b.lattice, b.metric, center, {}, 1e5,
                                                          centre_norm + (threshold - kept) / (m_unit * m_unit));
-    return (std::min)(kept, kept + m_unit * m_unit * (nearest.value - centre_norm));
+    const double change = kept + m_unit * m_unit * (nearest.value - centre_norm);
+    if(!(change < kept))
+      return kept;
+    m_change = nearest.m;
+    return change;
   }
+
+  // The change of the integers behind the last price best() gave below `kept`: per free row of component
+  // `component()` (in the order given to the constructor), what its integer gains. A trial solve given the
+  // integers so changed as its hint meets the price even where its own search, not proven, would not find them.
+  std::size_t change_component() const { return m_change_component; }
+  const std::vector<std::int64_t>& change() const { return m_change; }
 
 private:
   using Row_major = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>; // rows read one by one
@@ -234,13 +254,18 @@ private:
     const double before = w.dot(hw);
     Eigen::VectorXd z = Eigen::VectorXd::Zero(k), difference = -w, h_difference = -hw;
     const double kept_descent = greedy_descent(b.lattice.gram, z, difference, h_difference);
+    m_reduced_change = z;
     // Babai's nearest plane point, descended from when it is nearer
     const Eigen::MatrixXd& R = b.lattice.factor;
     Eigen::VectorXd Rd(k);
     if(nearest_plane_point(R, w, z, difference, Rd) >= kept_descent)
       return kept_descent - before;
     h_difference.noalias() = R.transpose().triangularView<Eigen::Lower>() * Rd;
-    return (std::min)(kept_descent, greedy_descent(b.lattice.gram, z, difference, h_difference)) - before;
+    const double babai_descent = greedy_descent(b.lattice.gram, z, difference, h_difference);
+    if(babai_descent >= kept_descent)
+      return kept_descent - before;
+    m_reduced_change = z;
+    return babai_descent - before;
   }
 
   // where a_r and H_red a_r start in b.a and b.ha, made on the first call for a row
@@ -296,6 +321,9 @@ private:
   std::vector<int> m_slot_of_row; // local(): where a row's terms are in its block (-1: not made yet)
   int m_round = 0;
   std::size_t m_columns_made = 0;
+  std::size_t m_change_component = 0;  // change(): the last improving price's integers
+  std::vector<std::int64_t> m_change;
+  Eigen::VectorXd m_reduced_change;     // local()'s best point, reduced coordinates
 };
 
 } // namespace internal

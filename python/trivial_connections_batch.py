@@ -36,6 +36,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import uuid
 from dataclasses import dataclass, field
@@ -104,12 +105,15 @@ def collect_meshes(inputs: Sequence[str]) -> List[Tuple[Path, str]]:
     """(absolute mesh path, relative output path) for every INPUT: files, folders (recursively, by extension),
     globs, or text files listing paths (one a line, relative to the list's folder, '#' comments)."""
     found: List[Tuple[Path, str]] = []
+
+    def absolute(q: Path) -> Path:  # as given (a symbolic link is not followed: the messages name the user's path)
+        return Path(os.path.abspath(q))
     for text in inputs:
         p = Path(text)
         if p.is_dir():
-            found += [(m.resolve(), m.relative_to(p).as_posix()) for m in _meshes_in(p)]
+            found += [(absolute(m), m.relative_to(p).as_posix()) for m in _meshes_in(p)]
         elif p.is_file() and p.suffix.lower() in MESH_EXTENSIONS:
-            found.append((p.resolve(), p.name))
+            found.append((absolute(p), p.name))
         elif p.is_file():  # a list of paths
             listed = []
             for line in p.read_text().splitlines():
@@ -118,7 +122,7 @@ def collect_meshes(inputs: Sequence[str]) -> List[Tuple[Path, str]]:
                     q = Path(line) if Path(line).is_absolute() else p.parent / line
                     if not q.is_file():
                         raise BatchError(f"{text}: '{line}' is not a file")
-                    listed.append(q.resolve())
+                    listed.append(absolute(q))
             if listed:
                 root = Path(os.path.commonpath([str(q.parent) for q in listed]))
                 found += [(q, q.relative_to(root).as_posix()) for q in listed]
@@ -130,14 +134,16 @@ def collect_meshes(inputs: Sequence[str]) -> List[Tuple[Path, str]]:
             parts = Path(text).parts
             fixed = Path(*parts[:next(i for i, s in enumerate(parts) if _is_glob(s))]) if not _is_glob(parts[0]) \
                 else Path(".")
-            found += [(m.resolve(), m.relative_to(fixed).as_posix()) for m in matches]
+            found += [(absolute(m), m.relative_to(fixed).as_posix()) for m in matches]
         else:
             raise BatchError(f"'{text}': no such file, folder or glob match")
     unique: Dict[Path, str] = {}
     owners: Dict[str, Path] = {}
+    real: set = set()
     for path, relative in found:
-        if path in unique:
+        if path.resolve() in real:  # the same file twice
             continue
+        real.add(path.resolve())
         if relative in owners:
             raise BatchError(f"'{owners[relative]}' and '{path}' would have the same output folder '{relative}' "
                              "(give them as separate batches, or from their common folder)")
@@ -204,17 +210,52 @@ def check_program_options(options: Sequence[str]) -> List[str]:
 _PR_SET_PDEATHSIG = 1
 
 
-def _child_setup(memory_limit: Optional[int]) -> None:
-    """In the program's process before exec: its own process group (a timeout kills it all), killed if its
-    worker dies, and at most `memory_limit` bytes of address space (then the program reports out_of_memory)."""
+def _child_setup() -> None:
+    """In the program's process before exec: its own process group (a timeout kills it all) and killed if its
+    worker dies."""
     os.setpgrp()
     try:
         ctypes.CDLL("libc.so.6", use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
     except OSError:
         pass
+
+
+def _run_program(cmd: List[str], timeout: Optional[float], memory_limit: Optional[int]) -> Tuple[Optional[int], str, str, bool]:
+    """(status or None after the timeout, stdout, stderr, killed for memory). With a memory limit a thread of the
+    worker samples the program's resident memory every 20 ms and kills it above the limit, as Dask's nanny does
+    for a worker (an address-space limit, RLIMIT_AS, counts reserved memory, not used memory, and made the program
+    spin in a failing allocation instead of stopping)."""
+    p = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         preexec_fn=_child_setup)
+    over = threading.Event()
+    done = threading.Event()
     if memory_limit:
-        import resource
-        resource.setrlimit(resource.RLIMIT_AS, (memory_limit, memory_limit))
+        import psutil
+
+        def watch() -> None:
+            try:
+                child = psutil.Process(p.pid)
+                while not done.wait(0.02):
+                    if child.memory_info().rss > memory_limit:
+                        over.set()
+                        os.killpg(p.pid, signal.SIGKILL)
+                        return
+            except (psutil.Error, ProcessLookupError):
+                pass
+        threading.Thread(target=watch, daemon=True).start()
+    try:
+        out, err = p.communicate(timeout=timeout)
+        status: Optional[int] = p.returncode
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        out, err = p.communicate()
+        status = None
+    finally:
+        done.set()
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+    return status, out, err, over.is_set()
 
 
 _NUMBER = r"[-+0-9.eE]+|nan|inf"
@@ -304,16 +345,8 @@ def run_mesh(job: Dict[str, Any]) -> Dict[str, Any]:
         cmd += ["--write-mesh", str(tmp / "mesh.off")]
     start = time.perf_counter()
     try:
-        try:
-            p = subprocess.run(cmd, stdin=subprocess.DEVNULL, capture_output=True, text=True,
-                               timeout=job["timeout"], preexec_fn=lambda: _child_setup(job["memory_limit"]))
-            record["seconds"] = time.perf_counter() - start
-            returncode, out, err = p.returncode, p.stdout, p.stderr
-        except subprocess.TimeoutExpired as e:
-            record["seconds"] = time.perf_counter() - start
-            returncode, out, err = None, "", ""
-            if e.cmd:
-                pass
+        returncode, out, err, over_memory = _run_program(cmd, job["timeout"], job["memory_limit"])
+        record["seconds"] = time.perf_counter() - start
         record["returncode"] = returncode
         if returncode == 0:
             record.update(parse_program_report(out))
@@ -329,14 +362,18 @@ def run_mesh(job: Dict[str, Any]) -> Dict[str, Any]:
                               error_message="the program succeeded without writing " + ", ".join(missing))
         else:
             record["status"] = "failed"
-            if returncode is None:
+            if over_memory:
+                record.update(error_code="out_of_memory",
+                              error_message=f"the program used more than --memory-limit ({job['memory_limit']} bytes) "
+                                            "and was killed")
+            elif returncode is None:
                 record.update(error_code="timeout",
                               error_message=f"the program ran longer than --timeout {job['timeout']} s and was killed")
             elif returncode < 0:
                 name = signal.Signals(-returncode).name
                 record.update(error_code="crashed", error_message=f"the program was killed by {name}")
-                if -returncode == signal.SIGKILL and job["memory_limit"]:
-                    record["error_message"] += " (perhaps by the kernel's out-of-memory killer)"
+                if -returncode == signal.SIGKILL:
+                    record["error_message"] += " (by the kernel's out-of-memory killer?)"
             else:
                 m = re.search(r"error \[([a-z_]+)\]: (.*)", err)
                 code, message = (m[1], m[2]) if m else ("internal_error", err.strip()[-500:] or f"status {returncode}")
@@ -442,7 +479,7 @@ def run_batch(inputs: Sequence[str], out: str, options: Sequence[str] = (), *, w
     (summary.csv, summary.json) under `out`. `options` are the program's options (e.g. ["--auto", "--n", "4"]);
     `repair` adds --repair. `workers` (default: the cores) sizes the local cluster; `scheduler` is the address of
     a running Dask scheduler to use instead; `client` an existing distributed.Client to use. `memory_limit`
-    (e.g. "2GB") bounds each mesh's program (address space) and each local worker. Raises BatchError for a bad
+    (e.g. "2GB") bounds each mesh's program (its resident memory, sampled every 20 ms). Raises BatchError for a bad
     command, KeyboardInterrupt after a clean stop (finished meshes stay, no partial file)."""
     from distributed import Client, LocalCluster, as_completed
     import cloudpickle
@@ -465,7 +502,7 @@ def run_batch(inputs: Sequence[str], out: str, options: Sequence[str] = (), *, w
     out_dir = Path(out).resolve()
     meshes = collect_meshes(inputs)
     for path, _ in meshes:
-        if out_dir == path or out_dir in path.parents:
+        if out_dir == path.resolve() or out_dir in path.resolve().parents:
             raise BatchError(f"the output folder {out_dir} holds the input {path}: inputs are never overwritten")
     out_dir.mkdir(parents=True, exist_ok=True)
     _remove_temporaries(out_dir)
@@ -503,7 +540,7 @@ def run_batch(inputs: Sequence[str], out: str, options: Sequence[str] = (), *, w
                                       "distributed.worker.daemon": False}):
                     own_cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                                host="127.0.0.1", dashboard_address=None,
-                                               memory_limit=memory or "auto", silence_logs=40)
+                                               memory_limit="auto", silence_logs=40)
                 client = Client(own_cluster)
         bar = _Progress(len(jobs), stream)
         by_future: Dict[Any, Dict[str, Any]] = {}
@@ -636,7 +673,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--workers", type=int, metavar="K", help="local worker processes (default: the cores)")
     parser.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler (tcp://host:port)")
     parser.add_argument("--timeout", type=float, metavar="S", help="seconds per mesh before its program is killed")
-    parser.add_argument("--memory-limit", metavar="M", help="memory per mesh (and per local worker), e.g. 2GB")
+    parser.add_argument("--memory-limit", metavar="M", help="memory per mesh (the program's resident memory), e.g. 2GB")
     parser.add_argument("--retries", type=int, default=2, metavar="R",
                         help="attempts after a crash, timeout, out-of-memory or lost worker (default 2)")
     parser.add_argument("--redo-failed", action="store_true", help="run the meshes that failed before again")

@@ -8,6 +8,11 @@
 
 #include <CGAL/disable_warnings.h>
 
+// First: boost's disjoint sets, before the PMP headers declare boost::detail::get() (compressed sparse row graph),
+// which would hide from them the global get() for raw pointers that the solver's tree-cotree uses
+// (boost::disjoint_sets<int*, int*>): the solver would no longer compile after this header.
+#include <boost/pending/disjoint_sets.hpp>
+
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>

@@ -225,8 +225,13 @@ def _run_program(cmd: List[str], timeout: Optional[float], memory_limit: Optiona
     worker samples the program's resident memory every 20 ms and kills it above the limit, as Dask's nanny does
     for a worker (an address-space limit, RLIMIT_AS, counts reserved memory, not used memory, and made the program
     spin in a failing allocation instead of stopping)."""
+    # Dask's nanny sets MALLOC_TRIM_THRESHOLD_ for its Python workers: not for the program. One thread of BLAS
+    # (Dask's OPENBLAS_NUM_THREADS=1 too): the batch fills the cores with meshes.
+    env = {k: v for k, v in os.environ.items() if k != "MALLOC_TRIM_THRESHOLD_"}
+    env.setdefault("OPENBLAS_NUM_THREADS", "1")
+    env.setdefault("OMP_NUM_THREADS", "1")
     p = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         preexec_fn=_child_setup)
+                         preexec_fn=_child_setup, env=env)
     over = threading.Event()
     done = threading.Event()
     if memory_limit:

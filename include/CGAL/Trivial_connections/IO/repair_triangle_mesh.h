@@ -81,7 +81,9 @@ struct Repair_report
   std::size_t output_vertices = 0;           ///< vertices of the repaired mesh
   std::size_t output_faces = 0;              ///< triangles of the repaired mesh
 
-  /// whether the repaired mesh differs from the file's (any count above is not zero)
+  /*!
+  \returns whether the repaired mesh differs from the file's (whether any count above but the sizes is not zero)
+  */
   bool changed() const
   {
     return points_removed + polygons_removed + polygons_reoriented + points_duplicated + polygons_triangulated +

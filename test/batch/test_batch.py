@@ -288,3 +288,25 @@ def test_bad_commands():
         tcb.run_batch([str(MESHES / "cow.off")], str(MESHES), program=PROGRAM)
     assert tcb.split_arguments(["a", "--n", "4", "--out", "o", "--auto", "b"]) == \
         (["a", "--out", "o", "b"], ["--n", "4", "--auto"])
+
+
+def test_crash_and_timeout_are_retried_then_recorded():
+    """A program that dies of SIGSEGV, and one that hangs past --timeout: each retried once, then recorded
+    (crashed with the signal, timeout); the other mesh of the batch is done."""
+    d = scratch("crash")
+    wrapper = d / "program.sh"
+    wrapper.write_text("#!/bin/sh\n"
+                       "case \"$1\" in *cow.off) kill -SEGV $$ ;; *elephant.off) exec sleep 60 ;; esac\n"
+                       f"exec '{PROGRAM}' \"$@\"\n")
+    wrapper.chmod(0o755)
+    out = d / "out"
+    meshes = [str(MESHES / m) for m in ("cow.off", "elephant.off", "pig.off")]
+    summary = tcb.run_batch(meshes, str(out), OPTIONS, workers=2, program=str(wrapper), timeout=2, retries=1)
+    records = {Path(r["mesh"]).name: r for r in summary.rows}
+    assert records["cow.off"]["error_code"] == "crashed" and "SIGSEGV" in records["cow.off"]["error_message"]
+    assert records["elephant.off"]["error_code"] == "timeout"
+    assert records["cow.off"]["attempt"] == 2 and records["elephant.off"]["attempt"] == 2
+    assert records["pig.off"]["status"] == "done" and summary.failed_by_code == {"crashed": 1, "timeout": 1}
+    assert summary.seconds < 30  # the hung program was killed, not waited for
+    no_temporaries(out)
+    complete_folders(out)

@@ -170,7 +170,7 @@ std::unique_ptr<Mesh> mesh_of_file(const std::string& path, bool triangulate)
 }
 
 
-// read_mesh(path, triangulate=False) -> (V, F)
+// read_mesh(path, triangulate=False) -> (V, F); repair_mesh(path) -> (V, F, report)
 void bind_mesh_input(py::module_& m)
 {
   m.def(
@@ -202,6 +202,51 @@ triangles of one face are consecutive rows), else such a face is InvalidInput no
 then gives the same solver as Solver.from_file(path, triangulate). Raises InvalidInput (io_error for a file that
 cannot be read or an unknown extension, parse_error, not_triangle_mesh, non_manifold_vertex, degenerate_face,
 non_finite_point, ...) with the file's name, as the program.)");
+
+  m.def(
+    "repair_mesh",
+    [](const py::object& path_in) {
+      const std::string path = path_of(path_in);
+      Mesh mesh;
+      TC::Repair_report r;
+      std::vector<double> p;
+      std::vector<std::int64_t> t;
+      {
+        py::gil_scoped_release unlocked;
+        TC::read_and_repair_triangle_mesh(path, mesh, r);
+        p.reserve(3 * mesh.number_of_vertices());
+        for(auto v : mesh.vertices())
+          for(int i = 0; i < 3; ++i)
+            p.push_back(CGAL::to_double(mesh.point(v)[i]));
+        t = corners_in_input_order(mesh);
+      }
+      py::dict report;
+      report["changed"] = r.changed();
+      report["input_points"] = r.input_points;
+      report["input_polygons"] = r.input_polygons;
+      report["points_removed"] = r.points_removed;
+      report["polygons_removed"] = r.polygons_removed;
+      report["polygons_reoriented"] = r.polygons_reoriented;
+      report["points_duplicated"] = r.points_duplicated;
+      report["polygons_triangulated"] = r.polygons_triangulated;
+      report["edges_stitched"] = r.edges_stitched;
+      report["degenerate_faces_removed"] = r.degenerate_faces_removed;
+      report["non_manifold_vertices_split"] = r.non_manifold_vertices_split;
+      const py::ssize_t nv = py::ssize_t(mesh.number_of_vertices()), nf = py::ssize_t(mesh.number_of_faces());
+      return py::make_tuple(owning_array(std::move(p), {nv, 3}), owning_array(std::move(t), {nf, 3}), report);
+    },
+    py::arg("path"),
+    R"(Reads a mesh file and repairs it as the program's --repair does: (V, F, report).
+
+A mesh that read_mesh(path) accepts is returned as it is (report["changed"] is False). A refused one (polygons,
+inconsistent orientation, non-manifold vertices, degenerate faces) goes through CGAL's Polygon Mesh Processing:
+soup repair (duplicate points merged, degenerate and duplicate faces removed), orientation, triangulation,
+stitching of borders, removal of zero-area faces, splitting of non-manifold vertices. report counts what each
+step changed (keys input_points, input_polygons, points_removed, polygons_removed, polygons_reoriented,
+points_duplicated, polygons_triangulated, edges_stitched, degenerate_faces_removed, non_manifold_vertices_split)
+and the rows of V and F number the repaired mesh: Solver(V, F) solves on it. The file is not modified. Raises
+InvalidInput as read_mesh() for a file that cannot be read, and with the error's code for what the repair cannot
+mend (e.g. empty_mesh for a point cloud).)");
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include <CGAL/Trivial_connections/IO/face_directions.h>
 #include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
+#include <CGAL/Trivial_connections/IO/repair_triangle_mesh.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
 #include <CGAL/Trivial_connections/IO/viewer_files.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>

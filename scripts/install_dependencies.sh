@@ -12,9 +12,10 @@ set -euo pipefail
 pkgs=(build-essential cmake libcgal-dev libeigen3-dev libboost-graph-dev
       libgtest-dev googletest libbenchmark-dev python3 python3-numpy python3-matplotlib
       python3-dev pybind11-dev python3-pybind11 python3-pytest
-      mypy python3-venv python3-pip python3-setuptools python3-wheel)
+      mypy python3-venv python3-pip python3-setuptools python3-wheel python3-distributed)
 # mypy: ctest python_typing (the module's type stubs); python3-venv, -pip, -setuptools, -wheel: pip install . of
-# the module (pyproject.toml) and ctest python_pip_install
+# the module (pyproject.toml) and ctest python_pip_install; python3-distributed (Dask): trivial_connections-batch and
+# ctest python_batch
 cholmod=1
 doc=0
 fuzz=0

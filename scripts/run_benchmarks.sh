@@ -8,6 +8,7 @@
 #                                  [--table-only] [--out FILE]
 #   bash scripts/run_benchmarks.sh --python [--repetitions N] [--no-build] [--out FILE]
 #   bash scripts/run_benchmarks.sh --editor [--repetitions EDITS] [--no-build] [--out FILE]
+#   bash scripts/run_benchmarks.sh --batch [--no-build] [--out FILE]
 #
 #   --sizes        small (default, a few minutes): CGAL meshes 5k-90k faces and a 300k subdivision;
 #                  large: ~1.2M faces (genus 0, 11, 133); huge: ~5M faces; all; or a comma list.
@@ -60,6 +61,7 @@ PLACEMENT=0
 FLOOR=0
 PYTHON_BINDING=0
 EDITOR=0
+BATCH=0
 REPETITIONS_GIVEN=0
 
 while [ $# -gt 0 ]; do
@@ -75,6 +77,7 @@ while [ $# -gt 0 ]; do
     --floor) FLOOR=1; shift ;;
     --python) PYTHON_BINDING=1; shift ;;
     --editor) EDITOR=1; shift ;;
+    --batch) BATCH=1; shift ;;
     -h|--help) sed -n '2,47p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
   esac
@@ -141,6 +144,25 @@ build_module_targets() {
         -DTRIVIAL_CONNECTIONS_BUILD_BENCHMARKS=ON -DTRIVIAL_CONNECTIONS_WITH_PYTHON=ON "${extra[@]}" >/dev/null
   cmake --build "$MODULE_DIR" -j "$JOBS" --target "$@"
 }
+
+# --batch: trivial_connections-batch (Dask, python3-distributed) with 1 and 2 local workers on the data set's 30
+# largest meshes, and its overhead per mesh on the 40 smallest (benchmark/batch/batch_throughput.py, about 3 min);
+# the section "The batch" of FILE (replaced in place). Run it alone on the machine: it measures a ratio of cores.
+if [ "$BATCH" = 1 ]; then
+  dir="$ROOT/build-bench"
+  if [ "$BUILD" = 1 ]; then
+    cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF >/dev/null
+    cmake --build "$dir" -j "$JOBS" --target trivial_connections
+  fi
+  [ -x "$dir/trivial_connections" ] || { echo "run_benchmarks.sh: $dir/trivial_connections not built" >&2; exit 1; }
+  [ -f "$ROOT/.cgal-data/data/meshes/elephant.off" ] || { echo "run_benchmarks.sh: CGAL's meshes are missing: run bash scripts/fetch_cgal_data.sh" >&2; exit 1; }
+  COMMIT="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  if ! git -C "$ROOT" diff --quiet HEAD -- include python examples 2>/dev/null; then COMMIT="$COMMIT+modified"; fi
+  mkdir -p "$ROOT/build-bench/benchmark-results"
+  /usr/bin/python3 "$ROOT/benchmark/batch/batch_throughput.py" "$dir/trivial_connections" "$ROOT/.cgal-data/data/meshes" \
+    --json "$ROOT/build-bench/benchmark-results/batch.json" --markdown "$OUT" --commit "$COMMIT"
+  exit 0
+fi
 
 if [ "$EDITOR" = 1 ]; then
   dir="$MODULE_DIR"

@@ -35,6 +35,7 @@
 #include "trivial_connections_command_line.h"
 #include "trivial_connections_features.h"
 #include "trivial_connections_process.h"
+#include "trivial_connections_repair.h"
 
 #include <algorithm>
 #include <chrono>
@@ -92,6 +93,7 @@ struct Inputs
 {
   Mesh mesh;
   TC::Mesh_input_order<Mesh> order;
+  std::optional<TC::Repair_report> repair; // --repair: what it changed
   Singularities singularities;
   std::vector<std::pair<std::size_t, TC::Singularity_index>> boundary_indices; // (vertex of the file, index)
   std::vector<TC::Face_direction> constraints, guides;
@@ -136,11 +138,15 @@ void read_mesh(const Options& o, Progress_printer& progress, Inputs& in)
 {
   progress.begin("reading mesh");
   try {
-    in.order = TC::read_triangle_mesh(o.mesh, in.mesh, TC::parameters::triangulate(o.triangulate));
+    if(o.repair)
+      in.order = TC::read_and_repair_triangle_mesh(o.mesh, in.mesh, in.repair.emplace());
+    else
+      in.order = TC::read_triangle_mesh(o.mesh, in.mesh, TC::parameters::triangulate(o.triangulate));
   } catch(const TC::Invalid_input& e) {
     if(e.code() != TC::Error_code::not_triangle_mesh || o.triangulate)
       throw;
-    throw TC::Invalid_input(e.code(), std::string(e.what()) + " (--triangulate splits such faces)", e.where());
+    throw TC::Invalid_input(e.code(), std::string(e.what()) + " (--triangulate splits such faces, --repair too)",
+                            e.where());
   }
   progress.end("reading mesh");
 }
@@ -430,6 +436,8 @@ void write_outputs(const Options& o, const Inputs& in, const Solver& solver, con
   if(!o.ply.empty())
     files.push_back(
       {o.ply, [&](std::ostream& os) { TC::write_field_ply(os, in.mesh, s.field, in.singularities, n); }});
+  if(!o.write_mesh.empty())
+    files.push_back({o.write_mesh, [&](std::ostream& os) { write_mesh_off(os, in.mesh, in.order); }});
   if(!o.singularity_points.empty())
     files.push_back({o.singularity_points, [&](std::ostream& os) {
                        TC::write_singularity_points(os << header, in.mesh, in.singularities);
@@ -482,6 +490,8 @@ void print_mesh(std::ostream& out, const Options& o, const Inputs& in, const TC:
   out << "mesh: " << o.mesh << ": " << num_vertices(in.mesh) << " vertices, " << num_faces(in.mesh) << " faces, "
       << num_edges(in.mesh) << " edges (" << interior_edges << " interior), " << report.components.size()
       << (report.components.size() == 1 ? " component\n" : " components\n");
+  if(in.repair)
+    out << repair_report_line(*in.repair);
   const std::vector<std::size_t>& source_faces = in.order.source_faces;
   if(!source_faces.empty()) {
     std::size_t split = 0; // faces of the file that gave more than one triangle
@@ -711,7 +721,8 @@ int main(int argc, char** argv)
   try {
     options = parse_arguments(argc, argv);
   } catch(const std::exception& e) { // a Usage_error, or anything else out of the command line: status 2
-    return fail(e.what(), 2);
+    return fail(e.what(), 2, std::find(argv + 1, argv + argc, std::string("--error-codes")) != argv + argc
+                                 ? "usage_error" : nullptr);
   }
   if(options.help) {
     std::cout << usage_text;
@@ -728,15 +739,15 @@ int main(int argc, char** argv)
     return run(options, progress);
   } catch(const TC::Invalid_input& e) {
     progress.end_line();
-    return fail(e.what(), 1);
+    return fail(e.what(), 1, options.error_codes ? TC::error_code_name(e.code()) : nullptr);
   } catch(const std::bad_alloc&) {
     progress.end_line();
-    return fail("out of memory", 1);
+    return fail("out of memory", 1, options.error_codes ? "out_of_memory" : nullptr);
   } catch(const std::exception& e) {
     progress.end_line();
-    return fail(e.what(), 1);
+    return fail(e.what(), 1, options.error_codes ? "internal_error" : nullptr);
   } catch(...) {
     progress.end_line();
-    return fail("unexpected error", 1);
+    return fail("unexpected error", 1, options.error_codes ? "internal_error" : nullptr);
   }
 }

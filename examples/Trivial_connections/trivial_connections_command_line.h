@@ -43,14 +43,15 @@ namespace trivial_connections_program {
 inline const char* const program = "trivial_connections";
 
 inline const char* const usage_text =
-  "Usage: trivial_connections MESH [--triangulate] [--singularities FILE] [--boundary-indices FILE]\n"
+  "Usage: trivial_connections MESH [--triangulate] [--repair] [--write-mesh OUT] [--singularities FILE]\n"
+  "                           [--boundary-indices FILE]\n"
   "                           [--constraints FILE] [--align-boundary] [--guidance FILE]\n"
   "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
   "                           [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT]\n"
   "                           [--singularity-points OUT] [--streamlines OUT] [--streamline-seeds K]\n"
   "                           [--auto] [--no-refine] [--align-curvature] [--alignment-strength S]\n"
-  "                           [--refine] [--cancel-pairs] [--write-singularities OUT] [--progress] [--help]\n"
-  "                           [--version]\n"
+  "                           [--refine] [--cancel-pairs] [--write-singularities OUT] [--progress]\n"
+  "                           [--error-codes] [--help] [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
@@ -60,6 +61,13 @@ inline const char* const usage_text =
   "  --triangulate         split faces of more than three vertices into triangles (CGAL's PMP); face\n"
   "                        indices (--constraints, --guidance, --field) then number the triangles: those of\n"
   "                        a face are consecutive, in file order. Without it such faces are an error.\n"
+  "  --repair              repair the mesh with CGAL's Polygon Mesh Processing before the solve: duplicate\n"
+  "                        points merged, degenerate and duplicate faces removed, faces oriented consistently,\n"
+  "                        non-manifold vertices split, borders stitched, polygons triangulated; a line\n"
+  "                        'repaired: ...' says what changed. Vertex and face indices (input files, --field)\n"
+  "                        then number the repaired mesh (--write-mesh writes it); unchanged when nothing was\n"
+  "                        repaired. Without it such meshes are an error.\n"
+  "  --write-mesh OUT      the mesh the field is on (after --triangulate or --repair), as an OFF file\n"
   "  --singularities FILE  one line 'v k' per singular vertex: 0-based vertex index (file order) and index k,\n"
   "                        an integer or a fraction p/q that is a multiple of 1/N; '#' starts a comment.\n"
   "                        Default: no singularity (then every closed component must have genus 1).\n"
@@ -119,6 +127,8 @@ inline const char* const usage_text =
   "  --streamlines OUT     streamlines of the field as legacy VTK polylines (ParaView), traced from K seed\n"
   "                        faces spread over the mesh (--streamline-seeds K, default 100); a ray stops at\n"
   "                        a singularity, a boundary, where it meets itself, or after 50 sqrt(faces) faces\n"
+  "  --error-codes         the error line names the error code: 'trivial_connections: error [CODE]: ...'\n"
+  "                        (CODE: an error code of the library, usage_error, out_of_memory or internal_error)\n"
   "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
   "                        is a terminal)\n"
   "  --help, -h            print this help and exit\n"
@@ -161,6 +171,9 @@ struct Options
   std::string constraints;
   bool align_boundary = false;
   bool triangulate = false;
+  bool repair = false;       // --repair
+  bool error_codes = false;  // --error-codes
+  std::string write_mesh;    // --write-mesh OUT
   std::string guidance;
   double guidance_weight = 1;
   int n = 1;
@@ -259,7 +272,8 @@ struct Valued_option
 };
 
 // The options that take a value. Each may be given once, as `--name value` or `--name=value`.
-inline const std::array<Valued_option, 18> valued_options = {{
+inline const std::array<Valued_option, 19> valued_options = {{
+  {"--write-mesh", &Options::write_mesh, nullptr},
   {"--write-singularities", &Options::write_singularities, nullptr},
   {"--write-constraints", &Options::write_constraints, nullptr},
   {"--feature-lines", &Options::feature_lines, nullptr},
@@ -294,7 +308,7 @@ inline void check_outputs(const Options& o)
 {
   std::vector<const std::string*> outputs = {&o.connection, &o.field};
   for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points, &o.streamlines, &o.write_singularities,
-                                  &o.feature_lines, &o.write_constraints})
+                                  &o.feature_lines, &o.write_constraints, &o.write_mesh})
     if(!extra->empty())
       outputs.push_back(extra);
   for(std::size_t a = 0; a < outputs.size(); ++a)
@@ -370,8 +384,11 @@ inline Options parse_arguments(int argc, char** argv)
       continue;
     }
     if(a == "--triangulate" || a == "--align-boundary" || a == "--auto" || a == "--no-refine" ||
-       a == "--align-curvature" || a == "--refine" || a == "--cancel-pairs") {
+       a == "--align-curvature" || a == "--refine" || a == "--cancel-pairs" || a == "--repair" ||
+       a == "--error-codes") {
       bool& flag = a == "--triangulate"       ? o.triangulate
+                   : a == "--repair"          ? o.repair
+                   : a == "--error-codes"     ? o.error_codes
                    : a == "--align-boundary"  ? o.align_boundary
                    : a == "--auto"            ? o.automatic
                    : a == "--no-refine"       ? o.no_refine
@@ -523,9 +540,10 @@ inline bool stderr_is_terminal()
 #endif
 }
 
-inline int fail(const std::string& message, int status)
+inline int fail(const std::string& message, int status, const char* code = nullptr)
 {
-  std::cerr << program << ": error: " << one_line(message) << std::endl;
+  std::cerr << program << ": error" << (code ? std::string(" [") + code + "]" : std::string()) << ": "
+            << one_line(message) << std::endl;
   return status;
 }
 

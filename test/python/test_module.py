@@ -1037,3 +1037,22 @@ def test_fandisk_follows_its_feature_pins():
     assert np.array_equal(f2, faces) and np.abs(d2 - directions).max() < 1e-12  # (F's rows may start elsewhere)
     by_hand = tc.Solver(V, F, constrained_faces=f2).solve(placed, n=4, directions=dict(zip(f2.tolist(), d2)))
     assert abs(by_hand.energy - result.energy) < 1e-9 * max(1.0, result.energy)
+
+
+def test_repair_mesh_as_the_program():
+    """repair_mesh(): a good mesh as read_mesh() reads it; polygons, a bad orientation, a non-manifold vertex and
+    degenerate faces repaired into a mesh the solver accepts; a point cloud stays an error."""
+    V0, F0 = tc.read_mesh(cgal_mesh("elephant.off"))
+    V, F, report = tc.repair_mesh(cgal_mesh("elephant.off"))
+    assert report["changed"] is False and np.array_equal(V, V0) and np.array_equal(F, F0)
+    for name, step in [("cube_quad.off", "polygons_triangulated"), ("cube-shuffled.off", "polygons_reoriented"),
+                       ("pig.stl", "points_duplicated"), ("degtri_sliding.off", "degenerate_faces_removed")]:
+        with pytest.raises(tc.InvalidInput):
+            tc.Solver.from_file(cgal_mesh(name))
+        V, F, report = tc.repair_mesh(cgal_mesh(name))
+        assert report["changed"] is True and report[step] > 0, (name, report)
+        assert F.shape[1] == 3 and F.max() < len(V)
+        tc.Solver(V, F)  # accepted
+    with pytest.raises(tc.InvalidInput) as error:
+        tc.repair_mesh(cgal_mesh("b9.ply"))
+    assert error.value.code == "empty_mesh"

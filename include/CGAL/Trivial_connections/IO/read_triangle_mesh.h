@@ -42,6 +42,67 @@
 namespace CGAL {
 namespace Trivial_connections {
 
+namespace internal {
+namespace io {
+
+// Reads any supported mesh file (extension `ext`, lower case, already checked) as a polygon soup. OFF and PLY
+// are read by our own readers (see read_off_soup() and Ply_reader for what CGAL's do with malformed files);
+// OBJ is diagnosed by ours first, then read by CGAL's, like STL and GOCAD. Throws Invalid_input (io_error,
+// parse_error).
+template <class Point, class PolygonRange>
+void read_polygon_soup_file(const std::string& path, const std::string& ext, std::vector<Point>& points,
+                            PolygonRange& polygons)
+{
+  bool read = true;
+  if(ext == "off") {
+    read_off_soup(path, points, polygons);
+  } else if(ext == "ply") {
+    const File_contents data(path);
+    if(!data.ok())
+      throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "'");
+    Ply_reader(data.begin(), data.end(), path).read(points, polygons);
+  } else {
+    if(ext == "obj")
+      diagnose_obj(path);
+    try {
+      read = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+    } catch(const std::length_error&) {
+      read = false; // a count too large for a vector
+    }
+  }
+  if(!read)
+    throw Invalid_input(Error_code::parse_error, "cannot parse '" + path + "' as a " + ext + " mesh file");
+}
+
+// Checks that `path` is a readable file with a supported extension; returns the extension in lower case.
+inline std::string check_mesh_path(const std::string& path)
+{
+  std::error_code ec;
+  if(!std::filesystem::exists(path, ec))
+    throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "': no such file");
+  if(std::filesystem::is_directory(path, ec))
+    throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "': it is a directory");
+  {
+    errno = 0;
+    std::ifstream probe(path);
+    if(!probe) {
+      const int err = errno;
+      throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "'" +
+                                                  (err != 0 ? std::string(": ") + std::strerror(err) : std::string()));
+    }
+  }
+  const std::string ext = lower_extension(path);
+  if(ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && ext != "ts")
+    throw Invalid_input(Error_code::parse_error,
+                        "cannot read mesh file '" + path + "': " +
+                          (ext.empty() ? std::string("no file extension") : "unknown file extension '." + ext + "'") +
+                          " (supported: .off, .obj, .ply, .stl, .ts)");
+  return ext;
+}
+
+} // namespace io
+} // namespace internal
+
 /*!
 \ingroup PkgTrivialConnectionsIO
 The elements of a mesh built by `read_triangle_mesh()` or `triangle_soup_to_mesh()`, by input index:
@@ -150,26 +211,7 @@ Mesh_input_order<TriangleMesh> read_triangle_mesh(const std::string& path, Trian
   using Point = typename boost::property_traits<
     typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::type>::value_type;
 
-  std::error_code ec;
-  if(!std::filesystem::exists(path, ec))
-    throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "': no such file");
-  if(std::filesystem::is_directory(path, ec))
-    throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "': it is a directory");
-  {
-    errno = 0;
-    std::ifstream probe(path);
-    if(!probe) {
-      const int err = errno;
-      throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "'" +
-                                                  (err != 0 ? std::string(": ") + std::strerror(err) : std::string()));
-    }
-  }
-  const std::string ext = internal::io::lower_extension(path);
-  if(ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && ext != "ts")
-    throw Invalid_input(Error_code::parse_error,
-                        "cannot read mesh file '" + path + "': " +
-                          (ext.empty() ? std::string("no file extension") : "unknown file extension '." + ext + "'") +
-                          " (supported: .off, .obj, .ply, .stl, .ts)");
+  const std::string ext = internal::io::check_mesh_path(path);
   const bool triangulate =
     CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::triangulate), false);
 
@@ -194,29 +236,9 @@ Mesh_input_order<TriangleMesh> read_triangle_mesh(const std::string& path, Trian
     }
   }
 
-  // OFF and PLY are read by our own readers (see read_off_soup() and Ply_reader for what CGAL's do with
-  // malformed files); OBJ is diagnosed by ours first, then read by CGAL's, like STL and GOCAD.
   std::vector<Point> points;
   std::vector<boost::container::small_vector<std::size_t, 3>> polygons;
-  bool read = true;
-  if(ext == "off") {
-    internal::io::read_off_soup(path, points, polygons);
-  } else if(ext == "ply") {
-    const internal::io::File_contents data(path);
-    if(!data.ok())
-      throw Invalid_input(Error_code::io_error, "cannot read mesh file '" + path + "'");
-    internal::io::Ply_reader(data.begin(), data.end(), path).read(points, polygons);
-  } else {
-    if(ext == "obj")
-      internal::io::diagnose_obj(path);
-    try {
-      read = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
-    } catch(const std::length_error&) {
-      read = false; // a count too large for a vector
-    }
-  }
-  if(!read)
-    throw Invalid_input(Error_code::parse_error, "cannot parse '" + path + "' as a " + ext + " mesh file");
+  internal::io::read_polygon_soup_file(path, ext, points, polygons);
   try {
     const bool has_polygons = std::any_of(polygons.begin(), polygons.end(),
                                           [](const auto& polygon) { return polygon.size() > 3; });

@@ -31,6 +31,33 @@ namespace internal {
   3f is halfedge(f), then next, next. Corner halfedge i goes from corner_vertex[i] to
   corner_vertex[next_corner(i)]; opposite_corner[i] is the corner halfedge on the other side, or -1 on a border edge.
 */
+// The largest sine of the three corners of triangle (p, q, r), or 0 when a squared length or the normal
+// under- or overflows: the faces whose largest sine is below minimum_corner_sine are refused (their normal, from
+// the corner of largest sine, has a rounding error of about eps / sine: their plane is rounding noise).
+inline constexpr double minimum_corner_sine = 1e-12;
+
+inline double largest_corner_sine(const std::array<double, 3>& p0, const std::array<double, 3>& q0,
+                                  const std::array<double, 3>& r0)
+{
+  double best_sine = 0;
+  const std::array<double, 3>* corners[3] = {&p0, &q0, &r0};
+  for(int k = 0; k < 3; ++k) {
+    const auto& p = *corners[k];
+    const auto& q = *corners[(k + 1) % 3];
+    const auto& r = *corners[(k + 2) % 3];
+    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    const double w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    const double lw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    if(!std::isnormal(nn) || !std::isnormal(lu) || !std::isnormal(lw)) // squares under- or overflowed
+      return 0;
+    best_sine = std::max(best_sine, nn / lu / lw);
+  }
+  return best_sine;
+}
+
 template <class TriangleMesh>
 struct Mesh_arrays
 {
@@ -246,7 +273,7 @@ private:
                         std::size_t(v));
   }
 
-  static constexpr double kMinimumSine = 1e-12;
+  static constexpr double kMinimumSine = minimum_corner_sine;
 
   template <class VertexPointMap, class Traits>
   void check_degenerate_faces(VertexPointMap vpm, const Traits& traits) const
@@ -266,25 +293,7 @@ private:
         // corner of largest sine, and its rounding error is about eps / sine. Below kMinimumSine the normal
         // (and so the field's plane on that face) could be off by 1e-4 rad or more, or flipped. A shape
         // criterion, so that acceptance does not depend on how the mesh is rotated.
-        double best_sine = 0;
-        const int corners[3] = {a, b, c};
-        for(int k = 0; k < 3; ++k) {
-          const auto& p = points[corners[k]];
-          const auto& q = points[corners[(k + 1) % 3]];
-          const auto& r = points[corners[(k + 2) % 3]];
-          const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-          const double w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-          const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-          const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-          const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-          const double lw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-          if(!std::isnormal(nn) || !std::isnormal(lu) || !std::isnormal(lw)) { // squares under- or overflowed
-            best_sine = 0;
-            break;
-          }
-          best_sine = std::max(best_sine, nn / lu / lw);
-        }
-        bad = !(best_sine >= kMinimumSine);
+        bad = !(largest_corner_sine(points[a], points[b], points[c]) >= kMinimumSine);
       }
       if(bad)
         throw Invalid_input(Error_code::degenerate_face,

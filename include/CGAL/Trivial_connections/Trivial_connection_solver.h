@@ -174,16 +174,16 @@ public:
     \cgalParamNEnd
     \cgalParamNBegin{symmetry_order}
       \cgalParamDescription{the n the solves will use, for `face_directions` above and `align_with_boundary`}
-      \cgalParamType{`int`} \cgalParamDefault{1, and the boundary's turns left free}
+      \cgalParamType{`int`} \cgalParamDefault{1 (the boundary's turns left free)}
     \cgalParamNEnd
     \cgalParamNBegin{align_with_boundary}
       \cgalParamDescription{every boundary face gets the direction of its border edge as its target (of its
         longer border edge when it has two): vectors along the boundary for n = 1, tangent lines for n = 2,
         crosses tangent and normal to it for n = 4. The targets of a boundary loop are linked through the fans of
-        its vertices: the turn the field makes at each boundary vertex is an integer. With `symmetry_order` given
-        here, a turn within a quarter of 2 pi / n of a multiple of it is decided by rounding (the field turns the
+        its vertices: the turn the field makes at each boundary vertex is an integer. With `symmetry_order` n >= 2
+        given here, a turn within a quarter of 2 pi / n of a multiple of it is decided by rounding (the field turns the
         least at that vertex, as for touching pins; no dense block grows with the length of the boundary), the
-        others are free integers chosen with the loop integers; without it every turn is free}
+        others are free integers chosen with the loop integers; otherwise every turn is free}
       \cgalParamType{`bool`} \cgalParamDefault{`false`}
     \cgalParamNEnd
     \cgalParamNBegin{guided_faces}
@@ -268,9 +268,10 @@ private:
     {
       std::vector<double> angles;
       const int n = read_link_targets(np, user_faces, angles);
-      // the boundary's turns are decided for the symmetry order given here (and kept for set_constraints())
+      // the boundary's turns are decided for the symmetry order given here, from 2 on (and kept for
+      // set_constraints()); 1 is also what a caller passes that does not know n yet (the Python module)
       if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::symmetry_order_t>::value)
-        m_boundary_turn_order = n;
+        m_boundary_turn_order = n >= 2 ? n : 0;
       m_links = internal::Constraint_links(m_mesh, m_topology, user_faces, guided, m_align, mu, angles, n,
                                            m_boundary_turn_order);
     }

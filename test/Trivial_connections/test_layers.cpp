@@ -10,6 +10,7 @@
 #include "test_support.h"
 
 #include <CGAL/Trivial_connections/internal/factorization/checked_solve.h>
+#include <CGAL/Trivial_connections/internal/factorization/fill_reducing_ordering.h>
 #include <CGAL/Trivial_connections/internal/factorization/ldlt_on_two_threads.h>
 #include <CGAL/Trivial_connections/internal/factorization/prefactored_system.h>
 #include <CGAL/Trivial_connections/internal/field/field_propagation.h>

@@ -7,6 +7,7 @@
 #define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_FACTORIZATION_CONCURRENT_NODE_ORDER_H
 
 #include <CGAL/Trivial_connections/internal/concurrency.h>
+#include <CGAL/Trivial_connections/internal/factorization/fill_reducing_ordering.h>
 #include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
 #include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
 #include <CGAL/Trivial_connections/solver_traits.h>

@@ -8,6 +8,8 @@
 
 #include <CGAL/Trivial_connections/solver_traits.h>
 #include <CGAL/Trivial_connections/internal/concurrency.h>
+#include <CGAL/Trivial_connections/internal/factorization/backend_view.h>
+#include <CGAL/Trivial_connections/internal/factorization/factor_substitutions.h>
 
 #include <Eigen/Core>
 

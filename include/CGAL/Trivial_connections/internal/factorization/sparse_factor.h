@@ -8,8 +8,11 @@
 
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
+#include <CGAL/Trivial_connections/internal/factorization/factor_substitutions.h>
 #include <CGAL/Trivial_connections/internal/factorization/ldlt_on_two_threads.h>
+#include <CGAL/Trivial_connections/internal/factorization/matrix_storage.h>
 #include <CGAL/Trivial_connections/internal/factorization/selected_inverse.h>
+#include <CGAL/Trivial_connections/internal/factorization/trailing_schur_complement.h>
 #include <CGAL/Trivial_connections/internal/system/system_assembly.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 

@@ -8,6 +8,7 @@
 
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
+#include <CGAL/Trivial_connections/internal/factorization/fill_reducing_ordering.h>
 #include <CGAL/Trivial_connections/internal/mesh/geometry.h>
 #include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
 #include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>

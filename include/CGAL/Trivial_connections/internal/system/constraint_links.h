@@ -411,8 +411,8 @@ private:
     guided face) into a tree by short dual paths: a breadth-first search grows from every constrained face at once,
     each edge where two units' regions meet offers the path through it, and the shortest offers that join two
     units not yet joined are taken (Kruskal). A link then runs between neighbouring units, not up and down the
-    dual spanning tree: elephant-with-holes with its boundary aligned (106 loops), paths of ... crossings in all
-    instead of ..., and a factor of ... nonzeros instead of 8.7e5.
+    dual spanning tree towards its root: with curvature guidance (64 guided faces, n = 4) the factor has 1.08e5
+    nonzeros instead of 1.13e5 on homer, 1.07e6 instead of 1.09e6 on bunny00.
   */
   template <class TriangleMesh>
   void link_groups_by_shortest_paths(const Mesh_arrays<TriangleMesh>& m, const Mesh_topology& t,

@@ -197,6 +197,13 @@ double angle_in_frame(const Mesh_arrays<TriangleMesh>& m, int f, const Vec3& v)
   return std::atan2(dot(v, ey), dot(v, ex));
 }
 
+// angle of corner halfedge i's edge (source to target) in the frame of its face
+template <class TriangleMesh>
+double edge_angle_in_frame(const Mesh_arrays<TriangleMesh>& m, int i)
+{
+  return angle_in_frame(m, Mesh_arrays<TriangleMesh>::face_of(i), sub(m.points[m.target_of(i)], m.points[m.source_of(i)]));
+}
+
 } // namespace internal
 } // namespace Trivial_connections
 } // namespace CGAL

@@ -271,13 +271,6 @@ struct Constraint_links
   }
 
 private:
-  // the direction of corner halfedge i's edge in the frame of its face
-  template <class TriangleMesh>
-  static double edge_direction(const Mesh_arrays<TriangleMesh>& m, int i)
-  {
-    return angle_in_frame(m, Mesh_arrays<TriangleMesh>::face_of(i), sub(m.points[m.target_of(i)], m.points[m.source_of(i)]));
-  }
-
   // whether the link a -> b across `crossings` turns by at most a quarter of 2 pi / n away from a multiple of it
   // (H = theta_a - theta_b + the transport along it, as the link's row reads it), so that rounding is safe
   template <class TriangleMesh>
@@ -286,7 +279,7 @@ private:
   {
     double h = theta_a - theta_b;
     for(int i : crossings)
-      h += edge_direction(m, m.opposite_corner[i]) + CGAL_PI - edge_direction(m, i);
+      h += edge_angle_in_frame(m, m.opposite_corner[i]) + CGAL_PI - edge_angle_in_frame(m, i);
     const double turns = h * n / (2 * CGAL_PI);
     return std::abs(turns - std::round(turns)) <= 0.25;
   }
@@ -305,7 +298,7 @@ private:
     for(Link& link : links) {
       const int a = faces[std::size_t(link.from)].border_corner, b = faces[std::size_t(link.to)].border_corner;
       CGAL_assertion(a >= 0 && b >= 0);
-      link.decided = turns_clearly(m, edge_direction(m, a), edge_direction(m, b), link.crossings, n);
+      link.decided = turns_clearly(m, edge_angle_in_frame(m, a), edge_angle_in_frame(m, b), link.crossings, n);
     }
   }
 

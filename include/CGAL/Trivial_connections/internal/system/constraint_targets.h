@@ -30,8 +30,7 @@ std::vector<double> boundary_target_angles(const Mesh_arrays<TriangleMesh>& m, c
   for(std::size_t a = 0; a < links.faces.size(); ++a) {
     const int i = links.faces[a].border_corner;
     if(i >= 0)
-      angle[a] = angle_in_frame(m, Mesh_arrays<TriangleMesh>::face_of(i),
-                                sub(m.points[m.target_of(i)], m.points[m.source_of(i)]));
+      angle[a] = edge_angle_in_frame(m, i);
   }
   return angle;
 }

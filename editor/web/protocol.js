@@ -1,7 +1,7 @@
 // What the page and the server (editor/serve.py) exchange: binary frames, and singularity indices as exact
 // fractions p/q.
 
-// ---- the server's binary frames (serve.py: frame()) -----------------------------------------------------------
+// ---- the server's binary frames (editor_server/wire.py: frame()) -------------------------------------------------
 const TYPES = { "<f4": Float32Array, "<u4": Uint32Array, "<i4": Int32Array };
 
 export function parseFrame(buffer) {

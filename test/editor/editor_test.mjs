@@ -101,11 +101,13 @@ async function open(browser, address) {
 }
 
 // the legend of the shortcuts (#shortcuts): in view without hovering anything, it names every modifier key the
-// page's code reads (e.shiftKey, e.altKey, e.ctrlKey, e.metaKey in editor/web/main.js), every tool of the tool menu,
+// page's code reads (e.shiftKey, e.altKey, e.ctrlKey, e.metaKey in editor/web/*.js), every tool of the tool menu,
 // and exactly the keyboard shortcuts of the page's table (window.__editor.keys), each spelt out in <kbd>s; returns
 // the table
 async function checkLegend(page) {
-  const source = readFileSync(path.join(here, "..", "..", "editor", "web", "main.js"), "utf8");
+  const web = path.join(here, "..", "..", "editor", "web"); // the page's modules, main.js and those it imports
+  const source = readdirSync(web).filter(f => f.endsWith(".js")).map(f => readFileSync(path.join(web, f), "utf8"))
+    .join("\n");
   const names = { shiftKey: "Shift", altKey: "Alt", ctrlKey: "Ctrl", metaKey: "⌘" };
   const modifiers = [...new Set([...source.matchAll(/\.(shiftKey|altKey|ctrlKey|metaKey)\b/g)].map(m => names[m[1]]))];
   const legend = await page.evaluate(() => {

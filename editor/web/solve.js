@@ -1,0 +1,89 @@
+// Solve requests: the state's field and streamlines from the server; a state shown, solved or unbalanced.
+import { balance, proposal, showBalance } from "./balance.js";
+import { post } from "./protocol.js";
+import { draw, drawMarkers, drawPins, drawStreamlines, fieldView, renderer } from "./scene.js";
+import { request } from "./state.js";
+import { explain, say } from "./status.js";
+
+let display = "glyphs";
+// the request of the field on the screen (the last solve that succeeded: an unbalanced state keeps it)
+let solvedRequest = null;
+
+export async function solve() {
+  const e = window.__editor, started = performance.now();
+  let frame;
+  const body = request();
+  try {
+    frame = await post("/api/solve", body);
+  } catch (error) {
+    say(explain(error, "solve"), true);
+    return false;
+  }
+  solvedRequest = body;
+  const received = performance.now();
+  const { header: h, arrays } = frame;
+  fieldView.setField(arrays.angle, h.n);
+  drawMarkers();
+  drawPins();
+  const built = performance.now();
+  draw();
+  if (e.measure) {
+    // the frame drawn: reading a pixel of the overlay waits for its drawing (and a pixel of the WebGL canvas for the
+    // GPU, when the camera had moved)
+    const called = performance.now();
+    fieldView.context.getImageData(0, 0, 1, 1);
+    const gl = renderer.getContext();
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+    const now = performance.now();
+    e.latencies.push({ total: now - (e.clickTime ?? started), server: received - started,
+                       solve: 1e3 * (h.timings.solve + h.timings.field), draw: now - received,
+                       upload: built - received, render: now - built, calls: called - built, finish: now - called });
+  }
+  e.solves += 1;
+  e.lastError = null;
+  say(`energy ${h.energy.toPrecision(6)}, residual ${h.max_residual.toExponential(1)}, ` +
+      `${(performance.now() - started).toFixed(1)} ms (solve ${(1e3 * h.timings.solve).toFixed(1)} ms)`);
+  if (display === "streamlines") traceStreamlines();
+  return true;
+}
+
+// the streamlines of the field on the screen (the last solved, also while the state is unbalanced)
+async function traceStreamlines() {
+  if (!solvedRequest) return;
+  try {
+    const { arrays } = await post("/api/streamlines", solvedRequest);
+    if (display !== "streamlines") return; // glyphs again meanwhile
+    drawStreamlines(arrays.points, arrays.offsets);
+    window.__editor.streamlineCount = arrays.offsets.length - 1;
+    draw();
+  } catch (error) {
+    say(explain(error, "streamlines"), true);
+  }
+}
+
+// shows the current state: solved when every closed component balances; else a state the editor shows, not a
+// refusal: the markers, the balance's lines, and the last field solved stays drawn
+export async function show() {
+  showBalance();
+  drawPins();
+  if (!balance().every(b => b.balanced)) {
+    say("Unbalanced (see above): the field drawn is the last balanced one. Edit on, or " +
+        (!proposal ? "make every index a multiple of 1/n."
+         : "press “balance” to add " +
+           (proposal.length === 1 ? "the pale marker's singularity." : "the pale markers' singularities.")));
+    window.__editor.lastError = null;
+    window.__editor.unbalanced = true;
+    drawMarkers();
+    draw();
+    return true;
+  }
+  window.__editor.unbalanced = false;
+  return solve();
+}
+
+// glyphs or streamlines
+export function showAs(style) {
+  display = style;
+  fieldView.style = display;
+  if (display === "streamlines") traceStreamlines(); else { drawStreamlines(null); draw(); }
+}

@@ -4,7 +4,7 @@
 // Author(s) : CGAL Trivial Connections developers
 //
 // Placement: automatic placement of singularities, their refinement, curvature guides and guided faces
-// (Solver_of and Python_solver methods declared in solver.h).
+// (Solver_of and Python_solver methods declared in solver_backend.h and solver_state.h).
 // A part of the one translation unit python/trivial_connections_module.cpp (which includes the headers and defines
 // the types they use, in its order): not a header to include elsewhere.
 

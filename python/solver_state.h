@@ -105,6 +105,16 @@ private:
     return f();
   }
 
+  // f(the call's targets: `user`'s directions with the feature pins', or null when neither) as reading() does
+  template <class F>
+  auto reading_with_targets(const std::optional<std::vector<Kernel::Vector_3>>& user, F&& f) const
+  {
+    return reading([&] {
+      const auto targets = with_feature_targets(user);
+      return f(targets ? &*targets : nullptr);
+    });
+  }
+
   // f() without the GIL, alone: set_constraints() waits for the readers and they for it
   template <class F>
   auto writing(F&& f) -> decltype(f())

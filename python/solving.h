@@ -23,10 +23,8 @@ Result Python_solver::solve(const py::object& singularities, const py::object& n
   if(all_directions && n > 1)
     check_directions_fit(n);
   Progress_context context("solve()", progress);
-  Solve_output out = reading([&] {
-    const auto targets = with_feature_targets(in.directions);
-    return m_solver->solve(s, n, targets ? &*targets : nullptr, in.periods_or_null(), all_directions,
-                           context.callback());
+  Solve_output out = reading_with_targets(in.directions, [&](const std::vector<Kernel::Vector_3>* targets) {
+    return m_solver->solve(s, n, targets, in.periods_or_null(), all_directions, context.callback());
   });
   m_last_n = n;
   return result_of(std::move(out), n);

@@ -15,6 +15,15 @@ namespace {
 
 // ---- numpy arrays in ------------------------------------------------------------------------------------
 
+// An array as C-ordered doubles (converted when it is not; ensure() gives a null array when it cannot be)
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// Row i of rows of three doubles as a vector
+Kernel::Vector_3 vector_at(const double* xyz, std::size_t i)
+{
+  return Kernel::Vector_3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+}
+
 // `a` as an (rows, 3) array: its shape checked, its dtype of kind `kinds` ("f", "iu", ...).
 void check_rows_of_three(const py::array& a, const char* name, const char* kinds, const char* what)
 {
@@ -159,7 +168,7 @@ std::size_t face_number(const py::handle& f)
 // Three numbers (a sequence or a (3,) array) as a direction
 std::array<double, 3> direction_of(const py::handle& h)
 {
-  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(h);
+  const auto a = Doubles::ensure(h);
   if(!a || a.ndim() != 1 || a.shape(0) != 3)
     throw py::value_error("a direction must be three numbers, got " + std::string(py::repr(h)));
   return {{a.data()[0], a.data()[1], a.data()[2]}};
@@ -190,7 +199,7 @@ std::vector<TC::Face_direction> face_directions_of(const py::object& faces, cons
   if(std::size_t(a.shape(0)) != out.size())
     throw py::value_error("directions must have one row per face (" + std::to_string(out.size()) + "), got " +
                           std::to_string(a.shape(0)));
-  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  const auto d = Doubles::ensure(a);
   for(std::size_t i = 0; i < out.size(); ++i)
     out[i].direction = {{d.data()[3 * i], d.data()[3 * i + 1], d.data()[3 * i + 2]}};
   return out;
@@ -241,8 +250,7 @@ struct Face_vector_map
   double* xyz;
   friend Kernel::Vector_3 get(const Face_vector_map& m, face_descriptor f)
   {
-    const double* p = m.xyz + 3 * std::size_t(f);
-    return Kernel::Vector_3(p[0], p[1], p[2]);
+    return vector_at(m.xyz, std::size_t(f));
   }
   friend void put(const Face_vector_map& m, face_descriptor f, const Kernel::Vector_3& v)
   {

@@ -4,7 +4,7 @@
 // Author(s) : CGAL Trivial Connections developers
 //
 // Placement: automatic placement of singularities, their refinement, curvature guides and guided faces
-// (Solver_of and Python_solver methods declared in solver.h).
+// (Solver_of and Python_solver methods declared in solver_backend.h and solver_state.h).
 // A part of the one translation unit python/trivial_connections_module.cpp (which includes the headers and defines
 // the types they use, in its order): not a header to include elsewhere.
 
@@ -108,11 +108,11 @@ py::tuple Python_solver::place_singularities(const py::object& n_in, bool align_
   const Optional_inputs targets = optional_inputs(directions, py::none());
   Singularities placed;
   Progress_context context("place_singularities()", progress);
-  const TC::Placement_report report = reading([&] {
-    const auto pinned = with_feature_targets(targets.directions);
-    return m_solver->place(n, align_boundary, in.directions_or_null(), strength, kept, in.periods_or_null(),
-                           pinned ? &*pinned : nullptr, placed, context.callback());
-  });
+  const TC::Placement_report report =
+    reading_with_targets(targets.directions, [&](const std::vector<Kernel::Vector_3>* pinned) {
+      return m_solver->place(n, align_boundary, in.directions_or_null(), strength, kept, in.periods_or_null(), pinned,
+                             placed, context.callback());
+    });
   py::dict d;
   d["n"] = report.symmetry_order;
   d["aligned"] = report.aligned;
@@ -177,11 +177,11 @@ py::tuple Python_solver::refine_singularities(const py::object& start, const py:
       fixed.push_back(vertex_number(v));
   // it solves again and again on the solver: as a solve, beside other solves
   Progress_context context("refine_singularities()", progress);
-  const TC::Refinement_report<vertex_descriptor> r = reading([&] {
-    const auto targets = with_feature_targets(in.directions);
-    return m_solver->refine(s, n, targets ? &*targets : nullptr, in.periods_or_null(), fixed, cancel_pairs,
-                            maximum_trials, context.callback());
-  });
+  const TC::Refinement_report<vertex_descriptor> r =
+    reading_with_targets(in.directions, [&](const std::vector<Kernel::Vector_3>* targets) {
+      return m_solver->refine(s, n, targets, in.periods_or_null(), fixed, cancel_pairs, maximum_trials,
+                              context.callback());
+    });
   Singularities refined;
   for(const auto& [v, k] : r.singularities)
     refined.emplace_back(std::size_t(v), k);

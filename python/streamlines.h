@@ -64,7 +64,7 @@ void bind_streamlines(py::module_& m, py::class_<Python_solver>& solver)
       const std::string path = path_of(path_in);
       std::vector<TC::Streamline<Mesh>> s;
       for(const py::handle line : lines) {
-        const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(line);
+        const auto a = Doubles::ensure(line);
         if(!a || a.ndim() != 2 || a.shape(1) != 3)
           throw py::value_error("each streamline must be a (k, 3) array of points");
         TC::Streamline<Mesh> l;

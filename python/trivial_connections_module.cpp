@@ -8,7 +8,9 @@
 // pybind11 and Python's headers are found, and by setup.py (pip install .). Its parts, one concept each, are the
 // headers beside it, included below in the order of their dependencies: arguments.h (Python values and numpy
 // arrays in and out), progress.h (progress callbacks, logging, Ctrl-C), mesh_input.h (V, F and mesh files;
-// read_mesh()), features.h (sharp features), solver.h (Solver and Result: construction, solve(), topology),
+// read_mesh()), features.h (sharp features), the solver: solver_backend.h (the C++ solver of either backend),
+// solver_state.h (the class Solver: its state and construction), solving.h (solve(), set_constraints()),
+// solver_outputs.h (Result, topology, the mesh's arrays), solver_bindings.h (Result's and Solver's binding), then
 // placement.h (automatic placement and refinement), streamlines.h and files.h. This file holds the types they
 // share and the module itself: numpy at import, __version__, the exception InvalidInput, the bindings' calls.
 //
@@ -84,7 +86,11 @@ using Singularities = std::vector<std::pair<std::size_t, TC::Singularity_index>>
 #include "progress.h"
 #include "mesh_input.h"
 #include "features.h"
-#include "solver.h"
+#include "solver_backend.h"
+#include "solver_state.h"
+#include "solving.h"
+#include "solver_outputs.h"
+#include "solver_bindings.h"
 #include "placement.h"
 #include "streamlines.h"
 #include "files.h"

@@ -138,6 +138,7 @@ int main(int argc, char** argv)
     print_version(std::cout);
     return 0;
   }
+  one_blas_thread_under_address_limit(argv);
   use_huge_pages(argv, options.mesh);
   stop_idle_blas_threads();
   Progress_printer progress(options.progress || stderr_is_terminal());

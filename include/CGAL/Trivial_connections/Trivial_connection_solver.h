@@ -8,6 +8,7 @@
 
 #include <CGAL/disable_warnings.h>
 
+#include <CGAL/Trivial_connections/Dual_loop.h>
 #include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Singularity_index.h>
 #include <CGAL/Trivial_connections/Solve_report.h>
@@ -15,6 +16,7 @@
 #include <CGAL/Trivial_connections/parameters.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 #include <CGAL/Trivial_connections/internal/concurrency.h>
+#include <CGAL/Trivial_connections/internal/solver_parameters.h>
 #include <CGAL/Trivial_connections/internal/mesh/geometry.h>
 #include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
 #include <CGAL/Trivial_connections/internal/topology/tree_cotree.h>
@@ -53,21 +55,6 @@
 
 namespace CGAL {
 namespace Trivial_connections {
-
-/*!
-\ingroup PkgTrivialConnectionsRef
-A closed dual loop given by the halfedges it crosses: `halfedges[i]` is crossed from `face(halfedges[i])`
-to `face(opposite(halfedges[i]))`, and `face(opposite(halfedges[i])) == face(halfedges[i+1])` cyclically.
-A boundary loop crosses, vertex after vertex of the boundary, every interior edge of each vertex's open
-fan counter-clockwise (an interior edge joining two of its vertices is crossed twice, once each way).
-*/
-template <class HalfedgeDescriptor>
-struct Dual_loop
-{
-  Loop_kind kind = Loop_kind::generator;     ///< boundary loop or homology generator
-  std::size_t component = 0;                 ///< index of the loop's component
-  std::vector<HalfedgeDescriptor> halfedges; ///< the halfedges crossed, in order (see above)
-};
 
 namespace internal {
 
@@ -208,7 +195,7 @@ public:
                                      const NamedParameters& np = parameters::default_values())
     : Trivial_connection_solver(tm,
                                 [&] {
-                                  notify(progress_of(np), Phase::mesh_setup, 0);
+                                  notify(internal::progress_of(np), Phase::mesh_setup, 0);
                                   return Mesh(tm);
                                 }(),
                                 np)
@@ -221,16 +208,6 @@ public:
   Trivial_connection_solver& operator=(const Trivial_connection_solver&) = delete;
 
 private:
-  // the vertex point map of np, else tm's: the default is not made when np has one (Solver_access::make())
-  template <class NamedParameters>
-  static auto vertex_point_map_of(const TriangleMesh& tm, const NamedParameters& np)
-  {
-    if constexpr(CGAL::parameters::is_default_parameter<NamedParameters, CGAL::internal_np::vertex_point_t>::value)
-      return get_const_property_map(CGAL::vertex_point, tm);
-    else
-      return CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point);
-  }
-
   // From the mesh's arrays, made already: by the constructor above, or from the validated connectivity a mesh
   // is built from (internal::Solver_access::make()), which spares deriving them from the mesh again. With such
   // arrays and a vertex point map in np, it reads nothing of tm (which may then still be under construction).
@@ -241,11 +218,11 @@ private:
                                                   Geom_traits())),
       m_weighting(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::weighting),
                                                      Weighting::hodge_star)),
-      m_progress(progress_of(np)),
+      m_progress(internal::progress_of(np)),
       m_mesh(std::move(mesh))
   {
     std::vector<int> user_faces, guided;
-    read_face_sets(np, user_faces, guided);
+    internal::read_face_sets(m_mesh, np, user_faces, guided);
     const double mu = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::guidance_weight), 1.);
     if(!(mu > 0) || !std::isfinite(mu))
       throw Invalid_input(Error_code::invalid_argument,
@@ -256,7 +233,7 @@ private:
     // corner angles (not needed by the system) run beside the factorization.
     m_topology = internal::Mesh_topology(m_mesh);
     internal::Concurrent_node_order<Solver_traits> node_order(m_mesh, m_topology);
-    m_mesh.check_and_read_points(vertex_point_map_of(tm, np), m_traits);
+    m_mesh.check_and_read_points(internal::vertex_point_map_of(tm, np), m_traits);
     notify(Phase::mesh_setup, 1);
     notify(Phase::geometry, 0);
     m_geometry = internal::Mesh_geometry(m_mesh, m_weighting);
@@ -267,7 +244,7 @@ private:
     build_loops();
     {
       std::vector<double> angles;
-      const int n = read_link_targets(np, user_faces, angles);
+      const int n = internal::read_link_targets(m_mesh, m_traits, np, user_faces, angles);
       // the boundary's turns are decided for the symmetry order given here, from 2 on (and kept for
       // set_constraints()); 1 is also what a caller passes that does not know n yet (the Python module)
       if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::symmetry_order_t>::value)
@@ -407,11 +384,11 @@ public:
   Constraint_update set_constraints(const NamedParameters& np = parameters::default_values())
   {
     std::vector<int> user_faces, guided;
-    read_face_sets(np, user_faces, guided);
+    internal::read_face_sets(m_mesh, np, user_faces, guided);
     Constraint_update update;
     try {
       std::vector<double> angles;
-      const int n = read_link_targets(np, user_faces, angles);
+      const int n = internal::read_link_targets(m_mesh, m_traits, np, user_faces, angles);
       internal::Constraint_links links(m_mesh, m_topology, user_faces, guided, m_align, m_links.guidance_weight,
                                        angles, n, m_boundary_turn_order);
       // touching pins fix edges, which changes M: only links without them go outside a kept factor
@@ -475,15 +452,15 @@ public:
   Solve_report solve(const SingularityRange& singularities, HalfedgeAngleMap x,
                      const NamedParameters& np = parameters::default_values())
   {
-    const int n = internal::checked_symmetry_order(
-      CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::symmetry_order), 1));
+    const int n = internal::symmetry_order_of(np);
     Solve_report report;
     report.symmetry_order = n;
     report.components = m_components;
     const std::vector<std::int64_t> k =
       internal::checked_vertex_indices(m_mesh, m_geometry, m_topology, singularities, n, report.components);
     // per slot (loops, then links): H with H + sum x = 2 pi period / n
-    const std::vector<double> holonomy = internal::slot_holonomies(m_rows, m_loop_holonomy, target_angles(np));
+    const std::vector<double> holonomy =
+      internal::slot_holonomies(m_rows, m_loop_holonomy, internal::target_angles(m_mesh, m_traits, m_links, np));
     std::vector<std::int64_t> periods(holonomy.size(), 0);
     std::vector<char> prescribed(holonomy.size(), 0);
     if(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::loop_periods_t>::value)
@@ -492,7 +469,7 @@ public:
                                           std::vector<std::int64_t>())),
                                         m_topology, report.components, n, periods, prescribed);
 
-    const Progress_callback progress = progress_of(np);
+    const Progress_callback progress = internal::progress_of(np);
     const double unit = 2 * CGAL_PI / n;
     notify(progress, Phase::solve, 0);
     // the links between touching pins are decided by rounding; the edges they fix move to the right-hand side
@@ -595,23 +572,14 @@ public:
   void compute_field(HalfedgeAngleMap x, FaceVectorMap field,
                      const NamedParameters& np = parameters::default_values()) const
   {
-    const double seed_angle =
-      CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::seed_angle), 0.);
-    const int seed = CGAL::parameters::is_default_parameter<NamedParameters, tc_np::seed_face_t>::value
-                       ? -1
-                       : internal::checked_seed_face(m_mesh, CGAL::parameters::choose_parameter(
-                                                               CGAL::parameters::get_parameter(np, tc_np::seed_face),
-                                                               face_descriptor()));
-    if(!std::isfinite(seed_angle))
-      throw Invalid_input(Error_code::invalid_argument, "the seed angle is not finite");
-    const Progress_callback progress = progress_of(np);
+    const int seed = internal::seed_face_of(m_mesh, np);
+    const double seed_angle = internal::seed_angle_of(np);
+    const Progress_callback progress = internal::progress_of(np);
     notify(progress, Phase::field, 0);
-    const std::vector<double> target = m_links.faces.empty() ? std::vector<double>() : target_angles(np);
-    std::optional<int> n;
-    if(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::symmetry_order_t>::value)
-      n = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::symmetry_order), 1);
-    const std::vector<double> angle =
-      internal::field_angles(m_mesh, m_geometry, m_topology, m_links, x, target, n, seed, seed_angle);
+    const std::vector<double> target =
+      m_links.faces.empty() ? std::vector<double>() : internal::target_angles(m_mesh, m_traits, m_links, np);
+    const std::vector<double> angle = internal::field_angles(m_mesh, m_geometry, m_topology, m_links, x, target,
+                                                             internal::field_symmetry_order_of(np), seed, seed_angle);
     internal::write_field(m_mesh, angle, m_traits, field);
     notify(progress, Phase::field, 1);
   }
@@ -629,13 +597,6 @@ private:
       const int r = node >= 0 && !m_geometry.on_boundary[v] ? m_rows.row_of_node[node] : -1;
       put(gradient, m_mesh.vertex_descriptors[v], r >= 0 ? 4 * CGAL_PI * lambda[r] : 0.);
     }
-  }
-
-  template <class NamedParameters>
-  static Progress_callback progress_of(const NamedParameters& np)
-  {
-    return Progress_callback(
-      CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::progress), Progress_callback()));
   }
 
   static void notify(const Progress_callback& progress, Phase p, double fraction)
@@ -658,53 +619,6 @@ private:
       for(int i : l.crossings)
         loop.halfedges.push_back(m_mesh.halfedges[i]);
       m_loops.push_back(std::move(loop));
-    }
-  }
-
-  // `constrained_faces` and `guided_faces` as face indices, checked
-  template <class NamedParameters>
-  void read_face_sets(const NamedParameters& np, std::vector<int>& user_faces, std::vector<int>& guided) const
-  {
-    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::constrained_faces_t>::value)
-      user_faces =
-        internal::checked_face_indices(m_mesh, CGAL::parameters::get_parameter(np, tc_np::constrained_faces), "constrained");
-    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::guided_faces_t>::value)
-      guided = internal::checked_face_indices(m_mesh, CGAL::parameters::get_parameter(np, tc_np::guided_faces), "guided");
-    internal::check_disjoint_face_sets(m_mesh.nf, user_faces, guided);
-  }
-
-  // With `face_directions` when the faces are set (constructor, set_constraints()): the user targets' angles, in
-  // the order of `user_faces`, so that touching targets that disagree are left to the lattice; and n (default 1)
-  template <class NamedParameters>
-  int read_link_targets(const NamedParameters& np, const std::vector<int>& user_faces, std::vector<double>& angles) const
-  {
-    const int n = internal::checked_symmetry_order(
-      CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tc_np::symmetry_order), 1));
-    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::face_directions_t>::value) {
-      const auto& directions = CGAL::parameters::get_parameter(np, tc_np::face_directions);
-      for(int f : user_faces) // a zero vector: not known yet (NaN: rounded like any touching pin)
-        angles.push_back(get(directions, m_mesh.face_descriptors[std::size_t(f)]) == CGAL::NULL_VECTOR
-                           ? std::numeric_limits<double>::quiet_NaN()
-                           : internal::user_target_angle(m_mesh, m_traits, directions, f));
-    }
-    return n;
-  }
-
-  // per constrained face, its target angle in its frame: the direction of its border halfedge when the boundary
-  // is aligned, otherwise the user's vector (`face_directions`) projected onto the face
-  template <class NamedParameters>
-  std::vector<double> target_angles(const NamedParameters& np) const
-  {
-    std::vector<double> angle = internal::boundary_target_angles(m_mesh, m_links);
-    if(!m_links.has_user_constraints)
-      return angle;
-    if constexpr(CGAL::parameters::is_default_parameter<NamedParameters, tc_np::face_directions_t>::value) {
-      throw Invalid_input(Error_code::invalid_constraint,
-                          "the solver has constrained or guided faces: their directions (face_directions) are missing");
-    } else {
-      internal::set_user_target_angles(m_mesh, m_links, m_traits,
-                                       CGAL::parameters::get_parameter(np, tc_np::face_directions), angle);
-      return angle;
     }
   }
 
@@ -739,7 +653,8 @@ private:
 
   // The parts, one per layer, declared in the order they are built: each is made from the ones before it and
   // keeps at most const references to them; none knows the coordinator, which alone sequences them and is
-  // the only one to read named parameters (n, the weights and mu enter here and are passed down as values).
+  // the only one to read named parameters (internal/solver_parameters.h: n, the weights and mu enter here and are
+  // passed down as values).
   const TriangleMesh& m_tm;                  // the user's mesh, read only
   Geom_traits m_traits;
   Weighting m_weighting;
@@ -768,42 +683,10 @@ private:
   int m_boundary_turn_order = 0; // the constructor's symmetry_order, when given (see Constraint_links)
 };
 
-namespace internal {
-
-template <class TriangleMesh, class GeomTraits, class SolverTraits>
-struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverTraits>>
-{
-  using Solver = Trivial_connection_solver<TriangleMesh, GeomTraits, SolverTraits>;
-  static const TriangleMesh& triangle_mesh(const Solver& s) { return s.m_tm; }
-  static const Mesh_arrays<TriangleMesh>& mesh(const Solver& s) { return s.m_mesh; }
-  static const Mesh_geometry& geometry(const Solver& s) { return s.m_geometry; }
-  static const Mesh_topology& topology(const Solver& s) { return s.m_topology; }
-  // the constrained and guided faces (read-only: the placement holds the constrained ones)
-  static const Constraint_links& links(const Solver& s) { return s.m_links; }
-  // the rows of the constraint system and its factorization (the refinement reads M^-1 from it)
-  static const Constraint_rows& rows(const Solver& s) { return s.m_rows; }
-  static Prefactored_system<typename Solver::Solver_traits>& system(Solver& s) { return s.m_system; }
-  // M^-1 b of the last solve() given an energy_gradient
-  static const Eigen::VectorXd& multipliers(const Solver& s) { return s.m_multipliers; }
-  // the integers of every slot (loops, then links) of the last solve; a candidate for the next solve only, which
-  // then gives an energy no higher than with them (when its search cannot prove the optimum)
-  static const std::vector<std::int64_t>& last_periods(const Solver& s) { return s.m_last_periods; }
-  static void hint_periods(Solver& s, std::vector<std::int64_t> periods) { s.m_period_hint = std::move(periods); }
-  // after set_constraints() on a kept factorization: its links into the factor (factored again)
-  static void factor_bordered_links(Solver& s) { s.factor_bordered_links(); }
-  // a solver of tm from its arrays, made from the connectivity tm is built from (see Mesh_arrays); with a
-  // vertex_point_map in np, nothing of tm is read until the constructor has returned
-  template <class NamedParameters = parameters::Default_named_parameters>
-  static std::unique_ptr<Solver> make(const TriangleMesh& tm, Mesh_arrays<TriangleMesh>&& mesh,
-                                      const NamedParameters& np = parameters::default_values())
-  {
-    return std::unique_ptr<Solver>(new Solver(tm, std::move(mesh), np));
-  }
-};
-
-} // namespace internal
 } // namespace Trivial_connections
 } // namespace CGAL
+
+#include <CGAL/Trivial_connections/internal/solver_access.h>
 
 #include <CGAL/enable_warnings.h>
 

@@ -25,6 +25,7 @@
 #include <dlfcn.h>
 #include <malloc.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <unistd.h>
 #endif
 
@@ -128,6 +129,28 @@ inline void use_huge_pages(char** argv, const std::string& mesh)
 #else
   (void)argv;
   (void)mesh;
+#endif
+}
+
+/*
+  Under a limit on the address space (`ulimit -v`, RLIMIT_AS), OpenBLAS's worker threads, started when it is
+  loaded, retry forever to map their 128 MB buffers, and stop_idle_blas_threads() then waits for them forever:
+  the program hung on a 5k-face mesh under 150 MB. With one thread OpenBLAS starts none, and a BLAS call that
+  finds no memory is a clear out-of-memory error. OPENBLAS_NUM_THREADS is read only when the library is loaded,
+  so the program starts itself again with it (10 to 20 ms, only under such a limit; a value the user set stays).
+*/
+inline void one_blas_thread_under_address_limit(char** argv)
+{
+#if defined(__linux__) && defined(__GLIBC__)
+  struct rlimit limit;
+  if(::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY || std::getenv("OPENBLAS_NUM_THREADS"))
+    return;
+  if(::setenv("OPENBLAS_NUM_THREADS", "1", 1) != 0)
+    return;
+  ::execv("/proc/self/exe", argv);
+  ::unsetenv("OPENBLAS_NUM_THREADS"); // not restarted: go on as we are
+#else
+  (void)argv;
 #endif
 }
 

@@ -45,16 +45,24 @@ from benchmark_tables.report import earlier_runs, header_lines, section_lines
 from benchmark_tables.sections import KEYS, join, merge, missing, split, split_file, write_atomically
 
 
+def log_written(titles):
+    """appends the titles of the sections written to $TC_SECTIONS_LOG (scripts/regenerate_results.sh's record)"""
+    log = os.environ.get("TC_SECTIONS_LOG")
+    if log:
+        with open(log, "a") as f:
+            f.writelines(t + "\n" for t in titles)
+
+
 def read_run_info(path):
     """scripts/regenerate_results.sh's record, a tab-separated file: 'command', 'start', 'total' lines, then one
-    'step NAME SECONDS STATUS KEYS NOTE' line per step (KEYS: the short names of the sections it writes) and
-    'kept KEY REASON' lines"""
+    'step NAME SECONDS STATUS KEYS NOTE' line per step (KEYS: the short names of the sections it writes), 'wrote
+    STEP TITLE' lines (the sections a step that succeeded wrote) and 'kept KEY REASON' lines"""
     run = {"command": "bash scripts/regenerate_results.sh", "start": "", "total": 0.0, "steps": [], "kept": {},
            "written": set()}
     with open(path) as f:
         for line in f:
             parts = line.rstrip("\n").split("\t")
-            if parts[0] in ("command", "start") and len(parts) > 1:
+            if parts[0] in ("command", "start", "mode") and len(parts) > 1:
                 run[parts[0]] = parts[1]
             elif parts[0] == "total" and len(parts) > 1:
                 run["total"] = float(parts[1])
@@ -62,8 +70,8 @@ def read_run_info(path):
                 name, seconds, status, keys = parts[1], float(parts[2]), parts[3], parts[4].split()
                 run["steps"].append({"name": name, "seconds": seconds, "status": status, "keys": keys,
                                      "note": parts[5] if len(parts) > 5 else ""})
-                if status == "done":
-                    run["written"].update(KEYS.get(k, k) for k in keys)
+            elif parts[0] == "wrote" and len(parts) >= 3:
+                run["written"].add(parts[2])
             elif parts[0] == "kept" and len(parts) >= 3:
                 run["kept"][KEYS.get(parts[1], parts[1])] = parts[2]
     return run
@@ -108,6 +116,7 @@ def main():
         except (OSError, ValueError) as e:
             sys.exit(f"benchmark_table: {e}")
         replace_sections(args.out, sections)
+        log_written(t for t, _ in sections)
         print(f"benchmark_table: wrote the sections {', '.join(repr(t.lstrip('#').strip()) for t, _ in sections)} "
               f"of {args.out}")
         return
@@ -134,6 +143,7 @@ def main():
         if not os.path.exists(args.out):
             sys.exit(f"benchmark_table: {args.out} missing (run the suite first)")
         replace_section(args.out, title, section)
+        log_written([title])
         print(f"benchmark_table: wrote the section {title[4:]!r} of {args.out}")
         return
     results, contexts = load(benchmark_files)
@@ -153,6 +163,7 @@ def main():
         if not os.path.exists(args.out):
             sys.exit(f"benchmark_table: {args.out} missing (run the suite first)")
         replace_section(args.out, title, section)
+        log_written([title])
         print(f"benchmark_table: wrote the section {title[4:]!r} of {args.out}")
         return
     # the sections made from the JSON in place of theirs in --out, every other section of --out kept as it is
@@ -164,6 +175,7 @@ def main():
         sys.exit(f"benchmark_table: sections would vanish from {args.out}: {lost}")
     header = header_lines(contexts, args.command, status=status, earlier=earlier_runs(old_header))
     write_atomically(args.out, join(header, status))
+    log_written(t for t, _ in new)
     report_kept(status, args.out)
 
 

@@ -21,8 +21,8 @@
 #   --no-build     use the existing binaries.   --table-only   only rewrite the table from the JSON files.
 #   --integers     instead of the suite: trivial_connections_integer_benchmark (the choice of the free integers
 #                  against their number, about 15 s, build-bench) into build-bench/integer-choice.json, and its
-#                  table as the section "Integer choice per dimension" at the end of FILE (replacing the one
-#                  there). Run it after the suite: the suite rewrites FILE without that section.
+#                  table as the section "Integer choice per dimension" of FILE (replaced in place, the other
+#                  sections kept).
 #   --placement    instead of the suite: trivial_connections_placement_benchmark (automatic singularity placement,
 #                  n = 4, against the suite's reference factorization, and for n = 1, 2, 4 the placement then the
 #                  refinement to a local minimum; small: femur (7.8k faces) and 52k-302k faces, about 1 min per
@@ -91,6 +91,9 @@ if [ -z "$BACKENDS" ]; then
   fi
 fi
 
+PYTHON=python3
+command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
+
 if [ "$INTEGERS" = 1 ]; then
   dir="$ROOT/build-bench"
   if [ "$BUILD" = 1 ]; then
@@ -106,29 +109,24 @@ if [ "$INTEGERS" = 1 ]; then
   md="$(mktemp)"
   TC_BENCH_MARKDOWN="$md" "$exe" --benchmark_out="$dir/integer-choice.json" --benchmark_out_format=json \
     --benchmark_context=commit="${COMMIT%% *}"
+  section="$(mktemp)"
   {
-    # FILE without the section (and without trailing blank lines), then the section
-    sed '/^### Integer choice per dimension/,$d' "$OUT" | awk 'NF { for(; b > 0; b--) print ""; print; next } { b++ }'
-    echo
     echo "### Integer choice per dimension"
     echo
     echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')), commit $COMMIT, by \`bash scripts/run_benchmarks.sh --integers\` (\`benchmark/Trivial_connections/benchmark_integer_choice.cpp\`, Eigen::SimplicialLDLT)."
     echo "k: the free integers (the loops not prescribed but one boundary loop per bordered component, which Poincaré–Hopf fixes, plus the constraint links); annulus_mM and holes_pP are generated (align_with_boundary: a constraint link per boundary vertex but one), the others are CGAL's meshes. Reduction: the constructor's loop_metric phase (the metric of the integers + LLL with deep insertions). Choice: the loop_integers phase of a solve (nearest plane, descent, budgeted enumeration) and the whole solve, medians over 9 solves of each of two singularity sets. Rel. gap = (energy − energy_lower_bound) / energy (energy with the guidance energy, 0 here), the larger of the two sets (0 when proven); proven: sets whose choice is proven optimal; rounding excess: (rounding_energy − energy) / energy, what rounding the integers one by one would cost more, the larger of the two sets."
     echo
     cat "$md"
-  } > "$OUT.tmp"
-  mv "$OUT.tmp" "$OUT"
-  rm -f "$md"
-  echo "run_benchmarks.sh: integer choice table appended to $OUT"
+  } > "$section"
+  # the section replaced in place (the rest of FILE kept; written atomically)
+  "$PYTHON" "$ROOT/scripts/benchmark_table.py" --insert "$section" --out "$OUT"
+  rm -f "$md" "$section"
   exit 0
 fi
 
 RESULTS_DIR="$ROOT/build-bench/benchmark-results"
 export TC_BENCH_MESH_CACHE="${TC_BENCH_MESH_CACHE:-$ROOT/build-bench/benchmark-meshes}"
 mkdir -p "$RESULTS_DIR" "$TC_BENCH_MESH_CACHE"
-
-PYTHON=python3
-command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
 
 HAVE_CHOLMOD=0
 if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then HAVE_CHOLMOD=1; fi

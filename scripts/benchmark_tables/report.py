@@ -43,7 +43,7 @@ def earlier_runs(old_header):
                 parts.append(line[len(label):].strip())
         if line.startswith("- **Earlier runs**"):
             parts.append(line.split("): ", 1)[1] if "): " in line else line[len("- **Earlier runs**"):].strip())
-    return " ".join(parts)
+    return " — ".join(parts)
 
 
 def header_lines(contexts, command, root=None, run=None, status=None, earlier=""):
@@ -61,8 +61,10 @@ def header_lines(contexts, command, root=None, run=None, status=None, earlier=""
     lines.append("# Benchmark results")
     lines.append("")
     if run:
-        lines.append(f"Written by `{run['command']}` (every measurement of this file, one step after the other, "
-                     f"then `scripts/benchmark_table.py`), started {run['start']} UTC, "
+        what = ("no measurement: the tables that the JSON files of earlier runs make, rewritten"
+                if run.get("mode") == "tables-only" else
+                "every measurement of this file, one step after the other, then `scripts/benchmark_table.py`")
+        lines.append(f"Written by `{run['command']}` ({what}), started {run['start']} UTC, "
                      f"**{fmt_seconds(run['total'])}** in all; each section says what it measures "
                      "(`benchmark/Trivial_connections/benchmark_trivial_connections.cpp` for the tables of the suite).")
     else:

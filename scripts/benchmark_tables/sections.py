@@ -98,5 +98,10 @@ def missing(before, after):
 
 
 def has_date_line(lines):
-    """whether the section says when it was measured (a line starting 'Measured')"""
-    return any(line.startswith("Measured") for line in lines[1:])
+    """whether the section says when it was measured: a line starting 'Measured', or a date in its first
+    paragraph"""
+    if any(line.startswith("Measured") for line in lines[1:]):
+        return True
+    body = _trim(lines[1:])
+    first = body[:body.index("")] if "" in body else body
+    return any(re.search(r"\b20\d\d-\d\d-\d\d\b", line) for line in first)

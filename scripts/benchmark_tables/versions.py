@@ -91,7 +91,7 @@ def python():
     if not out:
         return "unknown"
     version, numpy = out.split(maxsplit=1)
-    return f"Python {version} ({exe}), numpy {numpy}"
+    return f"{version} ({exe}), numpy {numpy}"
 
 
 def google_benchmark():

@@ -23,8 +23,8 @@
 #   gc               scripts/compare_geometry_central.sh, only with --gc                             ~2 min
 #   directional      scripts/compare_directional.sh, only with --directional                         ~1 min
 #   tcods            no script measures it yet: the section "Against the peers: Crane's TCODS" is kept
-# In all about 1 h 20 min with the build and the two peers (an estimate; the header of RESULTS.md gives the time
-# of the last run, step by step).
+# In all about 1 h 15 min with the build and the two peers, 1 h without the build (an estimate; the header of
+# RESULTS.md gives the time of the last run, step by step).
 #
 # Every step writes its sections into a working copy of FILE (default benchmark/RESULTS.md); the sections of a
 # step that is skipped, fails or has no peer given are kept as they were, with their own "Measured ..." line, and
@@ -64,7 +64,7 @@ while [ $# -gt 0 ]; do
     --directional) PEER_DIRECTIONAL="$2"; shift 2 ;;
     --tcods) PEER_TCODS="$2"; shift 2 ;;
     --out) OUT="$2"; shift 2 ;;
-    -h|--help) sed -n '2,46p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,40p' "$0"; exit 0 ;;
     *) echo "regenerate_results.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done

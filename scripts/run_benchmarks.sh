@@ -9,7 +9,11 @@
 #   bash scripts/run_benchmarks.sh --python [--repetitions N] [--no-build] [--out FILE]
 #   bash scripts/run_benchmarks.sh --editor [--repetitions EDITS] [--no-build] [--out FILE]
 #   bash scripts/run_benchmarks.sh --batch [--no-build] [--out FILE]
+#   bash scripts/run_benchmarks.sh --everything [OPTIONS]    = bash scripts/regenerate_results.sh [OPTIONS]
 #
+#   --everything   every measurement of FILE on this machine in one command, the modes below one after the other
+#                  and the peers when given, then the header (versions, the time of each step); its --dry-run
+#                  lists the steps with their estimated times. See scripts/regenerate_results.sh.
 #   --sizes        small (default, a few minutes): CGAL meshes 5k-90k faces and a 300k subdivision;
 #                  large: ~1.2M faces (genus 0, 11, 133); huge: ~5M faces; all; or a comma list.
 #   --backends     ldlt (build dir build-bench), cholmod and auto (Automatic_solver_traits, the program's choice;
@@ -43,7 +47,8 @@
 #                  "The field editor" of FILE (replaced in place). The suite also writes that section.
 #
 # JSON results go to build-bench/benchmark-results/BACKEND-SIZE.json and accumulate across runs: the table is
-# made from all of them (the newest result of each mesh wins), so the large meshes can be run separately.
+# made from all of them (the newest result of each mesh wins), so the large meshes can be run separately. The suite
+# rewrites FILE's header and the sections it has JSON for, and keeps every other section of FILE as it is.
 # Subdivided meshes are cached in $TC_BENCH_MESH_CACHE (default build-bench/benchmark-meshes).
 # Environment: JOBS (build parallelism, default 2).
 set -euo pipefail
@@ -64,6 +69,8 @@ EDITOR=0
 BATCH=0
 REPETITIONS_GIVEN=0
 
+ALL_ARGS=("$@")
+for a in "$@"; do [ "$a" = --everything ] && set -- --everything; done
 while [ $# -gt 0 ]; do
   case "$1" in
     --sizes) SIZES="$2"; shift 2 ;;
@@ -78,7 +85,10 @@ while [ $# -gt 0 ]; do
     --python) PYTHON_BINDING=1; shift ;;
     --editor) EDITOR=1; shift ;;
     --batch) BATCH=1; shift ;;
-    -h|--help) sed -n '2,47p' "$0"; exit 0 ;;
+    --everything)  # the other arguments are regenerate_results.sh's
+      args=(); for a in "${ALL_ARGS[@]}"; do [ "$a" = --everything ] || args+=("$a"); done
+      exec bash "$ROOT/scripts/regenerate_results.sh" "${args[@]}" ;;
+    -h|--help) sed -n '2,53p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done

@@ -29,7 +29,7 @@
 # Every step writes its sections into a working copy of FILE (default benchmark/RESULTS.md); the sections of a
 # step that is skipped, fails or has no peer given are kept as they were, with their own "Measured ..." line, and
 # the output (and the header) says which. FILE is replaced at the end only, atomically (FILE.tmp, then renamed),
-# and only if no section of it vanished. A step that fails does not stop the others.
+# and only if no section of it vanished. A step that fails does not stop the others (exit status 3 at the end).
 #   --dry-run      print the steps, their commands and estimated times; nothing is run or written.
 #   --tables-only  run no measurement: rewrite the tables that can be made from the JSON files of earlier runs
 #                  (build-bench/benchmark-results/), keep the others, write the header; seconds.
@@ -73,6 +73,7 @@ COMMAND="${COMMAND% }"
 PYTHON=python3
 command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
 RESULTS_DIR="$ROOT/build-bench/benchmark-results"
+export TC_BENCH_MESH_CACHE="${TC_BENCH_MESH_CACHE:-$ROOT/build-bench/benchmark-meshes}"  # as run_benchmarks.sh's
 HAVE_CHOLMOD=0
 if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then HAVE_CHOLMOD=1; fi
 BACKENDS=ldlt
@@ -188,16 +189,25 @@ pins_step() {
   local exe="$MODULE_DIR/benchmark/trivial_connections_feature_pins_benchmark" json="$RESULTS_DIR/feature-pins.json"
   if [ "$TABLES_ONLY" = 0 ]; then
     [ -x "$exe" ] || { echo "pins: $exe not built" >&2; return 1; }
-    "$exe" --benchmark_out="$json.tmp" --benchmark_out_format=json || return 1
+    "$exe" --benchmark_out="$json.tmp" --benchmark_out_format=json --benchmark_context=commit="$COMMIT" || return 1
     mv "$json.tmp" "$json"
   fi
   [ -f "$json" ] || { echo "pins: no $json" >&2; return 1; }
-  local date section="$WORK/pins.md"
-  date="$("$PYTHON" -c 'import json, sys; print(json.load(open(sys.argv[1]))["context"]["date"][:16].replace("T", " "))' "$json")"
+  local date commit section="$WORK/pins.md"
+  # when and at which commit the JSON was made (a --tables-only run rewrites the table of an earlier run)
+  read -r date commit <<< "$("$PYTHON" -c '
+import datetime, json, sys
+ctx = json.load(open(sys.argv[1])).get("context", {})
+try:
+    when = datetime.datetime.fromisoformat(ctx["date"]).astimezone(datetime.timezone.utc).strftime("%Y-%m-%d_%H:%M_UTC")
+except (KeyError, ValueError):
+    when = "unknown_date"
+print(when, ctx.get("commit", "unknown"))' "$json")"
+  date="${date//_/ }"
   {
     echo "### Feature pins"
     echo
-    echo "Measured $date on $MACHINE, commit $COMMIT, by \`$COMMAND\` (\`benchmark/Trivial_connections/benchmark_feature_pins.cpp\` in \`${MODULE_DIR#$ROOT/}\`, Release; its JSON in \`build-bench/benchmark-results/feature-pins.json\`, the tables by \`scripts/feature_pins_table.py\`). One iteration per row. The analysis of the first run (issue 37, 2026-12-04: the targets, the links, the run before b35798f) is in this file's history (git log -p benchmark/RESULTS.md)."
+    echo "Measured $date on $MACHINE, commit $commit, by \`bash scripts/regenerate_results.sh\` (step pins: \`benchmark/Trivial_connections/benchmark_feature_pins.cpp\` in \`${MODULE_DIR#$ROOT/}\`, Release; its JSON in \`build-bench/benchmark-results/feature-pins.json\`, the tables by \`scripts/feature_pins_table.py\`). One iteration per row. The analysis of the first run (issue 37, 2026-12-04: the targets, the links, the run before b35798f) is in this file's history (git log -p benchmark/RESULTS.md)."
     echo
     echo "Issue 37, items 2 and 5: every face beside a sharp edge pinned to the edge's direction, against the same mesh without pins in the same run. **Target (item 2)**: whole process and peak memory with 5–10 % of the faces pinned <= 1.5 x the same mesh without pins."
     echo
@@ -313,4 +323,5 @@ if lost:
 ' "$ROOT/scripts" "$WORK/previous.md" "$W" || { echo "regenerate_results.sh: $OUT unchanged, the working copy is $W" >&2; exit 1; }
 cp "$W" "$OUT.tmp" && mv "$OUT.tmp" "$OUT"
 echo "regenerate_results.sh: wrote $OUT in $(fmt "$(awk -v a="$START_EPOCH" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')")" \
-     "(steps and logs in $WORK)${FAILED[*]:+; failed: ${FAILED[*]}}"
+     "(steps and logs in $WORK)${FAILED[*]:+; failed: ${FAILED[*]} (their sections kept)}"
+[ ${#FAILED[@]} -eq 0 ] || exit 3

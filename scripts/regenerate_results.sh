@@ -10,9 +10,10 @@
 # Steps, in order (estimated wall time on the 2-core VM of December 2026, from the earlier runs of each step):
 #   build            the benchmarks, the program, the Python module and the editor (build-bench, and
 #                    build-bench-cholmod with CHOLMOD when it is installed); not with --no-build   ~15 min
-#   suite-small      run_benchmarks.sh --sizes small, every backend available (ldlt, cholmod, auto)  ~5 min
-#   suite-large      run_benchmarks.sh --sizes large (~1.2M faces)                                   ~8 min
-#   suite-huge       run_benchmarks.sh --sizes huge (4.8M faces)                                     ~13 min
+#   suite-small      run_benchmarks.sh --floor --sizes small, every backend available (ldlt, cholmod, auto,
+#                    all from the CHOLMOD build so that every floor has CHOLMOD), then --table-only    ~5 min
+#   suite-large      the same, --sizes large (~1.2M faces)                                           ~8 min
+#   suite-huge       the same, --sizes huge (4.8M faces)                                             ~13 min
 #   placement-small  run_benchmarks.sh --placement --sizes small (ldlt, cholmod)                     ~5 min
 #   placement-large  run_benchmarks.sh --placement --sizes large                                     ~15 min
 #   integers         run_benchmarks.sh --integers                                                    ~20 s
@@ -64,7 +65,7 @@ while [ $# -gt 0 ]; do
     --directional) PEER_DIRECTIONAL="$2"; shift 2 ;;
     --tcods) PEER_TCODS="$2"; shift 2 ;;
     --out) OUT="$2"; shift 2 ;;
-    -h|--help) sed -n '2,40p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,41p' "$0"; exit 0 ;;
     *) echo "regenerate_results.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -85,9 +86,9 @@ MODULE_DIR="$ROOT/build-bench"
 # name | estimated seconds | sections it writes (benchmark_tables/sections.py's short names) | what it runs
 STEPS=(
   "build|900||cmake --build build-bench (and build-bench-cholmod) of the benchmarks, program, module, editor"
-  "suite-small|300|$BACKENDS program controls floor slopes|bash scripts/run_benchmarks.sh --no-build --sizes small"
-  "suite-large|480|$BACKENDS program controls floor slopes|bash scripts/run_benchmarks.sh --no-build --sizes large"
-  "suite-huge|780|$BACKENDS program controls floor slopes|bash scripts/run_benchmarks.sh --no-build --sizes huge"
+  "suite-small|300|$BACKENDS program controls floor slopes|bash scripts/run_benchmarks.sh --no-build --floor --sizes small, then --table-only"
+  "suite-large|480|$BACKENDS program controls floor slopes|bash scripts/run_benchmarks.sh --no-build --floor --sizes large, then --table-only"
+  "suite-huge|780|$BACKENDS program controls floor slopes|bash scripts/run_benchmarks.sh --no-build --floor --sizes huge, then --table-only"
   "placement-small|300|placement|bash scripts/run_benchmarks.sh --placement --no-build --sizes small"
   "placement-large|900|placement|bash scripts/run_benchmarks.sh --placement --no-build --sizes large"
   "integers|20|integers|bash scripts/run_benchmarks.sh --integers --no-build"
@@ -252,9 +253,12 @@ run_step() {
   [ "$TABLES_ONLY" = 1 ] && table=(--table-only)
   case "$name" in
     build) build_all ;;
-    suite-small) "${rb[@]}" --sizes small "${table[@]}" ;;
-    suite-large) "${rb[@]}" --sizes large ;;
-    suite-huge) "${rb[@]}" --sizes huge ;;
+    # --floor: every backend from the CHOLMOD build, so that every backend's floor has CHOLMOD; then every table
+    suite-small)
+      if [ "$TABLES_ONLY" = 1 ]; then "${rb[@]}" --table-only
+      else "${rb[@]}" --floor --sizes small && "${rb[@]}" --table-only; fi ;;
+    suite-large) "${rb[@]}" --floor --sizes large && "${rb[@]}" --table-only ;;
+    suite-huge) "${rb[@]}" --floor --sizes huge && "${rb[@]}" --table-only ;;
     placement-small) "${rb[@]}" --placement --sizes small "${table[@]}" ;;
     placement-large) "${rb[@]}" --placement --sizes large ;;
     integers) "${rb[@]}" --integers ;;

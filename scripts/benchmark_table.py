@@ -42,6 +42,7 @@ from benchmark_tables.placement import PLACEMENT_TITLE, placement_table
 from benchmark_tables.python_binding import PYTHON_TITLE, python_table
 from benchmark_tables.replace import read_fragments, replace_section, replace_sections
 from benchmark_tables.report import earlier_runs, header_lines, section_lines
+from benchmark_tables.report import section_name
 from benchmark_tables.sections import KEYS, join, merge, missing, split, split_file, write_atomically
 
 
@@ -93,7 +94,7 @@ def write_header(path, contexts, command, run=None):
 def report_kept(status, path):
     kept = [t for t, _, how in status if how == "kept"]
     print(f"benchmark_table: wrote {path}: {sum(1 for *_, how in status if how == 'new')} sections written, "
-          f"{len(kept)} kept as they were" + (": " + "; ".join(t.lstrip('#').strip() for t in kept) if kept else ""))
+          f"{len(kept)} kept as they were" + (": " + "; ".join(section_name(t) for t in kept) if kept else ""))
 
 
 def main():

@@ -5,7 +5,7 @@ existing file)."""
 import datetime
 import os
 
-from .common import backend_order, machine, pipelines
+from .common import BACKENDS, backend_order, machine, pipelines
 from .editor import editor_table
 from .pipeline import backend_table, floor_table, slope_table
 from .placement import placement_table
@@ -30,8 +30,11 @@ def fmt_seconds(t):
     return f"{t // 3600} h {t // 60 % 60:02d} min"
 
 
-def _section_name(title):
-    return title.lstrip("#").strip()
+def section_name(title):
+    """a section's heading without its #s; a backend's table by the backend's name"""
+    name = title.lstrip("#").strip()
+    backend = name.split(":", 1)[0]
+    return f"the {backend} table" if name == f"{backend}: {BACKENDS.get(backend)}" else name
 
 
 def earlier_runs(old_header):
@@ -90,16 +93,16 @@ def header_lines(contexts, command, root=None, run=None, status=None, earlier=""
                               if any(s["status"] == "skipped" for s in run["steps"]) else ""))
     if status:
         reasons = (run or {}).get("kept", {})
-        new = [_section_name(t) for t, _, how in status if how == "new"]
+        new = [section_name(t) for t, _, how in status if how == "new"]
         kept = [(t, lines_) for t, lines_, how in status if how == "kept"]
         lines.append("- **Sections**: " + (f"written in this run: {', '.join(new)}" if new else "none written")
                      + ("; kept as they were (each with its own date line, or see the next line): "
-                        + "; ".join(f"{_section_name(t)} ({reasons.get(t) or 'no new results for it'})"
+                        + "; ".join(f"{section_name(t)} ({reasons.get(t) or 'no new results for it'})"
                                     for t, _ in kept) if kept else "; none kept from earlier runs") + ".")
         undated = [t for t, lines_ in kept if t not in PROSE and not has_date_line(lines_)]
         if undated and earlier:
             lines.append("- **Earlier runs** (the previous header's words, for the kept sections without a date line "
-                         f"of their own: {', '.join(_section_name(t) for t in undated)}): {earlier}")
+                         f"of their own: {', '.join(section_name(t) for t in undated)}): {earlier}")
     lines.append("- **Per mesh, in one run**: the solver is built (phases from the `progress` callback, the total "
                  "measured directly), solved for one singularity set (Poincaré–Hopf on every closed component), "
                  "re-solved on the same factorization for another set, and the field is extracted; then the "

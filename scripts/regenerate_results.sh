@@ -23,8 +23,8 @@
 #   pins             trivial_connections_feature_pins_benchmark + scripts/feature_pins_table.py      ~5 min
 #   gc               scripts/compare_geometry_central.sh, only with --gc                             ~2 min
 #   directional      scripts/compare_directional.sh, only with --directional                         ~1 min
-#   tcods            no script measures it yet: the section "Against the peers: Crane's TCODS" is kept
-# In all about 1 h 15 min with the build and the two peers, 1 h without the build (an estimate; the header of
+#   tcods            scripts/compare_tcods.sh, only with --tcods                                     ~1 min
+# In all about 1 h 15 min with the build and the three peers, 1 h without the build (an estimate; the header of
 # RESULTS.md gives the time of the last run, step by step).
 #
 # Every step writes its sections into a working copy of FILE (default benchmark/RESULTS.md); the sections of a
@@ -37,7 +37,8 @@
 #   --no-build     use the binaries as they are.
 #   --skip/--only  comma lists of the step names above.
 #   --gc, --directional, --tcods  the peers' scratch builds (outside the project, see each compare_* script's
-#                  header), or TC_PEER_GC, TC_PEER_DIRECTIONAL, TC_PEER_TCODS. TC_COMPARE_REPS as the scripts take it.
+#                  header), or TC_PEER_GC, TC_PEER_DIRECTIONAL, TC_PEER_TCODS. TC_COMPARE_REPS as the scripts take it
+#                  (default 3, and 9 for TCODS).
 # Environment: JOBS (build parallelism, default 2).
 set -uo pipefail
 
@@ -65,7 +66,7 @@ while [ $# -gt 0 ]; do
     --directional) PEER_DIRECTIONAL="$2"; shift 2 ;;
     --tcods) PEER_TCODS="$2"; shift 2 ;;
     --out) OUT="$2"; shift 2 ;;
-    -h|--help) sed -n '2,41p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,42p' "$0"; exit 0 ;;
     *) echo "regenerate_results.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -98,7 +99,7 @@ STEPS=(
   "pins|300|pins|${MODULE_DIR#$ROOT/}/benchmark/trivial_connections_feature_pins_benchmark + scripts/feature_pins_table.py"
   "gc|120|gc|bash scripts/compare_geometry_central.sh ${PEER_GC:-PEER} ${MODULE_DIR#$ROOT/}/trivial_connections"
   "directional|60|directional|bash scripts/compare_directional.sh ${PEER_DIRECTIONAL:-PEER} ${MODULE_DIR#$ROOT/}"
-  "tcods|0|tcods|(no script: kept)"
+  "tcods|60|tcods|bash scripts/compare_tcods.sh ${PEER_TCODS:-PEER} ${MODULE_DIR#$ROOT/}/trivial_connections"
 )
 
 wanted() { # STEP: whether --only / --skip let it run
@@ -113,7 +114,7 @@ why_not() {
     build) [ "$BUILD" = 1 ] || echo "--no-build" ;;
     gc) [ -n "$PEER_GC" ] || echo "peer not given: --gc PEER_BINARY or TC_PEER_GC" ;;
     directional) [ -n "$PEER_DIRECTIONAL" ] || echo "peer not given: --directional PEER_BINARY or TC_PEER_DIRECTIONAL" ;;
-    tcods) echo "no script measures it, the section was measured by hand${PEER_TCODS:+; --tcods $PEER_TCODS ignored}" ;;
+    tcods) [ -n "$PEER_TCODS" ] || echo "peer not given: --tcods PEER_BINARY or TC_PEER_TCODS" ;;
   esac
   [ "$TABLES_ONLY" = 1 ] || return 0
   case "$name" in
@@ -246,6 +247,19 @@ directional_step() {
   "$PYTHON" "$ROOT/scripts/benchmark_table.py" --insert "$section" --out "$W"
 }
 
+tcods_step() {
+  local table="$WORK/tcods-table.md" section="$WORK/tcods.md" reps="${TC_COMPARE_REPS:-9}"
+  TC_COMPARE_REPS="$reps" bash "$ROOT/scripts/compare_tcods.sh" "$PEER_TCODS" "$MODULE_DIR/trivial_connections" > "$table" || return 1
+  {
+    echo "### Against the peers: Crane's TCODS"
+    echo
+    echo "Measured $(date -u '+%Y-%m-%d %H:%M') UTC on $MACHINE, by \`TC_COMPARE_REPS=$reps bash scripts/compare_tcods.sh $PEER_TCODS ${MODULE_DIR#$ROOT/}/trivial_connections\` (within \`$COMMAND\`) with our program of commit $COMMIT: whole processes, wall time, $reps runs of each program interleaved, medians. TCODS is Keenan Crane's reference code of the SGP 2010 paper, built outside this repository as the script's header says, and run as a user would: \`tcods PROBLEM\` reads the OBJ mesh (the same vertices and faces as CGAL's OFF file), solves, propagates a field and writes the mesh with one vector per face. Ours: \`trivial_connections MESH.off --singularities S --n 1 --connection C --field F\` (reads the OFF file, solves, propagates, writes the connection and the field). Same singularities: bunny00 (genus 0) +1 at vertices 24276 and 34482; refined_elephant (genus 3) −1 at vertices 41605, 41381, 24533 and 35695 (TCODS leaves the generators' integers at 0, ours chooses them to minimise the energy). Target of issue 20: ≥ 10 × faster."
+    echo
+    cat "$table"
+  } > "$section"
+  "$PYTHON" "$ROOT/scripts/benchmark_table.py" --insert "$section" --out "$W"
+}
+
 run_step() {
   local name=$1
   local rb=(bash "$ROOT/scripts/run_benchmarks.sh" --no-build --out "$W")
@@ -274,6 +288,7 @@ run_step() {
     pins) pins_step ;;
     gc) gc_step ;;
     directional) directional_step ;;
+    tcods) tcods_step ;;
   esac
 }
 

@@ -120,7 +120,7 @@ why_not() {
   case "$name" in
     suite-large|suite-huge) echo "--tables-only: suite-small writes the suite's tables from all its JSON files" ;;
     placement-large) echo "--tables-only: placement-small writes the section from all placement JSON files" ;;
-    integers|batch) echo "--tables-only: its benchmark writes its table, there is no JSON to make it from" ;;
+    integers|batch|gc|directional|tcods) echo "--tables-only: its script writes its table, there is no JSON to make it from" ;;
     python) [ -f "$RESULTS_DIR/python-binding.json" ] || echo "--tables-only: no JSON of an earlier run" ;;
     editor) [ -f "$RESULTS_DIR/editor-latency.json" ] || echo "--tables-only: no JSON of an earlier run" ;;
     pins) [ -f "$RESULTS_DIR/feature-pins.json" ] || echo "--tables-only: no JSON of an earlier run" ;;

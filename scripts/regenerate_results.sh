@@ -108,23 +108,25 @@ wanted() { # STEP: whether --only / --skip let it run
 }
 # why a step does not run (empty: it runs)
 why_not() {
-  local name=$1
+  local name=$1 reason=""
   wanted "$name" || { echo "not selected: --skip or --only"; return; }
   case "$name" in
-    build) [ "$BUILD" = 1 ] || echo "--no-build" ;;
-    gc) [ -n "$PEER_GC" ] || echo "peer not given: --gc PEER_BINARY or TC_PEER_GC" ;;
-    directional) [ -n "$PEER_DIRECTIONAL" ] || echo "peer not given: --directional PEER_BINARY or TC_PEER_DIRECTIONAL" ;;
-    tcods) [ -n "$PEER_TCODS" ] || echo "peer not given: --tcods PEER_BINARY or TC_PEER_TCODS" ;;
+    build) [ "$BUILD" = 1 ] || reason="--no-build" ;;
+    gc) [ -n "$PEER_GC" ] || reason="peer not given: --gc PEER_BINARY or TC_PEER_GC" ;;
+    directional) [ -n "$PEER_DIRECTIONAL" ] || reason="peer not given: --directional PEER_BINARY or TC_PEER_DIRECTIONAL" ;;
+    tcods) [ -n "$PEER_TCODS" ] || reason="peer not given: --tcods PEER_BINARY or TC_PEER_TCODS" ;;
   esac
-  [ "$TABLES_ONLY" = 1 ] || return 0
-  case "$name" in
-    suite-large|suite-huge) echo "--tables-only: suite-small writes the suite's tables from all its JSON files" ;;
-    placement-large) echo "--tables-only: placement-small writes the section from all placement JSON files" ;;
-    integers|batch|gc|directional|tcods) echo "--tables-only: its script writes its table, there is no JSON to make it from" ;;
-    python) [ -f "$RESULTS_DIR/python-binding.json" ] || echo "--tables-only: no JSON of an earlier run" ;;
-    editor) [ -f "$RESULTS_DIR/editor-latency.json" ] || echo "--tables-only: no JSON of an earlier run" ;;
-    pins) [ -f "$RESULTS_DIR/feature-pins.json" ] || echo "--tables-only: no JSON of an earlier run" ;;
-  esac
+  if [ -z "$reason" ] && [ "$TABLES_ONLY" = 1 ]; then
+    case "$name" in
+      suite-large|suite-huge) reason="--tables-only: suite-small writes the suite's tables from all its JSON files" ;;
+      placement-large) reason="--tables-only: placement-small writes the section from all placement JSON files" ;;
+      integers|batch|gc|directional|tcods) reason="--tables-only: its script writes its table, there is no JSON to make it from" ;;
+      python) [ -f "$RESULTS_DIR/python-binding.json" ] || reason="--tables-only: no JSON of an earlier run" ;;
+      editor) [ -f "$RESULTS_DIR/editor-latency.json" ] || reason="--tables-only: no JSON of an earlier run" ;;
+      pins) [ -f "$RESULTS_DIR/feature-pins.json" ] || reason="--tables-only: no JSON of an earlier run" ;;
+    esac
+  fi
+  echo "$reason"
 }
 fmt() { awk -v t="$1" 'BEGIN { t = int(t + 0.5); if (t < 60) printf "%d s", t; else if (t < 3600) { if (t % 60) printf "%d min %02d s", t / 60, t % 60; else printf "%d min", t / 60 } else printf "%d h %02d min", t / 3600, (t % 3600) / 60 }'; }
 

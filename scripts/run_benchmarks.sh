@@ -9,7 +9,11 @@
 #   bash scripts/run_benchmarks.sh --python [--repetitions N] [--no-build] [--out FILE]
 #   bash scripts/run_benchmarks.sh --editor [--repetitions EDITS] [--no-build] [--out FILE]
 #   bash scripts/run_benchmarks.sh --batch [--no-build] [--out FILE]
+#   bash scripts/run_benchmarks.sh --everything [OPTIONS]    = bash scripts/regenerate_results.sh [OPTIONS]
 #
+#   --everything   every measurement of FILE on this machine in one command, the modes below one after the other
+#                  and the peers when given, then the header (versions, the time of each step); its --dry-run
+#                  lists the steps with their estimated times. See scripts/regenerate_results.sh.
 #   --sizes        small (default, a few minutes): CGAL meshes 5k-90k faces and a 300k subdivision;
 #                  large: ~1.2M faces (genus 0, 11, 133); huge: ~5M faces; all; or a comma list.
 #   --backends     ldlt (build dir build-bench), cholmod and auto (Automatic_solver_traits, the program's choice;
@@ -21,8 +25,8 @@
 #   --no-build     use the existing binaries.   --table-only   only rewrite the table from the JSON files.
 #   --integers     instead of the suite: trivial_connections_integer_benchmark (the choice of the free integers
 #                  against their number, about 15 s, build-bench) into build-bench/integer-choice.json, and its
-#                  table as the section "Integer choice per dimension" at the end of FILE (replacing the one
-#                  there). Run it after the suite: the suite rewrites FILE without that section.
+#                  table as the section "Integer choice per dimension" of FILE (replaced in place, the other
+#                  sections kept).
 #   --placement    instead of the suite: trivial_connections_placement_benchmark (automatic singularity placement,
 #                  n = 4, against the suite's reference factorization, and for n = 1, 2, 4 the placement then the
 #                  refinement to a local minimum; small: femur (7.8k faces) and 52k-302k faces, about 1 min per
@@ -43,7 +47,8 @@
 #                  "The field editor" of FILE (replaced in place). The suite also writes that section.
 #
 # JSON results go to build-bench/benchmark-results/BACKEND-SIZE.json and accumulate across runs: the table is
-# made from all of them (the newest result of each mesh wins), so the large meshes can be run separately.
+# made from all of them (the newest result of each mesh wins), so the large meshes can be run separately. The suite
+# rewrites FILE's header and the sections it has JSON for, and keeps every other section of FILE as it is.
 # Subdivided meshes are cached in $TC_BENCH_MESH_CACHE (default build-bench/benchmark-meshes).
 # Environment: JOBS (build parallelism, default 2).
 set -euo pipefail
@@ -64,6 +69,8 @@ EDITOR=0
 BATCH=0
 REPETITIONS_GIVEN=0
 
+ALL_ARGS=("$@")
+for a in "$@"; do [ "$a" = --everything ] && set -- --everything; done
 while [ $# -gt 0 ]; do
   case "$1" in
     --sizes) SIZES="$2"; shift 2 ;;
@@ -78,7 +85,10 @@ while [ $# -gt 0 ]; do
     --python) PYTHON_BINDING=1; shift ;;
     --editor) EDITOR=1; shift ;;
     --batch) BATCH=1; shift ;;
-    -h|--help) sed -n '2,47p' "$0"; exit 0 ;;
+    --everything)  # the other arguments are regenerate_results.sh's
+      args=(); for a in "${ALL_ARGS[@]}"; do [ "$a" = --everything ] || args+=("$a"); done
+      exec bash "$ROOT/scripts/regenerate_results.sh" "${args[@]}" ;;
+    -h|--help) sed -n '2,53p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -90,6 +100,9 @@ if [ -z "$BACKENDS" ]; then
     BACKENDS=ldlt,cholmod,auto
   fi
 fi
+
+PYTHON=python3
+command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
 
 if [ "$INTEGERS" = 1 ]; then
   dir="$ROOT/build-bench"
@@ -106,29 +119,24 @@ if [ "$INTEGERS" = 1 ]; then
   md="$(mktemp)"
   TC_BENCH_MARKDOWN="$md" "$exe" --benchmark_out="$dir/integer-choice.json" --benchmark_out_format=json \
     --benchmark_context=commit="${COMMIT%% *}"
+  section="$(mktemp)"
   {
-    # FILE without the section (and without trailing blank lines), then the section
-    sed '/^### Integer choice per dimension/,$d' "$OUT" | awk 'NF { for(; b > 0; b--) print ""; print; next } { b++ }'
-    echo
     echo "### Integer choice per dimension"
     echo
     echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')), commit $COMMIT, by \`bash scripts/run_benchmarks.sh --integers\` (\`benchmark/Trivial_connections/benchmark_integer_choice.cpp\`, Eigen::SimplicialLDLT)."
     echo "k: the free integers (the loops not prescribed but one boundary loop per bordered component, which Poincaré–Hopf fixes, plus the constraint links); annulus_mM and holes_pP are generated (align_with_boundary: a constraint link per boundary vertex but one), the others are CGAL's meshes. Reduction: the constructor's loop_metric phase (the metric of the integers + LLL with deep insertions). Choice: the loop_integers phase of a solve (nearest plane, descent, budgeted enumeration) and the whole solve, medians over 9 solves of each of two singularity sets. Rel. gap = (energy − energy_lower_bound) / energy (energy with the guidance energy, 0 here), the larger of the two sets (0 when proven); proven: sets whose choice is proven optimal; rounding excess: (rounding_energy − energy) / energy, what rounding the integers one by one would cost more, the larger of the two sets."
     echo
     cat "$md"
-  } > "$OUT.tmp"
-  mv "$OUT.tmp" "$OUT"
-  rm -f "$md"
-  echo "run_benchmarks.sh: integer choice table appended to $OUT"
+  } > "$section"
+  # the section replaced in place (the rest of FILE kept; written atomically)
+  "$PYTHON" "$ROOT/scripts/benchmark_table.py" --insert "$section" --out "$OUT"
+  rm -f "$md" "$section"
   exit 0
 fi
 
 RESULTS_DIR="$ROOT/build-bench/benchmark-results"
 export TC_BENCH_MESH_CACHE="${TC_BENCH_MESH_CACHE:-$ROOT/build-bench/benchmark-meshes}"
 mkdir -p "$RESULTS_DIR" "$TC_BENCH_MESH_CACHE"
-
-PYTHON=python3
-command -v python3 >/dev/null 2>&1 || PYTHON=/usr/bin/python3
 
 HAVE_CHOLMOD=0
 if [ -f /usr/include/suitesparse/cholmod.h ] || [ -f /usr/include/cholmod.h ]; then HAVE_CHOLMOD=1; fi

@@ -1,27 +1,37 @@
-"""Rewrites one ### section of an existing RESULTS.md in place (--section), the rest of the file kept."""
+"""Rewrites sections of an existing RESULTS.md in place (--section, --insert), the rest of the file kept."""
+
+from .sections import join, merge, missing, split, split_file, write_atomically
+
+
+def replace_sections(path, new_sections):
+    """replaces the sections [(title, lines)] of the file (each up to the next ##, ### or #### heading), or inserts
+    them in their place in the order of sections.ORDER; the rest is kept as it is; written atomically. Returns the
+    merged [(title, lines, 'new' | 'kept')]"""
+    header, old = split_file(path)
+    merged = merge(old, new_sections)
+    lost = missing(old, merged)
+    if lost:  # cannot happen (merge keeps every title); checked all the same before the file is replaced
+        raise RuntimeError(f"{path}: sections would vanish: {lost}")
+    write_atomically(path, join(header, merged))
+    return merged
+
 
 def replace_section(path, title, section):
-    """replaces the section `title` of the file (up to the next ### heading) by the lines `section`, or inserts it
-    before the scaling slopes (else before the integer choice, else at the end)"""
-    with open(path) as f:
-        old = f.read().split("\n")
-    while old and not old[-1].strip():
-        old.pop()
-    heading = [i for i, line in enumerate(old) if line.startswith("### ")]
-    if title in old:
-        start = old.index(title)
-        end = next((i for i in heading if i > start), len(old))
-    else:
-        start = next((i for i in heading if old[i].startswith("### Scaling")),
-                     next((i for i in heading if old[i].startswith("### Integer choice")), len(old)))
-        end = start
-    body = list(section)
-    while body and not body[-1].strip():
-        body.pop()
-    if end < len(old):
-        body.append("")
-    elif start > 0 and old[start - 1].strip():
-        body.insert(0, "")
-    new = old[:start] + body + old[end:]
-    with open(path, "w") as f:
-        f.write("\n".join(new) + "\n")
+    """replaces the section `title` of the file by the lines `section` (which start with that heading)"""
+    _, sections = split("\n".join(section))
+    if not sections or sections[0][0] != title:
+        sections = [(title, [title] + [line for line in section if line != title])]
+    replace_sections(path, sections)
+
+
+def read_fragments(paths):
+    """the sections of Markdown fragments (files that start with a section heading)"""
+    sections = []
+    for path in paths:
+        header, found = split_file(path)
+        if header and any(line.strip() for line in header):
+            raise ValueError(f"{path}: text before the first section heading")
+        if not found:
+            raise ValueError(f"{path}: no section heading (##, ### or ####)")
+        sections += found
+    return sections

@@ -138,6 +138,8 @@ inline void use_huge_pages(char** argv, const std::string& mesh)
   the program hung on a 5k-face mesh under 150 MB. With one thread OpenBLAS starts none, and a BLAS call that
   finds no memory is a clear out-of-memory error. OPENBLAS_NUM_THREADS is read only when the library is loaded,
   so the program starts itself again with it (10 to 20 ms, only under such a limit; a value the user set stays).
+  Under about 65 MB OpenBLAS cannot even create those threads when it is loaded, before main(), and ends the
+  process itself: OPENBLAS_NUM_THREADS=1 set by the user avoids that too.
 */
 inline void one_blas_thread_under_address_limit(char** argv)
 {

@@ -73,9 +73,10 @@ else
 fi
 # Under a limit on the address space (ulimit -v) the program finishes (it hung in OpenBLAS's threads before): with
 # the field when the limit leaves it room (150 MB), and under a tighter one either so or with "out of memory" and
-# no output file. Not with AddressSanitizer, which reserves terabytes of address space at start.
+# no output file. Not with AddressSanitizer, which reserves terabytes of address space at start. (Below about
+# 65 MB OpenBLAS cannot start its threads when it is loaded, before the program runs, and ends the process.)
 if ! ldd "$cli" 2>/dev/null | grep -q libasan; then
-  for kb in 150000 64000; do
+  for kb in 150000 72000; do
     rm -f "$out/c.txt" "$out/f.txt"
     message=$(ulimit -v "$kb"; timeout 120 "$cli" "$pig" --auto --n 4 --connection "$out/c.txt" --field "$out/f.txt" 2>&1 >/dev/null)
     status=$?

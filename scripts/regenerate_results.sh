@@ -24,8 +24,8 @@
 #   gc               scripts/compare_geometry_central.sh, only with --gc                             ~2 min
 #   directional      scripts/compare_directional.sh, only with --directional                         ~1 min
 #   tcods            scripts/compare_tcods.sh, only with --tcods                                     ~1 min
-# In all about 1 h 15 min with the build and the three peers, 1 h without the build (an estimate; the header of
-# RESULTS.md gives the time of the last run, step by step).
+# In all 1 h 12 min with the build and without the peers on 2026-12-05 (placement-large 27 min, suite-huge 18 min;
+# the estimates above are older); the header of RESULTS.md gives the time of the last run, step by step.
 #
 # Every step writes its sections into a working copy of FILE (default benchmark/RESULTS.md); the sections of a
 # step that is skipped, fails or has no peer given are kept as they were, with their own "Measured ..." line, and

@@ -193,7 +193,8 @@ pins_step() {
   local exe="$MODULE_DIR/benchmark/trivial_connections_feature_pins_benchmark" json="$RESULTS_DIR/feature-pins.json"
   if [ "$TABLES_ONLY" = 0 ]; then
     [ -x "$exe" ] || { echo "pins: $exe not built" >&2; return 1; }
-    "$exe" --benchmark_out="$json.tmp" --benchmark_out_format=json --benchmark_context=commit="$COMMIT" || return 1
+    # in the working folder: its program runs write their connection and field files where they run
+    (cd "$WORK" && "$exe" --benchmark_out="$json.tmp" --benchmark_out_format=json --benchmark_context=commit="$COMMIT") || return 1
     mv "$json.tmp" "$json"
   fi
   [ -f "$json" ] || { echo "pins: no $json" >&2; return 1; }

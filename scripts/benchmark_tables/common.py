@@ -168,3 +168,14 @@ def floor_cell(c):
         return "–"
     b = int(c.get("floor_backend", -1))
     return fmt_time(c.get("t_floor")) + (f" ({FLOOR_NAMES[b]})" if 0 <= b < len(FLOOR_NAMES) else "")
+
+
+def table_head(lines, head):
+    """the heading and alignment rows of a table whose first two columns (mesh, backend) are text"""
+    lines.append("| " + " | ".join(head) + " |")
+    lines.append("|" + "|".join(["---", "---"] + ["---:"] * (len(head) - 2)) + "|")
+
+
+def error_row(mesh, backend, head, error):
+    """the row of a mesh whose run failed: a dash in each column, its error in the last"""
+    return f"| {mesh} | {backend} | " + " | ".join(["–"] * (len(head) - 3)) + f" | error: {error} |"

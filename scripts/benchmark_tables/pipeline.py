@@ -2,7 +2,7 @@
 
 from .common import (BACKENDS, BUILD_PHASES, PROGRAM_PREFIX, SERIES_PREFIX, SLOPE_PHASES, backend_order,
                      floor_cell, fmt_faces, fmt_num, fmt_time, machine, mesh_order, ordering, pipelines,
-                     program_phases, slope, with_integers)
+                     program_phases, slope, table_head, with_integers)
 
 
 FLOOR_TITLE = "### Against the fastest factorization of the machine"
@@ -42,8 +42,7 @@ def floor_table(results, lines, contexts=(), command=""):
     lines.append("")
     head = ["mesh", "backend", "faces", "floor", "own reference", "build", "end to end", "build / floor",
             "end-to-end / floor"]
-    lines.append("| " + " | ".join(head) + " |")
-    lines.append("|" + "|".join(["---", "---"] + ["---:"] * (len(head) - 2)) + "|")
+    table_head(lines, head)
     for b, mesh, e in rows:
         c = e["counters"]
         end = c.get("r_end_to_end_floor")

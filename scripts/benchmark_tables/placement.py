@@ -1,6 +1,7 @@
 """The section "Automatic placement" and its refinement table (issue 38)."""
 
-from .common import PLACEMENT_PREFIX, backend_order, fmt_faces, fmt_num, fmt_ratio, fmt_time, machine
+from .common import (PLACEMENT_PREFIX, backend_order, error_row, fmt_faces, fmt_num, fmt_ratio, fmt_time, machine,
+                     table_head)
 
 
 PLACEMENT_TITLE = "### Automatic placement"
@@ -86,12 +87,11 @@ def placement_table(results, lines, command):
             "aligned (guide)", "sing. (aligned)", "pencil factor.", "pencil solve",
             "split: factor. / solves / rest", "end-to-end / ref", "placement / ref", "aligned / ref",
             "aligned end-to-end / ref", "pencil factor. / ref", "peak B/face", "reps"]
-    lines.append("| " + " | ".join(head) + " |")
-    lines.append("|" + "|".join(["---", "---"] + ["---:"] * (len(head) - 2)) + "|")
+    table_head(lines, head)
     for b, mesh, e in rows:
         c = e["counters"]
         if e["error"]:
-            lines.append(f"| {mesh} | {b} | " + " | ".join(["–"] * (len(head) - 3)) + f" | error: {e['error']} |")
+            lines.append(error_row(mesh, b, head, e['error']))
             continue
         place = c.get("t_place", 0)
         split = "–"

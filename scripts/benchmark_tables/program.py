@@ -1,7 +1,7 @@
 """The tables of the main program as a whole process and of the design controls."""
 
-from .common import (CONTROLS_PREFIX, PROGRAM_PREFIX, backend_order, floor_cell, fmt_faces, fmt_num, fmt_time,
-                     program_phases)
+from .common import (CONTROLS_PREFIX, PROGRAM_PREFIX, backend_order, error_row, floor_cell, fmt_faces, fmt_num,
+                     fmt_time, program_phases, table_head)
 
 
 def program_table(results, lines):
@@ -23,12 +23,11 @@ def program_table(results, lines):
     head = ["mesh", "backend", "faces", "program", "program peak", "CGAL read", "reference factorization",
             "program / (read + reference)", "Laplacian", "floor", "program / (read + Laplacian + floor)",
             "program / (read + floor)", "program phases / floor"]
-    lines.append("| " + " | ".join(head) + " |")
-    lines.append("|" + "|".join(["---", "---"] + ["---:"] * (len(head) - 2)) + "|")
+    table_head(lines, head)
     for b, mesh, e in rows:
         c = e["counters"]
         if e["error"]:
-            lines.append(f"| {mesh} | {b} | " + " | ".join(["–"] * (len(head) - 3)) + f" | error: {e['error']} |")
+            lines.append(error_row(mesh, b, head, e['error']))
             continue
         peak = c.get("program_peak_bytes")
         lines.append("| " + " | ".join([mesh, b, fmt_faces(c.get("faces", 0)), fmt_time(c.get("t_program")),
@@ -57,12 +56,11 @@ def controls_table(results, lines):
     lines.append("")
     head = ["mesh", "backend", "faces", "reference", "build", "solve", "re-solve", "set_constraints",
             "solve after", "links (bordered, new)", "build / ref", "re-solve / ref", "set_constraints / ref"]
-    lines.append("| " + " | ".join(head) + " |")
-    lines.append("|" + "|".join(["---", "---"] + ["---:"] * (len(head) - 2)) + "|")
+    table_head(lines, head)
     for b, mesh, e in rows:
         c = e["counters"]
         if e["error"]:
-            lines.append(f"| {mesh} | {b} | " + " | ".join(["–"] * (len(head) - 3)) + f" | error: {e['error']} |")
+            lines.append(error_row(mesh, b, head, e['error']))
             continue
         lines.append("| " + " | ".join([
             mesh, b, fmt_faces(c.get("faces", 0)), fmt_time(c.get("t_reference")), fmt_time(c.get("t_build")),

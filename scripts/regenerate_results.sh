@@ -224,43 +224,30 @@ print(when, ctx.get("commit", "unknown"))' "$json")"
   "$PYTHON" "$ROOT/scripts/benchmark_table.py" --insert "$section" --out "$W"
 }
 
+# SECTION_FILE HEADING PROSE TABLE: a peer's section (its heading, what was measured, the comparison script's
+# table) written to SECTION_FILE and put into the working copy in place of the one there
+insert_peer_section() {
+  printf '%s\n\n%s\n\n' "$2" "$3" > "$1"
+  cat "$4" >> "$1"
+  "$PYTHON" "$ROOT/scripts/benchmark_table.py" --insert "$1" --out "$W"
+}
+
 gc_step() {
   local table="$WORK/gc-table.md" section="$WORK/gc.md" reps="${TC_COMPARE_REPS:-3}"
   TC_COMPARE_REPS="$reps" bash "$ROOT/scripts/compare_geometry_central.sh" "$PEER_GC" "$MODULE_DIR/trivial_connections" > "$table" || return 1
-  {
-    echo "### Against geometry-central's smoothest field"
-    echo
-    echo "Measured $(date -u '+%Y-%m-%d %H:%M') UTC on $MACHINE, by \`TC_COMPARE_REPS=$reps bash scripts/compare_geometry_central.sh $PEER_GC ${MODULE_DIR#$ROOT/}/trivial_connections\` (within \`$COMMAND\`) with our program of commit $COMMIT (Release; the program's solver traits: SimplicialLDLT or CHOLMOD by predicted cost). geometry-central: the peer program built outside the project as the script's header says. Whole processes, medians of $reps runs; ours \`--auto --no-refine\` is the smoothest field's singularities (what compares with geometry-central's), \`--auto\` refines them to a local minimum (issue 38's target: our refined whole run at most 0.5 of geometry-central's)."
-    echo
-    cat "$table"
-  } > "$section"
-  "$PYTHON" "$ROOT/scripts/benchmark_table.py" --insert "$section" --out "$W"
+  insert_peer_section "$section" "### Against geometry-central's smoothest field" "Measured $(date -u '+%Y-%m-%d %H:%M') UTC on $MACHINE, by \`TC_COMPARE_REPS=$reps bash scripts/compare_geometry_central.sh $PEER_GC ${MODULE_DIR#$ROOT/}/trivial_connections\` (within \`$COMMAND\`) with our program of commit $COMMIT (Release; the program's solver traits: SimplicialLDLT or CHOLMOD by predicted cost). geometry-central: the peer program built outside the project as the script's header says. Whole processes, medians of $reps runs; ours \`--auto --no-refine\` is the smoothest field's singularities (what compares with geometry-central's), \`--auto\` refines them to a local minimum (issue 38's target: our refined whole run at most 0.5 of geometry-central's)." "$table"
 }
 
 directional_step() {
   local table="$WORK/directional-table.md" section="$WORK/directional.md" reps="${TC_COMPARE_REPS:-3}"
   TC_COMPARE_REPS="$reps" bash "$ROOT/scripts/compare_directional.sh" "$PEER_DIRECTIONAL" "$MODULE_DIR" > "$table" || return 1
-  {
-    echo "#### Side by side with Directional (item 5)"
-    echo
-    echo "Measured $(date -u '+%Y-%m-%d %H:%M') UTC on $MACHINE, by \`TC_COMPARE_REPS=$reps bash scripts/compare_directional.sh $PEER_DIRECTIONAL ${MODULE_DIR#$ROOT/}\` (within \`$COMMAND\`) with our program of commit $COMMIT: the \`features\` pins above for Directional's power field with hard constraints (the peer program built outside the project as the script's header says) and for our program, with Directional's singularities and with our \`--auto --no-refine\` placement; whole processes, medians of $reps runs."
-    echo
-    cat "$table"
-  } > "$section"
-  "$PYTHON" "$ROOT/scripts/benchmark_table.py" --insert "$section" --out "$W"
+  insert_peer_section "$section" "#### Side by side with Directional (item 5)" "Measured $(date -u '+%Y-%m-%d %H:%M') UTC on $MACHINE, by \`TC_COMPARE_REPS=$reps bash scripts/compare_directional.sh $PEER_DIRECTIONAL ${MODULE_DIR#$ROOT/}\` (within \`$COMMAND\`) with our program of commit $COMMIT: the \`features\` pins above for Directional's power field with hard constraints (the peer program built outside the project as the script's header says) and for our program, with Directional's singularities and with our \`--auto --no-refine\` placement; whole processes, medians of $reps runs." "$table"
 }
 
 tcods_step() {
   local table="$WORK/tcods-table.md" section="$WORK/tcods.md" reps="${TC_COMPARE_REPS:-9}"
   TC_COMPARE_REPS="$reps" bash "$ROOT/scripts/compare_tcods.sh" "$PEER_TCODS" "$MODULE_DIR/trivial_connections" > "$table" || return 1
-  {
-    echo "### Against the peers: Crane's TCODS"
-    echo
-    echo "Measured $(date -u '+%Y-%m-%d %H:%M') UTC on $MACHINE, by \`TC_COMPARE_REPS=$reps bash scripts/compare_tcods.sh $PEER_TCODS ${MODULE_DIR#$ROOT/}/trivial_connections\` (within \`$COMMAND\`) with our program of commit $COMMIT: whole processes, wall time, $reps runs of each program interleaved, medians. TCODS is Keenan Crane's reference code of the SGP 2010 paper, built outside this repository as the script's header says, and run as a user would: \`tcods PROBLEM\` reads the OBJ mesh (the same vertices and faces as CGAL's OFF file), solves, propagates a field and writes the mesh with one vector per face. Ours: \`trivial_connections MESH.off --singularities S --n 1 --connection C --field F\` (reads the OFF file, solves, propagates, writes the connection and the field). Same singularities: bunny00 (genus 0) +1 at vertices 24276 and 34482; refined_elephant (genus 3) −1 at vertices 41605, 41381, 24533 and 35695 (TCODS leaves the generators' integers at 0, ours chooses them to minimise the energy). Target of issue 20: ≥ 10 × faster."
-    echo
-    cat "$table"
-  } > "$section"
-  "$PYTHON" "$ROOT/scripts/benchmark_table.py" --insert "$section" --out "$W"
+  insert_peer_section "$section" "### Against the peers: Crane's TCODS" "Measured $(date -u '+%Y-%m-%d %H:%M') UTC on $MACHINE, by \`TC_COMPARE_REPS=$reps bash scripts/compare_tcods.sh $PEER_TCODS ${MODULE_DIR#$ROOT/}/trivial_connections\` (within \`$COMMAND\`) with our program of commit $COMMIT: whole processes, wall time, $reps runs of each program interleaved, medians. TCODS is Keenan Crane's reference code of the SGP 2010 paper, built outside this repository as the script's header says, and run as a user would: \`tcods PROBLEM\` reads the OBJ mesh (the same vertices and faces as CGAL's OFF file), solves, propagates a field and writes the mesh with one vector per face. Ours: \`trivial_connections MESH.off --singularities S --n 1 --connection C --field F\` (reads the OFF file, solves, propagates, writes the connection and the field). Same singularities: bunny00 (genus 0) +1 at vertices 24276 and 34482; refined_elephant (genus 3) −1 at vertices 41605, 41381, 24533 and 35695 (TCODS leaves the generators' integers at 0, ours chooses them to minimise the energy). Target of issue 20: ≥ 10 × faster." "$table"
 }
 
 run_step() {

@@ -431,15 +431,61 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         const Hope* found = nullptr;
         std::size_t change_component = 0;
         std::vector<std::int64_t> changed;
-        for(std::size_t i = 0; i < hopes.size() && hopes[i].hoped < best; ++i) {
-          if(!proven && i >= unproven_searches)
-            break;
-          const Hope& h = hopes[i];
-          const double change = integers.best(component(h.from), inverse.row_of(h.from), inverse.row_of(h.to),
-                                              two_pi * double(h.units) / n, h.kept, best);
-          if(change < best) {
-            best = change;
-            found = &h;
+        auto units_of = [&](const Hope& h) { return two_pi * double(h.units) / n; };
+        if(proven) {
+          for(std::size_t i = 0; i < hopes.size() && hopes[i].hoped < best; ++i) {
+            const Hope& h = hopes[i];
+            const double change = integers.best(component(h.from), inverse.row_of(h.from), inverse.row_of(h.to),
+                                                units_of(h), h.kept, best);
+            if(change < best) {
+              best = change;
+              found = &h;
+              change_component = integers.change_component();
+              changed = integers.change();
+            }
+          }
+        } else {
+          // The same choice as the loop above, the searches priced ahead a chunk at a time on two threads (the
+          // chunk bounds the searches made past the one that ends the loop).
+          const std::size_t chunk = 256;
+          const std::size_t searched = (std::min)(hopes.size(), unproven_searches);
+          double best_before_found = best;
+          bool ended = false;
+          std::vector<internal::Move_integers::Unproven_search> searches;
+          for(std::size_t begin = 0; begin < searched && !ended; begin += chunk) {
+            const std::size_t end = (std::min)(begin + chunk, searched);
+            searches.clear();
+            for(std::size_t i = begin; i < end; ++i) {
+              const Hope& h = hopes[i];
+              searches.push_back(
+                {component(h.from), inverse.row_of(h.from), inverse.row_of(h.to), units_of(h), h.kept});
+            }
+            integers.price_unproven(searches, best, [&](std::size_t count, const auto& f) {
+              if(count >= 32)
+                second_thread.on_two_halves(count, f);
+              else
+                f(std::size_t(0), count);
+            });
+            for(std::size_t i = begin; i < end; ++i) {
+              const internal::Move_integers::Unproven_search& q = searches[i - begin];
+              if(!(hopes[i].hoped < best)) {
+                ended = true;
+                break;
+              }
+              if(q.bounded >= best || !(q.change < best))
+                continue; // best() would not search it at this threshold, or it does not beat the best
+              best_before_found = best;
+              best = q.change;
+              found = &hopes[i];
+            }
+          }
+          if(found) {
+            // the integers behind it, searched again alone
+            const double change = integers.best(component(found->from), inverse.row_of(found->from),
+                                                inverse.row_of(found->to), units_of(*found), found->kept,
+                                                best_before_found);
+            CGAL_assertion(change == best);
+            CGAL_USE(change);
             change_component = integers.change_component();
             changed = integers.change();
           }

@@ -194,16 +194,37 @@ struct Enumeration_cost
   }
 };
 
-// Babai's nearest plane point of w for R (upper triangular, R^T R = H): z, d = z - w and R d; returns q(z) = |R d|^2
+// std::round without libm's call (x86-64 has no rounding instruction before SSE4.1): the refinement's searches
+// round a few hundred values each, thousands of times a round. Halves away from zero, as std::round.
+inline double nearest_integer(double x)
+{
+  if(!(std::abs(x) < 4503599627370496.)) // 2^52: x is an integer already (or not finite)
+    return x;
+  double t = double(std::int64_t(x)); // truncated; x - t is exact
+  const double fraction = x - t;
+  if(fraction >= 0.5)
+    t += 1;
+  else if(fraction <= -0.5)
+    t -= 1;
+  return t;
+}
+
+// Babai's nearest plane point of w for R (upper triangular, R^T R = H): z, d = z - w and R d (size k); returns
+// q(z) = |R d|^2. Column by column: Rd[j] gathers sum_{i > j} R(j, i) d[i] until row j is reached, contiguous
+// reads of R with no chain of dependent additions (a row's dot product through column-major R was most of a
+// search in the refinement's rounds of unproven integers).
 inline double nearest_plane_point(const Eigen::MatrixXd& R, const Eigen::VectorXd& w, Eigen::VectorXd& z,
                                   Eigen::VectorXd& d, Eigen::VectorXd& Rd)
 {
   const Eigen::Index k = w.size();
+  Rd.setZero();
+  z = R.diagonal().cwiseInverse(); // independent divisions, out of the chain from row to row
   for(Eigen::Index i = k - 1; i >= 0; --i) {
-    const double tail = R.row(i).tail(k - 1 - i).dot(d.tail(k - 1 - i));
-    z[i] = std::round(w[i] - tail / R(i, i));
+    const double tail = Rd[i];
+    z[i] = nearest_integer(w[i] - tail * z[i]);
     d[i] = z[i] - w[i];
     Rd[i] = R(i, i) * d[i] + tail;
+    Rd.head(i) += d[i] * R.col(i).head(i);
   }
   return Rd.squaredNorm();
 }
@@ -218,7 +239,9 @@ inline double greedy_descent(const Eigen::MatrixXd& H, Eigen::VectorXd& z, Eigen
   for(int sweep = 0; sweep < 1000; ++sweep) {
     bool improved = false;
     for(Eigen::Index i = 0; i < k; ++i) {
-      const double step = std::round(-Hd[i] / H(i, i));
+      if(std::abs(Hd[i]) < 0.49 * H(i, i))
+        continue; // its step rounds to 0: most coordinates, without a division
+      const double step = nearest_integer(-Hd[i] / H(i, i));
       if(step == 0)
         continue;
       const double gain = 2 * step * Hd[i] + step * step * H(i, i);
@@ -293,7 +316,7 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
     best.lower_bound = 0;
     best.m.resize(std::size_t(k));
     for(Eigen::Index i = 0; i < k; ++i)
-      best.m[std::size_t(i)] = std::int64_t(std::llround(m[i]));
+      best.m[std::size_t(i)] = std::int64_t(nearest_integer(m[i]));
     return best;
   }
 
@@ -396,7 +419,7 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
   best.lower_bound = proven ? best_value : (std::min)(lower_bound, best_value);
   best.m.resize(std::size_t(k));
   for(Eigen::Index i = 0; i < k; ++i)
-    best.m[std::size_t(i)] = std::int64_t(std::llround(m[i]));
+    best.m[std::size_t(i)] = std::int64_t(nearest_integer(m[i]));
   return best;
 }
 

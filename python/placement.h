@@ -135,10 +135,7 @@ py::tuple Python_solver::principal_curvature_guide() const
 {
   std::vector<std::pair<double, double>> c;
   std::vector<Kernel::Vector_3> guide;
-  {
-    py::gil_scoped_release unlocked;
-    guide = m_solver->curvature_guide(c);
-  }
+  guide = reading([&] { return m_solver->curvature_guide(c); }); // beside solves, never during set_constraints()
   std::vector<double> g, k;
   for(const auto& v : guide)
     for(int i = 0; i < 3; ++i)
@@ -154,8 +151,7 @@ py::tuple Python_solver::principal_curvature_guide() const
 std::vector<std::size_t> Python_solver::spread_guided_faces(const py::object& guide, std::size_t count) const
 {
   const std::vector<Kernel::Vector_3> g = directions_of(guide);
-  py::gil_scoped_release unlocked;
-  return m_solver->spread(g, count);
+  return reading([&] { return m_solver->spread(g, count); });
 }
 
 py::tuple Python_solver::refine_singularities(const py::object& start, const py::object& n_in,

@@ -28,9 +28,6 @@ figure() {
   echo "make_figures.sh: $out/$name.png"
 }
 
-# the default example of scripts/run_example.sh (also in the README)
-figure sphere_example "$root/examples/data/sphere.off" --streamlines "$work/sphere_example.streamlines.vtk" \
-  --view 20 50 --size 800 600 -- --singularities "$root/examples/data/sphere.sing"
 # introduction: a vector field on the cow with two +1 singularities, as streamlines
 figure cow_vector "$meshes/cow.off" --streamlines "$work/cow_vector.streamlines.vtk" --size 900 600 -- \
   --singularities "$data/cow.sing" --streamline-seeds 300

@@ -6,10 +6,7 @@
 // The command-line program: computes the trivial connection closest to Levi-Civita with prescribed
 // singularities on a triangle mesh, and the n-direction field it defines, and writes both to files.
 //
-//   trivial_connections MESH [--singularities FILE] [--boundary-indices FILE] [--constraints FILE]
-//                            [--triangulate] [--align-boundary] [--guidance FILE] [--guidance-weight MU] [--n N] [--weights hodge|unit]
-//                            [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT] [--singularity-points OUT]
-//                            [--streamlines OUT] [--streamline-seeds K] [--progress] [--help] [--version]
+//   trivial_connections MESH [options]   (the options: trivial_connections_command_line.h, or --help)
 //
 // Exit status: 0 on success, 1 on an input error (mesh, singularities, solver, output files), 2 on a usage
 // error. On any error one line `trivial_connections: error: <message>` goes to stderr and no output file is

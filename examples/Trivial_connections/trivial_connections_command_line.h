@@ -45,7 +45,8 @@ inline const char* const program = "trivial_connections";
 inline const char* const usage_text =
   "Usage: trivial_connections MESH [--triangulate] [--repair] [--write-mesh OUT] [--singularities FILE]\n"
   "                           [--boundary-indices FILE]\n"
-  "                           [--constraints FILE] [--align-boundary] [--guidance FILE]\n"
+  "                           [--constraints FILE] [--align-boundary] [--align-features [DEGREES]]\n"
+  "                           [--feature-lines OUT] [--write-constraints OUT] [--guidance FILE]\n"
   "                           [--guidance-weight MU] [--n N] [--weights hodge|unit]\n"
   "                           [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT]\n"
   "                           [--singularity-points OUT] [--streamlines OUT] [--streamline-seeds K]\n"

@@ -23,7 +23,6 @@
 #include <CGAL/Trivial_connections/internal/topology/loop_holonomy.h>
 #include <CGAL/Trivial_connections/internal/system/constraint_links.h>
 #include <CGAL/Trivial_connections/internal/system/constraint_rows.h>
-#include <CGAL/Trivial_connections/internal/system/constraint_targets.h>
 #include <CGAL/Trivial_connections/internal/system/right_hand_side.h>
 #include <CGAL/Trivial_connections/internal/system/system_assembly.h>
 #include <CGAL/Trivial_connections/internal/factorization/concurrent_node_order.h>

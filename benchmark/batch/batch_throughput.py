@@ -22,6 +22,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -61,15 +62,27 @@ def direct(meshes, options, program):
 
 def plain_pool(meshes, options, program, k):
     """the same program commands by k threads that each start the next one (no Dask, no record): what k
-    processes at once give on this machine, the ceiling of the batch's ratio"""
+    processes at once give on this machine, the ceiling of the batch's ratio; with k >= 2 each thread's programs
+    on cores of their own, as the batch's workers"""
     from concurrent.futures import ThreadPoolExecutor
     out = Path(tempfile.mkdtemp(prefix="tc_batch_bench_pool_"))
+    usable = sorted(os.sched_getaffinity(0))
+    share = len(usable) // k if 2 <= k <= len(usable) else 0
+    slots = iter(range(k))
+    local = threading.local()
+    lock = threading.Lock()
     try:
         def one(i_m):
             i, m = i_m
+            if not hasattr(local, "cores"):
+                with lock:
+                    slot = next(slots)
+                local.cores = usable[slot * share:(slot + 1) * share] if share else None
+            cores = local.cores
             subprocess.run([program, str(m), *options, "--connection", str(out / f"c{i}.txt"),
                             "--field", str(out / f"f{i}.txt")], stdin=subprocess.DEVNULL,
-                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"),
+                           preexec_fn=(lambda: os.sched_setaffinity(0, cores)) if cores else None)
         start = time.perf_counter()
         with ThreadPoolExecutor(k) as pool:
             list(pool.map(one, enumerate(reversed(meshes))))
@@ -93,19 +106,27 @@ def main():
     large = all_meshes[-30:]
     options = ["--repair", "--auto", "--n", "4"]
     times = {1: [], 2: []}
+    one_core = []  # 1 worker whose programs have one core, as each of 2 workers' on 2 cores
     startup = {1: [], 2: []}
     summaries = {}
+    usable = len(os.sched_getaffinity(0))
     for k in (1, 2):
         start = time.perf_counter()
+        # the cores as the command shares them among its own cluster's workers (run_batch(workers=k))
+        share = usable // k if 2 <= k <= usable else None
         with LocalCluster(n_workers=k, threads_per_worker=1, host="127.0.0.1", dashboard_address=None,
                           silence_logs=40) as cluster, Client(cluster) as client:
             startup[k].append(time.perf_counter() - start)
             timed_batch(large[:2], options, program, client=client)  # warm the workers
             for _ in range(3):
-                t, s = timed_batch(large, options, program, client=client)
+                t, s = timed_batch(large, options, program, client=client, cores_per_mesh=share)
                 times[k].append(t)
                 summaries[k] = s
                 print(f"30 largest, {k} worker(s): {t:.2f} s ({s.done} done, {s.failed} failed)", flush=True)
+                if k == 1 and usable >= 2:
+                    t, s = timed_batch(large, options, program, client=client, cores_per_mesh=usable // 2)
+                    one_core.append(t)
+                    print(f"30 largest, 1 worker on {usable // 2} core(s): {t:.2f} s", flush=True)
         t, s = timed_batch(large, options, program, workers=k)  # the whole command: cluster start included
         startup[k].append(t)
         print(f"30 largest, {k} worker(s), cluster start included: {t:.2f} s", flush=True)
@@ -131,6 +152,7 @@ def main():
         "date": datetime.datetime.now().isoformat(timespec="seconds"), "commit": a.commit, "cores": os.cpu_count(),
         "cpu": platform.processor(), "largest": [m.name for m in large], "options": options,
         "seconds_1_worker": times[1], "seconds_2_workers": times[2], "ratio": t1 / t2,
+        "seconds_1_worker_own_share": one_core, "ratio_same_share": (min(one_core) / t2) if one_core else None,
         "cluster_start_seconds": {k: v[0] for k, v in startup.items()},
         "plain_pool_seconds": pool,
         "with_start_seconds": {k: v[1] for k, v in startup.items()},
@@ -159,13 +181,18 @@ def write_section(path, r):
              "lock of the machine.", "",
              "| measure | 1 worker | 2 workers | ratio |", "|---|---|---|---|",
              f"| 30 largest meshes of CGAL's data set, `{' '.join(r['options'])}`: run_batch() on a started local "
-             f"cluster (best of {len(r['seconds_1_worker'])}) | {min(r['seconds_1_worker']):.2f} s | "
+             f"cluster, the cores shared as the command shares them (1 worker: every core for each mesh; 2 workers: "
+             f"one each), best of {len(r['seconds_1_worker'])} | {min(r['seconds_1_worker']):.2f} s | "
              f"{min(r['seconds_2_workers']):.2f} s | **{r['ratio']:.2f}** |",
+             *([f"| the same, each mesh's program on {r['cores'] // 2} core(s) of its own in both (`--cores-per-mesh "
+                f"{r['cores'] // 2}`; with 2 workers that is the default): the batch's scaling in workers | "
+                f"{min(r['seconds_1_worker_own_share']):.2f} s | {min(r['seconds_2_workers']):.2f} s | "
+                f"**{r['ratio_same_share']:.2f}** |"] if r.get("seconds_1_worker_own_share") else []),
              f"| the same, the whole command (local cluster start and stop included) | "
              f"{r['with_start_seconds'][1]:.2f} s | {r['with_start_seconds'][2]:.2f} s | "
              f"{r['with_start_seconds'][1] / r['with_start_seconds'][2]:.2f} |",
              f"| without the batch: the same commands by a plain pool of threads starting processes (no Dask, no "
-             f"record; the machine's ceiling) | {r['plain_pool_seconds'][1]:.2f} s | {r['plain_pool_seconds'][2]:.2f} s "
+             f"record; 2 at once on cores of their own; the machine's ceiling) | {r['plain_pool_seconds'][1]:.2f} s | {r['plain_pool_seconds'][2]:.2f} s "
              f"| {r['plain_pool_seconds'][1] / r['plain_pool_seconds'][2]:.2f} |",
              f"| start of the local cluster alone | {r['cluster_start_seconds'][1]:.2f} s | "
              f"{r['cluster_start_seconds'][2]:.2f} s | |", "",

@@ -290,6 +290,53 @@ def test_bad_commands():
         (["a", "--out", "o", "b"], ["--n", "4", "--auto"])
 
 
+def test_workers_share_the_cores():
+    """Local workers share the cores: with two workers each one's programs run on a core of their own (the
+    affinity the program reads, and its record), with --cores-per-mesh as asked, with one worker on every core."""
+    usable = sorted(os.sched_getaffinity(0))
+    if len(usable) < 2:
+        pytest.skip("one usable core: nothing to share")
+    d = scratch("cores")
+    seen = d / "seen"
+    seen.mkdir()
+    # the program's affinity as the kernel gives it to the program's own process
+    wrapper = d / "program.sh"
+    wrapper.write_text("#!/bin/sh\n"
+                       f"grep Cpus_allowed_list /proc/self/status > '{seen}'/\"$(basename \"$1\")\"\n"
+                       f"exec '{PROGRAM}' \"$@\"\n")
+    wrapper.chmod(0o755)
+    meshes = [str(p) for p in largest(8)]
+
+    def cores_seen(name):
+        text = (seen / name).read_text().split(":", 1)[1].strip()
+        cores = set()
+        for part in text.split(","):
+            a, _, b = part.partition("-")
+            cores.update(range(int(a), int(b or a) + 1))
+        return sorted(cores)
+
+    summary = tcb.run_batch(meshes, str(d / "two"), OPTIONS, workers=2, program=str(wrapper))
+    by_worker = {}
+    for r in summary.rows:
+        assert r["status"] == "done" or r.get("error_code"), r
+        assert r["cores"] is not None and len(r["cores"]) == len(usable) // 2, r
+        assert cores_seen(Path(r["mesh"]).name) == r["cores"]
+        by_worker.setdefault(r["worker"], set()).add(tuple(r["cores"]))
+    assert all(len(c) == 1 for c in by_worker.values())  # a worker keeps its cores
+    if len(by_worker) == 2:
+        a, b = (next(iter(c)) for c in by_worker.values())
+        assert not set(a) & set(b)  # and shares none of them
+    summary = tcb.run_batch(meshes[:2], str(d / "asked"), OPTIONS, workers=2, program=str(wrapper),
+                            cores_per_mesh=1)
+    assert all(r["cores"] is not None and len(r["cores"]) == 1 for r in summary.rows)
+    assert all(cores_seen(Path(r["mesh"]).name) == r["cores"] for r in summary.rows)
+    summary = tcb.run_batch(meshes[:2], str(d / "one"), OPTIONS, workers=1, program=str(wrapper))
+    assert all(r["cores"] is None for r in summary.rows)
+    assert all(cores_seen(Path(r["mesh"]).name) == usable for r in summary.rows)
+    with pytest.raises(tcb.BatchError, match="cores-per-mesh"):
+        tcb.run_batch(meshes[:1], str(d / "bad"), OPTIONS, workers=2, program=str(wrapper), cores_per_mesh=0)
+
+
 def test_crash_and_timeout_are_retried_then_recorded():
     """A program that dies of SIGSEGV, and one that hangs past --timeout: each retried once, then recorded
     (crashed with the signal, timeout); the other mesh of the batch is done."""

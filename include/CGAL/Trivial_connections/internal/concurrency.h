@@ -17,20 +17,38 @@
 #include <type_traits>
 #include <utility>
 
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
 namespace CGAL {
 namespace Trivial_connections {
 namespace internal {
 
-// Starts `task` on a second thread when the machine has more than one core (and the thread can be made);
+// Starts `task` on a second thread when this thread may run on more than one core (and the thread can be made);
 // otherwise the task runs in the caller's thread when its result is asked for. Either way the future's
 // get() returns the result or rethrows the task's exception, and its destructor waits for the task, so a
 // task may use anything that outlives the future. Defining CGAL_TRIVIAL_CONNECTIONS_NO_THREADS keeps
 // everything in the caller's thread.
+// The cores this thread may run on: its affinity on Linux (taskset, a container's cpuset, a batch worker's share
+// of the machine), where std::thread::hardware_concurrency() counts every core online; a second thread on the
+// same core only takes turns with the first.
+inline unsigned usable_cores()
+{
+#if defined(__linux__) && defined(CPU_COUNT)
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if(sched_getaffinity(0, sizeof(set), &set) == 0)
+    return unsigned(CPU_COUNT(&set));
+#endif
+  return std::thread::hardware_concurrency();
+}
+
 template <class Task>
 auto concurrently(const Task& task) -> std::future<decltype(task())>
 {
 #ifndef CGAL_TRIVIAL_CONNECTIONS_NO_THREADS
-  if(std::thread::hardware_concurrency() > 1) {
+  if(usable_cores() > 1) {
     try {
       return std::async(std::launch::async, task);
     } catch(const std::system_error&) {
@@ -44,7 +62,7 @@ auto concurrently(const Task& task) -> std::future<decltype(task())>
 /*
   One thread kept for the second half of many short steps (a refinement round has several): starting a thread costs
   30-50 us on the machines of benchmark/RESULTS.md, about 7 % of femur's refinement (33 threads), while waking one
-  costs a few. The thread starts at the first step, when the machine has more than one core (and the thread can be
+  costs a few. The thread starts at the first step, when this thread may run on more than one core (and it can be
   made); otherwise, or with CGAL_TRIVIAL_CONNECTIONS_NO_THREADS, both parts run in the caller's thread. The parts of
   one step must not race; an exception of either is rethrown once both are done.
 */
@@ -120,7 +138,7 @@ private:
 #else
     if(m_thread.joinable())
       return true;
-    if(m_refused || std::thread::hardware_concurrency() < 2)
+    if(m_refused || usable_cores() < 2)
       return false;
     try {
       m_thread = std::thread([this] { serve(); });

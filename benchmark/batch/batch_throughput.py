@@ -198,6 +198,15 @@ def write_section(path, r):
              f"{r['cluster_start_seconds'][2]:.2f} s | |", "",
              f"Of the 30: {r['done']} done, {r['failed']} failed ({r['failed_by_code'] or 'none'}; b9.ply is a point "
              "cloud).", "",
+             *([f"Two ratios, because the program has threads of its own (the refinement's pricing, the factorization): "
+                f"one worker's meshes run on every core, {min(r['seconds_1_worker']):.2f} s against "
+                f"{min(r['seconds_1_worker_own_share']):.2f} s on {r['cores'] // 2} core(s) each, and two workers "
+                f"cannot have that gain. Against it the ratio is {r['ratio']:.2f}, at the machine's ceiling (the plain "
+                f"pool's {r['plain_pool_seconds'][1] / r['plain_pool_seconds'][2]:.2f}); with the same cores per mesh "
+                f"in both, the batch's own scaling in workers, it is {r['ratio_same_share']:.2f}. Pinning each of 2 workers' "
+                "programs to a core of its own (the default since commit a9471df) raised the first ratio from 1.57: "
+                "unpinned, each program's second thread took turns with the other worker's program.", ""]
+               if r.get("seconds_1_worker_own_share") else []),
              f"Overhead of the batch per mesh: **{1000 * r['overhead_per_mesh_seconds']:.1f} ms** — the "
              f"{len(r['small'])} smallest meshes (at most {r['small_max_faces']} faces), "
              f"`{' '.join(r['small_options'])}`: run_batch() on a started 1-worker cluster, "

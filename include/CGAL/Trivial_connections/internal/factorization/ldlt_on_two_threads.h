@@ -58,9 +58,9 @@ class Ldlt_on_two_threads
 
 public:
   // After s.analyzePattern(a) succeeded: the numeric factorization of `a` (the matrix given to the analysis,
-  // with the triangle `Simplicial` reads). Returns false when it did not run on two threads (too small, or no
-  // second thread): the caller then calls s.factorize(a). `full_top_block`, when given, tells which way step (3)
-  // went (for the tests).
+  // with the triangle `Simplicial` reads), on two threads when a second one can run, else the same steps on this
+  // one. Returns false when it did not run (too small to pay): the caller then calls s.factorize(a).
+  // `full_top_block`, when given, tells which way step (3) went (for the tests).
   static bool factorize(Simplicial& s, const Sparse& a, bool* full_top_block = nullptr)
   {
     Ldlt_on_two_threads worker(s);
@@ -133,8 +133,9 @@ private:
       subtrees(*second_workspace);
       return 0;
     });
-    if(second.wait_for(std::chrono::seconds(0)) == std::future_status::deferred)
-      return false; // never started: the deferred task is dropped with its future
+    // Without a second thread (one usable core) the same steps run on this one, the deferred task when its
+    // result is asked for: the factor, to the last bit, does not depend on the cores (a batch pins its workers'
+    // programs to a core each, and a run on the user's machine gives the same bytes).
     Workspace first_workspace(n);
     top_symbolic(*upper, first_workspace);
     subtrees(first_workspace);

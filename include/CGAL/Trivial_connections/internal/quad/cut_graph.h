@@ -141,11 +141,6 @@ struct Cut_graph
   std::vector<int> combed_matching;    // per interior edge (Mesh_geometry numbering): r + c_g - c_f, 0 off the cut
   std::vector<Arc> arcs;
   std::vector<int> arc_of_edge;        // per edge: its arc, -1 off the cut and on border edges
-
-  bool is_interior_cut_corner(int i, const std::vector<int>& opposite_corner) const
-  {
-    return opposite_corner[i] >= 0 && is_cut[edge_of_corner[i]];
-  }
 };
 
 namespace cut_graph_impl {
@@ -157,11 +152,13 @@ struct Graph_edge
 };
 using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, Graph_edge>;
 
-// records, per vertex reached, the corner of the tree edge that reached it
-struct Tree_corner_recorder : boost::default_bfs_visitor
+// records, per vertex reached, the corner of the tree edge that reached it and the component of the search
+struct Tree_recorder : boost::default_bfs_visitor
 {
   std::vector<int>* parent_corner;
-  explicit Tree_corner_recorder(std::vector<int>& p) : parent_corner(&p) {}
+  std::vector<int>* component;
+  int current;
+  void discover_vertex(Graph::vertex_descriptor v, const Graph&) const { (*component)[v] = current; }
   void tree_edge(Graph::edge_descriptor e, const Graph& graph) const
   {
     (*parent_corner)[boost::target(e, graph)] = graph[e].corner;
@@ -238,32 +235,13 @@ Cut_graph build_cut_graph(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometr
       if(color[root] != boost::white_color)
         continue;
       boost::queue<Graph::vertex_descriptor> queue;
-      boost::breadth_first_visit(dual, Graph::vertex_descriptor(root), queue, Tree_corner_recorder(parent_corner),
+      boost::breadth_first_visit(dual, Graph::vertex_descriptor(root), queue,
+                                 Tree_recorder{{}, &parent_corner, &cut.component_of_face, cut.number_of_components++},
                                  color_map);
-      cut.number_of_components++;
     }
     for(int f = 0; f < m.nf; ++f)
       if(parent_corner[f] >= 0)
         crossed_by_tree[cut.edge_of_corner[parent_corner[f]]] = 1;
-    // components: follow the tree from each root (faces are reached after their parent in a BFS, but not in
-    // index order: resolve by walking up)
-    int next_component = 0;
-    for(int f = 0; f < m.nf; ++f) {
-      if(cut.component_of_face[f] >= 0)
-        continue;
-      std::vector<int> path;
-      int a = f;
-      while(cut.component_of_face[a] < 0 && parent_corner[a] >= 0) {
-        path.push_back(a);
-        a = MA::face_of(parent_corner[a]);
-      }
-      int c = cut.component_of_face[a];
-      if(c < 0)
-        c = cut.component_of_face[a] = next_component++;
-      for(int p : path)
-        cut.component_of_face[p] = c;
-    }
-    CGAL_assertion(next_component == cut.number_of_components);
   }
 
   // 2. the complement of the tree, pruned of its dangling edges: what is left is the boundary, the

@@ -1,0 +1,567 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+// The first two layers of quad meshing (issue 43), internal/quad/: the cut graph with the matching and the
+// combing of a cross field, and the seamless parametrisation. Every property is checked from its definition,
+// recomputed here from the positions, the solver's connection and field (Mesh_view, test_support): the cut
+// surface's Euler characteristic and connectedness, the matching by transport and rotation, the holonomy
+// against the prescribed indices, the transitions corner by corner, the optimality along feasible directions,
+// the exact answer on a flat square, and independence from the numbering.
+
+#include "test_support.h"
+
+#include <CGAL/Trivial_connections/internal/quad/cut_graph.h>
+#include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
+
+namespace {
+
+using namespace tc_test;
+namespace TCI = CGAL::Trivial_connections::internal;
+
+// A cross field solved on a mesh with the given singularities, and the two layers built on it.
+struct Quad_case
+{
+  Surface_mesh mesh;
+  Mesh_view<Surface_mesh> view;
+  Singularities singularities;
+  std::vector<double> x;       // per view halfedge
+  std::vector<Vector> field;   // per view face
+  TCI::Mesh_arrays<Surface_mesh> arrays;
+  TCI::Mesh_geometry geometry;
+  std::vector<double> angle;   // per face: the field's angle in its frame
+  std::vector<double> connection; // per interior edge (Mesh_geometry numbering)
+  std::vector<int> matching;
+  TCI::Cut_graph cut;
+
+  Quad_case(const Soup& soup, const Singularities& sing)
+    : mesh(to_surface_mesh(soup)), view(mesh), singularities(sing),
+      arrays(mesh, get(CGAL::vertex_point, mesh), K()), geometry(arrays, TC::Weighting::hodge_star)
+  {
+    TC::Trivial_connection_solver<Surface_mesh> solver(mesh);
+    solver.solve(descriptors(view, sing), view.halfedge_map(x), TC::parameters::symmetry_order(4));
+    solver.compute_field(view.halfedge_map_const(x), view.face_map(field));
+    geometry.compute_angles(arrays);
+    for(int f = 0; f < arrays.nf; ++f)
+      angle.push_back(TCI::angle_in_frame(arrays, f, V(f)));
+    for(int i : geometry.edge_corner)
+      connection.push_back(x[view.hid.at(arrays.halfedges[i])]);
+    matching = TCI::cross_field_matching(arrays, geometry, angle, connection);
+    std::vector<int> singular;
+    for(const auto& s : sing)
+      singular.push_back(s.first);
+    cut = TCI::build_cut_graph(arrays, geometry, matching, singular);
+  }
+  Quad_case(const Quad_case&) = delete;
+
+  TCI::Vec3 V(int f) const { return {{field[f].x(), field[f].y(), field[f].z()}}; }
+  // view halfedge of corner halfedge i, and back
+  int halfedge(int i) const { return view.hid.at(arrays.halfedges[i]); }
+  int corner(int h) const { return arrays.corner_of(view.halfedges[h], mesh); }
+  bool cut_halfedge(int h) const
+  {
+    const int i = view.hface[h] >= 0 ? corner(h) : corner(view.opp[h]);
+    return cut.is_cut[cut.edge_of_corner[i]];
+  }
+};
+
+// The number of quarter turns r (0..3) with: transport of face(h)'s vector to the other face, turned by x(h)
+// and then by r quarter turns about the arrival normal, is the other face's vector. Our definition, our transport.
+int independent_matching(const Quad_case& q, int h, double* error = nullptr)
+{
+  const int f = q.view.hface[h], g = q.view.hface[q.view.opp[h]];
+  const V3 u = rotate(q.view.transport(h, q.V(f)), q.view.N[g], q.x[h]);
+  int best = -1;
+  double best_error = 10;
+  for(int r = 0; r < 4; ++r) {
+    const double d = std::abs(signed_angle(rotate(u, q.view.N[g], r * pi / 2), q.V(g), q.view.N[g]));
+    if(d < best_error) {
+      best_error = d;
+      best = r;
+    }
+  }
+  if(error)
+    *error = best_error;
+  return best;
+}
+
+// the matching, then the combing: r(h) + c_g - c_f is 0 off the cut; the holonomy counter-clockwise around every
+// interior vertex is -4 k_v modulo 4
+void check_matching_and_combing(const Quad_case& q)
+{
+  const std::vector<long long> k4 = scaled_indices(q.view.nv(), q.singularities, 4);
+  std::vector<long long> ring(q.view.nv(), 0);
+  double worst = 0;
+  int mismatches = 0, combing_failures = 0;
+  for(int h : q.view.interior_halfedges) {
+    double error = 0;
+    const int r = independent_matching(q, h, &error);
+    worst = std::max(worst, error);
+    const int i = q.corner(h);
+    mismatches += TCI::matching_across(q.geometry, q.matching, i) != r;
+    ring[q.view.tgt[h]] += r;
+    const int f = q.view.hface[h], g = q.view.hface[q.view.opp[h]];
+    const int combed = ((r + q.cut.combing[g] - q.cut.combing[f]) % 4 + 4) % 4;
+    if(!q.cut_halfedge(h))
+      combing_failures += combed != 0;
+    EXPECT_EQ(combed, TCI::matching_across(q.geometry, q.cut.combed_matching, i));
+  }
+  EXPECT_LT(worst, 1e-8) << "the field is not a cross field parallel for the connection";
+  EXPECT_EQ(mismatches, 0) << "matchings that differ from the definition";
+  EXPECT_EQ(combing_failures, 0) << "edges off the cut with a non-zero combed matching";
+  for(int v = 0; v < q.view.nv(); ++v) {
+    if(!q.view.interior_vertex(v))
+      continue;
+    EXPECT_EQ(((ring[v] + k4[v]) % 4 + 4) % 4, 0) << "vertex " << v << ": holonomy " << ring[v] << ", 4k = " << k4[v];
+    EXPECT_EQ(q.cut.holonomy[v], ((-k4[v]) % 4 + 4) % 4) << "vertex " << v;
+  }
+}
+
+// The surface cut along the cut graph, per component: connected, and V - E + F = 1 (a disk); every singular
+// vertex on the cut. Corners (face, vertex) are glued across the edges off the cut, faces too.
+void check_cut_is_disk(const Quad_case& q)
+{
+  const Mesh_view<Surface_mesh>& view = q.view;
+  std::map<std::pair<int, int>, int> corner_id;
+  for(int h = 0; h < view.nh(); ++h)
+    if(view.hface[h] >= 0)
+      corner_id.emplace(std::make_pair(view.hface[h], view.tgt[h]), int(corner_id.size()));
+  std::vector<int> parent(corner_id.size() + view.nf());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> find = [&](int a) { return parent[a] == a ? a : parent[a] = find(parent[a]); };
+  auto join = [&](int a, int b) { parent[find(a)] = find(b); };
+  const int face_base = int(corner_id.size());
+  std::vector<long long> E(view.ncomp, 0), F(view.ncomp, 0), V(view.ncomp, 0), pieces(view.ncomp, 0);
+  for(int h = 0; h < view.nh(); ++h) {
+    if(h > view.opp[h])
+      continue; // each edge once
+    const int f = view.hface[h] >= 0 ? view.hface[h] : view.hface[view.opp[h]];
+    const int c = view.comp_of_face[f];
+    if(view.hface[h] < 0 || view.hface[view.opp[h]] < 0) {
+      E[c] += 1;
+      continue;
+    }
+    if(q.cut_halfedge(h)) {
+      E[c] += 2;
+      continue;
+    }
+    E[c] += 1;
+    const int g = view.hface[view.opp[h]];
+    join(face_base + f, face_base + g);
+    for(int v : {view.src[h], view.tgt[h]})
+      join(corner_id.at({f, v}), corner_id.at({g, v}));
+  }
+  for(const auto& c : corner_id)
+    if(find(c.second) == c.second)
+      ++V[view.comp_of_face[c.first.first]];
+  for(int f = 0; f < view.nf(); ++f) {
+    ++F[view.comp_of_face[f]];
+    if(find(face_base + f) == face_base + f)
+      ++pieces[view.comp_of_face[f]];
+  }
+  for(int c = 0; c < view.ncomp; ++c) {
+    EXPECT_EQ(pieces[c], 1) << "component " << c << " falls apart along the cut";
+    EXPECT_EQ(V[c] - E[c] + F[c], 1) << "component " << c << " cut open is not a disk";
+  }
+  for(const auto& s : q.singularities) {
+    bool on_cut = false;
+    for(int h = 0; h < view.nh(); ++h)
+      on_cut = on_cut || (view.tgt[h] == s.first && view.hface[h] >= 0 && q.cut_halfedge(h));
+    EXPECT_TRUE(on_cut) << "singular vertex " << s.first << " is not on the cut";
+  }
+  // the arcs: chains of cut edges, each joined to the next at a vertex, the combed matching constant
+  for(const TCI::Cut_graph::Arc& arc : q.cut.arcs) {
+    for(std::size_t j = 0; j + 1 < arc.left_corners.size(); ++j)
+      EXPECT_EQ(q.arrays.target_of(arc.left_corners[j]), q.arrays.source_of(arc.left_corners[j + 1]));
+    for(int l : arc.left_corners)
+      EXPECT_EQ(TCI::matching_across(q.geometry, q.cut.combed_matching, l), arc.matching);
+  }
+}
+
+// (u, v) turned by q quarter turns counter-clockwise
+std::array<double, 2> turned(const std::array<double, 2>& w, int q)
+{
+  switch(((q % 4) + 4) % 4) {
+    case 0: return w;
+    case 1: return {{-w[1], w[0]}};
+    case 2: return {{-w[0], -w[1]}};
+    default: return {{w[1], -w[0]}};
+  }
+}
+
+// corner of face(i) at vertex v (header numbering)
+int corner_at(const Quad_case& q, int f, int v)
+{
+  for(int c = 3 * f; c < 3 * f + 3; ++c)
+    if(q.arrays.corner_vertex[c] == v)
+      return c;
+  ADD_FAILURE() << "no corner of face " << f << " at vertex " << v;
+  return 3 * f;
+}
+
+// Across every interior edge, at both ends: off the cut the two faces agree; on arc a, right = R^q left + t_a
+// with q = -(r + c_right - c_left) from our matching. Returns the largest error.
+double transition_error(const Quad_case& q, const TCI::Seamless_parametrization::Map& map)
+{
+  double worst = 0;
+  std::vector<int> arc_of_left(3 * q.arrays.nf, -1);
+  for(std::size_t a = 0; a < q.cut.arcs.size(); ++a)
+    for(int l : q.cut.arcs[a].left_corners)
+      arc_of_left[l] = int(a);
+  for(int h : q.view.interior_halfedges) {
+    const int i = q.corner(h);
+    const int f = q.view.hface[h], g = q.view.hface[q.view.opp[h]];
+    int turns = 0;
+    std::array<double, 2> t = {{0, 0}};
+    if(q.cut_halfedge(h)) {
+      if(arc_of_left[i] < 0)
+        continue; // the other halfedge is the left one
+      const int r = independent_matching(q, h);
+      turns = -(r + q.cut.combing[g] - q.cut.combing[f]);
+      t = map.translation[arc_of_left[i]];
+    } else if(h > q.view.opp[h]) {
+      continue;
+    }
+    for(int v : {q.view.src[h], q.view.tgt[h]}) {
+      const auto& left = map.corner_uv[corner_at(q, f, v)];
+      const auto& right = map.corner_uv[corner_at(q, g, v)];
+      const auto expected = turned(left, turns);
+      worst = std::max(worst, std::hypot(right[0] - expected[0] - t[0], right[1] - expected[1] - t[1]));
+    }
+  }
+  return worst;
+}
+
+// Our energy sum_f A_f (|grad u - d/H|^2 + |grad v - N x d/H|^2) with d the field turned by the combing, and
+// its gradient with respect to the corner values (u, v) (header layout: 2 per corner halfedge)
+double independent_energy(const Quad_case& q, double H, const std::vector<std::array<double, 2>>& uv,
+                          Eigen::VectorXd* gradient = nullptr)
+{
+  if(gradient)
+    *gradient = Eigen::VectorXd::Zero(2 * uv.size());
+  double E = 0;
+  for(int f = 0; f < q.arrays.nf; ++f) {
+    const V3& N = q.view.N[f];
+    const V3 d = (1 / H) * rotate(q.V(f), N, q.cut.combing[f] * pi / 2);
+    const V3 dperp = cross(N, d);
+    int c[3];
+    V3 P[3];
+    for(int k = 0; k < 3; ++k) {
+      c[k] = 3 * f + k;
+      P[k] = q.view.P[q.arrays.corner_vertex[c[k]]];
+    }
+    const double A = norm(cross(P[1] - P[0], P[2] - P[0])) / 2;
+    V3 hat[3]; // gradients of the hat functions: N x (edge opposite k) / 2A
+    for(int k = 0; k < 3; ++k)
+      hat[k] = (1 / (2 * A)) * cross(N, P[(k + 2) % 3] - P[(k + 1) % 3]);
+    V3 gu = {{0, 0, 0}}, gv = {{0, 0, 0}};
+    for(int k = 0; k < 3; ++k) {
+      gu = gu + uv[c[k]][0] * hat[k];
+      gv = gv + uv[c[k]][1] * hat[k];
+    }
+    const V3 ru = gu - d, rv = gv - dperp;
+    E += A * (dot(ru, ru) + dot(rv, rv));
+    if(gradient)
+      for(int k = 0; k < 3; ++k) {
+        (*gradient)[2 * c[k]] += 2 * A * dot(ru, hat[k]);
+        (*gradient)[2 * c[k] + 1] += 2 * A * dot(rv, hat[k]);
+      }
+  }
+  return E;
+}
+
+std::vector<std::array<double, 2>> scaled_uv(const std::vector<std::array<double, 2>>& uv, double s)
+{
+  std::vector<std::array<double, 2>> r(uv);
+  for(auto& w : r)
+    w = {{s * w[0], s * w[1]}};
+  return r;
+}
+
+// The parametrisation of a case: transitions, energy, optimality (normal equations, and the gradient of our
+// energy orthogonal to every feasible map: the basis, the minimiser itself, the minimiser for another H and
+// for the field turned by a constant angle)
+TCI::Seamless_parametrization::Map check_parametrization(const Quad_case& q, double H)
+{
+  TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H);
+  const TCI::Seamless_parametrization::Map map = param.solve();
+  double scale = 0;
+  for(const auto& w : map.corner_uv)
+    scale = std::max({scale, std::abs(w[0]), std::abs(w[1])});
+  EXPECT_GT(scale, 1.) << "H is meant to give (u, v) of a few units";
+  EXPECT_LT(transition_error(q, map), 1e-9) << "a transition does not hold";
+  Eigen::VectorXd gradient;
+  const double E = independent_energy(q, H, map.corner_uv, &gradient);
+  EXPECT_NEAR(E, map.energy, 1e-9 * (1 + E));
+  // optimality: the normal equations, then our gradient against feasible directions
+  const Eigen::VectorXd residual = param.normal_matrix() * param.reduced_solution() - param.normal_rhs();
+  EXPECT_LT(residual.norm(), 1e-10 * param.normal_rhs().norm());
+  Eigen::VectorXd gradient_at_zero;
+  std::vector<std::array<double, 2>> zero(map.corner_uv.size(), {{0., 0.}});
+  independent_energy(q, H, zero, &gradient_at_zero);
+  const double reference = (param.corner_basis().transpose() * gradient_at_zero).norm();
+  EXPECT_GT(reference, 0.);
+  EXPECT_LT((param.corner_basis().transpose() * gradient).norm(), 1e-9 * reference);
+  auto along = [&](const std::vector<std::array<double, 2>>& direction) {
+    double s = 0, n = 0;
+    for(std::size_t c = 0; c < direction.size(); ++c) {
+      s += gradient[2 * c] * direction[c][0] + gradient[2 * c + 1] * direction[c][1];
+      n += gradient_at_zero[2 * c] * direction[c][0] + gradient_at_zero[2 * c + 1] * direction[c][1];
+    }
+    return std::abs(s) / std::max(std::abs(n), 1e-300);
+  };
+  EXPECT_LT(along(map.corner_uv), 1e-9);
+  // E(s w) = E(w) + (s-1) g.w + (s-1)^2 q(w): with g.w = 0, E(2w) - E(w) = E(0) - E(w)
+  EXPECT_NEAR(independent_energy(q, H, scaled_uv(map.corner_uv, 2)) - E, independent_energy(q, H, zero) - E,
+              1e-8 * independent_energy(q, H, zero));
+  TCI::Seamless_parametrization other_h(q.arrays, q.cut, q.angle, 2.7 * H);
+  EXPECT_LT(along(other_h.solve().corner_uv), 1e-9);
+  std::vector<double> turned_angle(q.angle);
+  for(double& a : turned_angle)
+    a += 0.4;
+  TCI::Seamless_parametrization other_angle(q.arrays, q.cut, turned_angle, H);
+  const TCI::Seamless_parametrization::Map turned_map = other_angle.solve();
+  EXPECT_LT(along(turned_map.corner_uv), 1e-9);
+  // a field turned by a constant angle has the same optimal energy: the map turns with it
+  EXPECT_NEAR(turned_map.energy, map.energy, 1e-9 * (1 + map.energy));
+  return map;
+}
+
+Singularities quarters(const std::vector<int>& vertices, int sign = 1)
+{
+  Singularities s;
+  for(int v : vertices)
+    s.emplace_back(v, Index(sign, 4));
+  return s;
+}
+
+void check_all(const Quad_case& q, double H)
+{
+  {
+    SCOPED_TRACE("matching and combing");
+    check_matching_and_combing(q);
+  }
+  {
+    SCOPED_TRACE("cut");
+    check_cut_is_disk(q);
+  }
+  {
+    SCOPED_TRACE("parametrisation");
+    check_parametrization(q, H);
+  }
+}
+
+TEST(QuadLayers, SphereWithEightQuarters)
+{
+  const Quad_case q(warped(icosphere_soup(2)), quarters({0, 1, 2, 3, 4, 5, 6, 7}));
+  check_all(q, 0.15);
+}
+
+TEST(QuadLayers, SphereWithHalvesAndOnes)
+{
+  // index 1/2: the transitions turn by a half turn around them; index 1: no turn at all, still on the cut
+  Singularities s = {{0, Index(1, 2)}, {3, Index(1, 2)}, {5, Index(1, 2)}, {9, Index(1, 2)}};
+  const Quad_case halves(warped(icosphere_soup(2)), s);
+  check_all(halves, 0.15);
+  const Quad_case ones(warped(icosphere_soup(2)), {{0, Index(1)}, {3, Index(1)}});
+  check_all(ones, 0.15);
+}
+
+TEST(QuadLayers, TorusWithoutAndWithSingularities)
+{
+  const Quad_case plain(torus_soup(3, 1, 24, 12), {});
+  // two generator loops: a figure eight (2 arcs) or a theta (3 arcs)
+  EXPECT_TRUE(plain.cut.arcs.size() == 2u || plain.cut.arcs.size() == 3u) << plain.cut.arcs.size() << " arcs";
+  check_all(plain, 0.3);
+  const Quad_case pair(warped(torus_soup(3, 1, 24, 12)), {{5, Index(1, 4)}, {150, Index(-1, 4)}});
+  check_all(pair, 0.3);
+}
+
+TEST(QuadLayers, GenusTwo)
+{
+  const Soup soup = genus2_soup(3);
+  const int nv = int(soup.points.size());
+  std::vector<int> v;
+  for(int j = 0; j < 8; ++j)
+    v.push_back(j * nv / 8 + 3);
+  const Quad_case q(soup, quarters(v, -1));
+  check_all(q, 0.2);
+}
+
+// a warped grid on [0, 4]^2 with two square holes
+Soup grid_with_holes(int n)
+{
+  Soup s;
+  for(int i = 0; i <= n; ++i)
+    for(int j = 0; j <= n; ++j)
+      s.points.emplace_back(4. * i / n, 4. * j / n, 0.);
+  auto id = [&](int i, int j) { return i * (n + 1) + j; };
+  auto in_hole = [&](int i, int j) {
+    const double x = (i + 0.5) * 4 / n, y = (j + 0.5) * 4 / n;
+    return (x > 0.8 && x < 1.6 && y > 0.8 && y < 3.2) || (x > 2.4 && x < 3.2 && y > 1.2 && y < 2.4);
+  };
+  for(int i = 0; i < n; ++i)
+    for(int j = 0; j < n; ++j)
+      if(!in_hole(i, j)) {
+        s.faces.push_back({{id(i, j), id(i + 1, j), id(i + 1, j + 1)}});
+        s.faces.push_back({{id(i, j), id(i + 1, j + 1), id(i, j + 1)}});
+      }
+  // drop the vertices no face uses
+  std::vector<int> used(s.points.size(), -1);
+  Soup r;
+  for(Tri& t : s.faces)
+    for(int& c : t) {
+      if(used[c] < 0) {
+        used[c] = int(r.points.size());
+        r.points.push_back(s.points[c]);
+      }
+      c = used[c];
+    }
+  r.faces = s.faces;
+  for(Point& p : r.points) // a bump, so that the surface is curved
+    p = Point(p.x(), p.y(), 0.3 * std::sin(p.x()) * std::cos(0.7 * p.y()));
+  return r;
+}
+
+TEST(QuadLayers, DiskWithTwoHoles)
+{
+  const Quad_case q(grid_with_holes(20), {});
+  ASSERT_EQ(q.view.boundary_loops.size(), 3u);
+  check_all(q, 0.2);
+  const Soup soup = grid_with_holes(20);
+  auto vertex_at = [&](double x, double y) {
+    for(std::size_t v = 0; v < soup.points.size(); ++v)
+      if(std::abs(soup.points[v].x() - x) < 1e-9 && std::abs(soup.points[v].y() - y) < 1e-9)
+        return int(v);
+    ADD_FAILURE() << "no vertex at " << x << ", " << y;
+    return 0;
+  };
+  const Quad_case with_singularities(soup, {{vertex_at(0.4, 2.0), Index(1, 4)}, {vertex_at(3.6, 0.6), Index(-1, 4)}});
+  check_all(with_singularities, 0.2);
+}
+
+TEST(QuadLayers, TwoComponents)
+{
+  const Soup soup = two_spheres_soup(2);
+  const int first = int(icosphere_soup(2).points.size());
+  std::vector<int> v = {0, 1, 2, 3, 4, 5, 6, 7};
+  for(int j = 0; j < 8; ++j)
+    v.push_back(first + j);
+  const Quad_case q(soup, quarters(v));
+  ASSERT_EQ(q.view.ncomp, 2);
+  check_all(q, 0.15);
+}
+
+// A flat square with a constant field: the map is exactly affine, its gradient the field and its quarter turn
+// divided by H, at zero energy (the cut is the border only).
+TEST(QuadLayers, FlatSquareIsAffine)
+{
+  const int n = 8;
+  Soup s;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.3 / n, 0.3 / n);
+  for(int i = 0; i <= n; ++i)
+    for(int j = 0; j <= n; ++j) {
+      const bool border = i == 0 || j == 0 || i == n || j == n;
+      s.points.emplace_back(double(i) / n + (border ? 0 : jitter(rng)), double(j) / n + (border ? 0 : jitter(rng)), 0.);
+    }
+  for(int i = 0; i < n; ++i)
+    for(int j = 0; j < n; ++j) {
+      const int a = i * (n + 1) + j, b = (i + 1) * (n + 1) + j;
+      s.faces.push_back({{a, b, b + 1}});
+      s.faces.push_back({{a, b + 1, a + 1}});
+    }
+  const Surface_mesh mesh = to_surface_mesh(s);
+  TCI::Mesh_arrays<Surface_mesh> arrays(mesh, get(CGAL::vertex_point, mesh), K());
+  TCI::Mesh_geometry geometry(arrays, TC::Weighting::hodge_star);
+  geometry.compute_angles(arrays);
+  const double alpha = 0.37, H = 0.1;
+  const TCI::Vec3 d = {{std::cos(alpha), std::sin(alpha), 0.}}, dperp = {{-std::sin(alpha), std::cos(alpha), 0.}};
+  std::vector<double> angle;
+  for(int f = 0; f < arrays.nf; ++f)
+    angle.push_back(TCI::angle_in_frame(arrays, f, d) + (f % 4) * pi / 2); // any of the four directions
+  const std::vector<int> matching = TCI::cross_field_matching(arrays, geometry, angle, {});
+  const TCI::Cut_graph cut = TCI::build_cut_graph(arrays, geometry, matching, {});
+  EXPECT_TRUE(cut.arcs.empty());
+  TCI::Seamless_parametrization param(arrays, cut, angle, H);
+  const TCI::Seamless_parametrization::Map map = param.solve();
+  EXPECT_LT(map.energy, 1e-20);
+  const TCI::Vec3& p0 = arrays.points[arrays.corner_vertex[0]];
+  const auto& w0 = map.corner_uv[0];
+  double worst = 0;
+  for(int c = 0; c < 3 * arrays.nf; ++c) {
+    const TCI::Vec3 dp = TCI::sub(arrays.points[arrays.corner_vertex[c]], p0);
+    worst = std::max({worst, std::abs(map.corner_uv[c][0] - w0[0] - TCI::dot(d, dp) / H),
+                      std::abs(map.corner_uv[c][1] - w0[1] - TCI::dot(dperp, dp) / H)});
+  }
+  // up to a quarter turn of the whole map (the combing picks one of the four directions)
+  if(worst > 1e-9) {
+    for(int turn = 1; turn < 4 && worst > 1e-9; ++turn) {
+      worst = 0;
+      for(int c = 0; c < 3 * arrays.nf; ++c) {
+        const TCI::Vec3 dp = TCI::sub(arrays.points[arrays.corner_vertex[c]], p0);
+        const auto e = turned({{TCI::dot(d, dp) / H, TCI::dot(dperp, dp) / H}}, turn);
+        worst = std::max({worst, std::abs(map.corner_uv[c][0] - w0[0] - e[0]), std::abs(map.corner_uv[c][1] - w0[1] - e[1])});
+      }
+    }
+  }
+  EXPECT_LT(worst, 1e-10) << "the map is not the affine map of gradient (d, J d) / H";
+}
+
+// Renumbered vertices, shuffled faces, rotated corners: the same surface and singularities give the same cut
+// topology and the same optimal energy.
+TEST(QuadLayers, IndependentOfNumbering)
+{
+  const Soup soup = warped(icosphere_soup(2));
+  const Singularities sing = quarters({0, 1, 2, 3, 4, 5, 6, 7});
+  std::vector<int> perm;
+  const Soup renamed = renumbered(soup, 11, &perm, true);
+  Singularities renamed_sing;
+  for(const auto& s : sing)
+    renamed_sing.emplace_back(perm[s.first], s.second);
+  const Quad_case a(soup, sing), b(renamed, renamed_sing);
+  check_cut_is_disk(b);
+  check_matching_and_combing(b);
+  const double H = 0.15;
+  TCI::Seamless_parametrization pa(a.arrays, a.cut, a.angle, H), pb(b.arrays, b.cut, b.angle, H);
+  const double ea = pa.solve().energy, eb = pb.solve().energy;
+  EXPECT_GT(ea, 0.);
+  EXPECT_NEAR(ea, eb, 1e-8 * ea);
+}
+
+// What the next layer needs: a singular vertex's root and an arc's translation fixed to given values, the
+// transitions still exact and the energy not lower; contradictory values are refused.
+TEST(QuadLayers, FixedValues)
+{
+  const Quad_case q(warped(icosphere_soup(2)), quarters({0, 1, 2, 3, 4, 5, 6, 7}));
+  const double H = 0.15;
+  TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H);
+  const double free_energy = param.solve().energy;
+  param.fix(param.root_variable(3), 3.);
+  param.fix(param.root_variable(3) + 1, -2.);
+  param.fix(param.translation_variable(0), 1.);
+  const TCI::Seamless_parametrization::Map map = param.solve();
+  EXPECT_NEAR(map.root_uv[3][0], 3., 1e-12);
+  EXPECT_NEAR(map.root_uv[3][1], -2., 1e-12);
+  EXPECT_NEAR(map.translation[0][0], 1., 1e-12);
+  EXPECT_LT(transition_error(q, map), 1e-9);
+  EXPECT_GE(map.energy, free_energy * (1 - 1e-12));
+  // the corners at vertex 3 are its root seen from each side: one of them is the root itself
+  bool root_seen = false;
+  for(int c = 0; c < 3 * q.arrays.nf; ++c)
+    root_seen = root_seen || (q.arrays.corner_vertex[c] == 3 && std::abs(map.corner_uv[c][0] - 3) < 1e-12 &&
+                              std::abs(map.corner_uv[c][1] + 2) < 1e-12);
+  EXPECT_TRUE(root_seen);
+  param.fix(param.root_variable(3), 4.);
+  EXPECT_THROW(param.solve(), TC::Invalid_input);
+}
+
+// A field whose matching turns around a vertex not declared singular is refused.
+TEST(QuadLayers, UndeclaredSingularityIsRefused)
+{
+  const Quad_case q(warped(icosphere_soup(2)), quarters({0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_THROW(TCI::build_cut_graph(q.arrays, q.geometry, q.matching, {0, 1, 2, 3, 4, 5, 6}), TC::Invalid_input);
+}
+
+} // namespace

@@ -170,6 +170,10 @@ SECTION = "## The batch (trivial_connections-batch)"
 
 
 def write_section(path, r):
+    # per worker count: int keys here, strings once read back from the JSON file
+    r = dict(r)
+    for key in ("with_start_seconds", "plain_pool_seconds", "cluster_start_seconds"):
+        r[key] = {int(k): v for k, v in r[key].items()}
     cpu = ""
     try:
         cpu = next(l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name"))

@@ -140,6 +140,11 @@ public:
   const Sparse& normal_matrix() const { return m_normal_matrix; }
   const Eigen::VectorXd& normal_rhs() const { return m_normal_rhs; }
   const Eigen::VectorXd& reduced_solution() const { return m_reduced_solution; }
+  // The linear constraints on z that hold whatever is fixed (closures around cut vertices and the gauges), as
+  // rows (row, unknown, coefficient) of G z = 0 with constraint_count() rows: for the rounding layer, which must
+  // know which unknowns the integers it fixed already determine.
+  const std::vector<Eigen::Triplet<double>>& constraint_rows() const { return m_constraint_rows; }
+  int constraint_count() const { return m_constraint_count; }
 
 private:
   // w = R^turns root + sum_k sign_k R^turn_k t_arc_k: a wedge's value from its vertex's root and the translations
@@ -271,13 +276,18 @@ private:
     Sparse closure(2 * closures, number_of_variables());
     closure.setFromTriplets(closure_rows.begin(), closure_rows.end());
     closure.prune(0.); // the terms of an arc through a regular vertex cancel exactly (integer entries)
-    // the gauge: per component, a vertex at (0, 0), one not on the cut when there is one
+    // the gauge: per component, a vertex at (0, 0): a singular vertex when there is one (its root must be an
+    // integer in the next layer anyway, while a regular vertex pinned at (0, 0) would be one more integer
+    // constraint on the rounding), else one not on the cut when there is one
+    auto gauge_rank = [&](int v) {
+      return (cut.is_singular[v] || cut.holonomy[v] != 0) ? 0 : m_wedges_of_vertex[v] == 1 ? 1 : 2;
+    };
     std::vector<int> gauge(cut.number_of_components, -1);
     for(int v = 0; v < m.nv; ++v) {
       if(first[v] < 0)
         continue;
       int& g = gauge[cut.component_of_face[MA::face_of(first[v])]];
-      if(g < 0 || (m_wedges_of_vertex[g] > 1 && m_wedges_of_vertex[v] == 1))
+      if(g < 0 || gauge_rank(v) < gauge_rank(g))
         g = v;
     }
     // the closures that are not 0 = 0, renumbered

@@ -25,11 +25,6 @@ namespace CGAL {
 namespace Trivial_connections {
 namespace internal {
 
-// Starts `task` on a second thread when this thread may run on more than one core (and the thread can be made);
-// otherwise the task runs in the caller's thread when its result is asked for. Either way the future's
-// get() returns the result or rethrows the task's exception, and its destructor waits for the task, so a
-// task may use anything that outlives the future. Defining CGAL_TRIVIAL_CONNECTIONS_NO_THREADS keeps
-// everything in the caller's thread.
 // The cores this thread may run on: its affinity on Linux (taskset, a container's cpuset, a batch worker's share
 // of the machine), where std::thread::hardware_concurrency() counts every core online; a second thread on the
 // same core only takes turns with the first.
@@ -44,6 +39,11 @@ inline unsigned usable_cores()
   return std::thread::hardware_concurrency();
 }
 
+// Starts `task` on a second thread when this thread may run on more than one core (and the thread can be made);
+// otherwise the task runs in the caller's thread when its result is asked for. Either way the future's
+// get() returns the result or rethrows the task's exception, and its destructor waits for the task, so a
+// task may use anything that outlives the future. Defining CGAL_TRIVIAL_CONNECTIONS_NO_THREADS keeps
+// everything in the caller's thread.
 template <class Task>
 auto concurrently(const Task& task) -> std::future<decltype(task())>
 {

@@ -356,6 +356,26 @@ Singularities quarters(const std::vector<int>& vertices, int sign = 1)
   return s;
 }
 
+// A warped sphere with eight +1/4, and the same surface with its vertices renumbered, faces shuffled and corners
+// rotated (the singularities follow their vertices).
+struct Sphere_and_renumbered
+{
+  Soup soup, renamed;
+  Singularities sing, renamed_sing;
+};
+
+Sphere_and_renumbered sphere_and_renumbered()
+{
+  Sphere_and_renumbered r;
+  r.soup = warped(icosphere_soup(2));
+  r.sing = quarters({0, 1, 2, 3, 4, 5, 6, 7});
+  std::vector<int> perm;
+  r.renamed = renumbered(r.soup, 11, &perm, true);
+  for(const auto& s : r.sing)
+    r.renamed_sing.emplace_back(perm[s.first], s.second);
+  return r;
+}
+
 void check_all(const Quad_case& q, double H)
 {
   {
@@ -533,14 +553,8 @@ TEST(QuadLayers, FlatSquareIsAffine)
 // topology and the same optimal energy.
 TEST(QuadLayers, IndependentOfNumbering)
 {
-  const Soup soup = warped(icosphere_soup(2));
-  const Singularities sing = quarters({0, 1, 2, 3, 4, 5, 6, 7});
-  std::vector<int> perm;
-  const Soup renamed = renumbered(soup, 11, &perm, true);
-  Singularities renamed_sing;
-  for(const auto& s : sing)
-    renamed_sing.emplace_back(perm[s.first], s.second);
-  const Quad_case a(soup, sing), b(renamed, renamed_sing);
+  const Sphere_and_renumbered s = sphere_and_renumbered();
+  const Quad_case a(s.soup, s.sing), b(s.renamed, s.renamed_sing);
   check_cut_is_disk(b);
   check_matching_and_combing(b);
   const double H = 0.15;
@@ -761,14 +775,8 @@ TEST(QuadRounding, CubeKnownAnswers)
 // (measured: 22.243 and 22.098 greedy, 22.61 and 40.50 naive, for a continuous 20.264).
 TEST(QuadRounding, RenumberedSphere)
 {
-  const Soup soup = warped(icosphere_soup(2));
-  const Singularities sing = quarters({0, 1, 2, 3, 4, 5, 6, 7});
-  std::vector<int> perm;
-  const Soup renamed = renumbered(soup, 11, &perm, true);
-  Singularities renamed_sing;
-  for(const auto& s : sing)
-    renamed_sing.emplace_back(perm[s.first], s.second);
-  const Quad_case a(soup, sing), b(renamed, renamed_sing);
+  const Sphere_and_renumbered s = sphere_and_renumbered();
+  const Quad_case a(s.soup, s.sing), b(s.renamed, s.renamed_sing);
   const Rounding_energies ea = check_rounding(a, 0.15, "sphere"), eb = check_rounding(b, 0.15, "sphere renumbered");
   EXPECT_NEAR(ea.continuous, eb.continuous, 1e-8 * ea.continuous);
   std::cout << "greedy energies " << ea.greedy << " and " << eb.greedy << " (relative difference "

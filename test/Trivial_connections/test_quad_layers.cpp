@@ -356,6 +356,26 @@ Singularities quarters(const std::vector<int>& vertices, int sign = 1)
   return s;
 }
 
+// eight -1/4 spread over genus2_soup()'s vertices (index sum -2 = chi)
+Singularities genus_two_singularities(const Soup& soup)
+{
+  const int nv = int(soup.points.size());
+  std::vector<int> v;
+  for(int j = 0; j < 8; ++j)
+    v.push_back(j * nv / 8 + 3);
+  return quarters(v, -1);
+}
+
+// eight +1/4 on each sphere of two_spheres_soup(2)
+Singularities two_spheres_singularities()
+{
+  const int first = int(icosphere_soup(2).points.size());
+  std::vector<int> v = {0, 1, 2, 3, 4, 5, 6, 7};
+  for(int j = 0; j < 8; ++j)
+    v.push_back(first + j);
+  return quarters(v);
+}
+
 // A warped sphere with eight +1/4, and the same surface with its vertices renumbered, faces shuffled and corners
 // rotated (the singularities follow their vertices).
 struct Sphere_and_renumbered
@@ -421,11 +441,7 @@ TEST(QuadLayers, TorusWithoutAndWithSingularities)
 TEST(QuadLayers, GenusTwo)
 {
   const Soup soup = genus2_soup(3);
-  const int nv = int(soup.points.size());
-  std::vector<int> v;
-  for(int j = 0; j < 8; ++j)
-    v.push_back(j * nv / 8 + 3);
-  const Quad_case q(soup, quarters(v, -1));
+  const Quad_case q(soup, genus_two_singularities(soup));
   check_all(q, 0.2);
 }
 
@@ -484,11 +500,7 @@ TEST(QuadLayers, DiskWithTwoHoles)
 TEST(QuadLayers, TwoComponents)
 {
   const Soup soup = two_spheres_soup(2);
-  const int first = int(icosphere_soup(2).points.size());
-  std::vector<int> v = {0, 1, 2, 3, 4, 5, 6, 7};
-  for(int j = 0; j < 8; ++j)
-    v.push_back(first + j);
-  const Quad_case q(soup, quarters(v));
+  const Quad_case q(soup, two_spheres_singularities());
   ASSERT_EQ(q.view.ncomp, 2);
   check_all(q, 0.15);
 }
@@ -710,20 +722,12 @@ TEST(QuadRounding, MeshesOfTheLayers)
   }
   {
     const Soup soup = genus2_soup(3);
-    const int nv = int(soup.points.size());
-    std::vector<int> v;
-    for(int j = 0; j < 8; ++j)
-      v.push_back(j * nv / 8 + 3);
-    const Quad_case q(soup, quarters(v, -1));
+    const Quad_case q(soup, genus_two_singularities(soup));
     all.push_back(check_rounding(q, 0.2, "genus 2, eight -1/4"));
   }
   {
     const Soup soup = two_spheres_soup(2);
-    const int first = int(icosphere_soup(2).points.size());
-    std::vector<int> v = {0, 1, 2, 3, 4, 5, 6, 7};
-    for(int j = 0; j < 8; ++j)
-      v.push_back(first + j);
-    const Quad_case q(soup, quarters(v));
+    const Quad_case q(soup, two_spheres_singularities());
     all.push_back(check_rounding(q, 0.15, "two spheres"));
   }
   {

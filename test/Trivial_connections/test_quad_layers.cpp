@@ -14,6 +14,7 @@
 
 #include <CGAL/Trivial_connections/internal/quad/cut_graph.h>
 #include <CGAL/Trivial_connections/internal/quad/integer_rounding.h>
+#include <CGAL/Trivial_connections/internal/quad/quad_extraction.h>
 #include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
 
 namespace {
@@ -837,6 +838,242 @@ TEST(QuadRounding, BatchedGreedy)
   EXPECT_GE(batched.map.energy, batched.continuous_energy * (1 - 1e-12));
   std::cout << "genus 2: greedy " << one.map.energy << " in " << one.solves << " solves, batched (0.25) "
             << batched.map.energy << " in " << batched.solves << " solves\n";
+}
+
+// ---- Layer 4: the quad mesh of the integer-grid map ----
+
+struct Extraction_counts
+{
+  int quads = 0, non_quads = 0, folds = 0, valence_3 = 0, valence_5 = 0, other_valence = 0;
+};
+
+// The quad mesh of the greedy integer-grid map of a case, checked from its definition:
+// - every quad vertex is on the input: barycentric coordinates in its face in [0, 1] summing to 1, its position
+//   their combination of the face's corners, and the map interpolated there an integer point;
+// - the faces are quads of 4 distinct vertices, each directed edge in at most one face;
+// and, where the map has no folded or degenerate triangle: no polygon rejected, every edge in exactly two faces
+// with opposite directions (closed, consistently oriented), every vertex a single fan of quads (its link one
+// cycle), the Euler characteristic the input's, valence 4 everywhere but at the singular vertices, which have
+// 4 - 4k.
+Extraction_counts check_quad_mesh(const Quad_case& q, double H, const std::string& name)
+{
+  TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H);
+  TCI::Integer_rounding rounding(param, q.cut);
+  const TCI::Seamless_parametrization::Map map = rounding.round(TCI::Rounding_scheme::greedy).map;
+  const TCI::Quad_mesh quad = TCI::extract_quad_mesh(q.arrays, q.cut, map);
+  Extraction_counts counts;
+  counts.quads = quad.quads;
+  counts.non_quads = quad.non_quads;
+  counts.folds = quad.folded_triangles + quad.degenerate_triangles;
+  const int nv = int(quad.points.size());
+  EXPECT_EQ(quad.locations.size(), quad.points.size());
+  EXPECT_EQ(quad.valence.size(), quad.points.size());
+  double worst_off_surface = 0, worst_off_grid = 0;
+  for(int p = 0; p < nv; ++p) {
+    const TCI::Quad_mesh::Location& l = quad.locations[p];
+    if(!(l.face >= 0 && l.face < q.arrays.nf)) {
+      ADD_FAILURE() << name << ": quad vertex " << p << " in no face of the input";
+      return counts;
+    }
+    double sum = 0;
+    V3 position = {{0, 0, 0}};
+    std::array<double, 2> w = {{0, 0}};
+    for(int j = 0; j < 3; ++j) {
+      EXPECT_GE(l.barycentric[j], -1e-12);
+      EXPECT_LE(l.barycentric[j], 1 + 1e-12);
+      sum += l.barycentric[j];
+      const int c = 3 * l.face + j;
+      position = position + l.barycentric[j] * V3(q.arrays.points[q.arrays.corner_vertex[c]]);
+      w = {{w[0] + l.barycentric[j] * map.corner_uv[c][0], w[1] + l.barycentric[j] * map.corner_uv[c][1]}};
+    }
+    EXPECT_NEAR(sum, 1., 1e-12);
+    worst_off_surface = std::max(worst_off_surface, norm(position - V3(quad.points[p])));
+    worst_off_grid = std::max({worst_off_grid, std::abs(w[0] - std::round(w[0])), std::abs(w[1] - std::round(w[1]))});
+    if(l.mesh_vertex >= 0) {
+      EXPECT_EQ(q.arrays.corner_vertex[3 * l.face + (l.barycentric[0] == 1 ? 0 : l.barycentric[1] == 1 ? 1 : 2)], l.mesh_vertex);
+    }
+  }
+  EXPECT_LT(worst_off_surface, 1e-12) << name << ": a quad vertex off its triangle";
+  EXPECT_LT(worst_off_grid, 1e-6) << name << ": a quad vertex that is not an integer point of the map";
+  std::map<std::pair<int, int>, int> directed;
+  for(const auto& f : quad.faces) {
+    std::set<int> distinct(f.begin(), f.end());
+    EXPECT_EQ(distinct.size(), 4u) << name;
+    for(int j = 0; j < 4; ++j) {
+      EXPECT_TRUE(f[j] >= 0 && f[j] < nv);
+      ++directed[{f[j], f[(j + 1) % 4]}];
+    }
+  }
+  for(const auto& d : directed)
+    EXPECT_EQ(d.second, 1) << name << ": directed edge " << d.first.first << " -> " << d.first.second << " in several faces";
+  const std::vector<long long> k4 = scaled_indices(q.view.nv(), q.singularities, 4);
+  for(int p = 0; p < nv; ++p) {
+    const int valence = quad.valence[p];
+    counts.valence_3 += valence == 3;
+    counts.valence_5 += valence == 5;
+    counts.other_valence += valence != 3 && valence != 4 && valence != 5;
+  }
+  std::cout << name << ": " << nv << " quad vertices, " << quad.quads << " quads, " << quad.non_quads
+            << " other polygons, " << quad.quad_edges << " edges (" << quad.dangling_edges << " dangling, "
+            << quad.open_edges << " open), valence 3: " << counts.valence_3 << ", 5: " << counts.valence_5
+            << ", other than 3-5: " << counts.other_valence << "; " << quad.folded_triangles << " folded and "
+            << quad.degenerate_triangles << " degenerate triangles of " << q.arrays.nf << "\n";
+  if(counts.folds > 0)
+    return counts;
+  // a fold-free map: a closed, consistently oriented 2-manifold of quads with the input's topology
+  EXPECT_EQ(quad.non_quads, 0) << name;
+  EXPECT_EQ(quad.dangling_edges, 0) << name;
+  EXPECT_EQ(quad.open_edges, 0) << name;
+  for(const auto& d : directed)
+    EXPECT_EQ(directed.count({d.first.second, d.first.first}), 1u) << name << ": edge " << d.first.first << " - "
+                                                                   << d.first.second << " not in two opposite faces";
+  // the link of every vertex: one cycle through as many faces as its valence
+  std::vector<std::map<int, int>> link(nv); // next vertex -> previous vertex, around each vertex's faces
+  for(const auto& f : quad.faces)
+    for(int j = 0; j < 4; ++j)
+      link[f[j]][f[(j + 1) % 4]] = f[(j + 3) % 4];
+  for(int p = 0; p < nv; ++p) {
+    if(link[p].empty()) {
+      ADD_FAILURE() << name << ": quad vertex " << p << " in no face";
+      continue;
+    }
+    int steps = 0;
+    const int start = link[p].begin()->first;
+    int x = start;
+    do {
+      auto it = link[p].find(x);
+      if(it == link[p].end())
+        break;
+      x = it->second;
+      ++steps;
+    } while(x != start && steps <= int(link[p].size()));
+    EXPECT_EQ(x, start) << name << ": the faces at quad vertex " << p << " are not a fan";
+    EXPECT_EQ(steps, int(link[p].size())) << name << ": the faces at quad vertex " << p << " are not one fan";
+    EXPECT_EQ(int(link[p].size()), quad.valence[p]) << name << ": quad vertex " << p;
+  }
+  const long long edges = (long long)(directed.size()) / 2;
+  const long long input_edges = (3LL * q.arrays.nf) / 2;
+  EXPECT_EQ(nv - edges + (long long)(quad.faces.size()), q.arrays.nv - input_edges + q.arrays.nf)
+    << name << ": Euler characteristic";
+  EXPECT_EQ(edges, quad.quad_edges) << name;
+  // valence 4 - 4k at singular vertices, 4 everywhere else; every singular vertex is a quad vertex
+  std::vector<int> seen(q.arrays.nv, 0);
+  for(int p = 0; p < nv; ++p) {
+    const int v = quad.locations[p].mesh_vertex;
+    const int expected = v >= 0 ? int(4 - k4[v]) : 4;
+    EXPECT_EQ(quad.valence[p], expected) << name << ": quad vertex " << p << " (mesh vertex " << v << ")";
+    if(v >= 0)
+      ++seen[v];
+  }
+  for(const auto& s : q.singularities)
+    EXPECT_EQ(seen[s.first], 1) << name << ": singular vertex " << s.first << " is not one quad vertex";
+  return counts;
+}
+
+std::vector<int> cube_corners(const Soup& soup)
+{
+  std::vector<int> corners;
+  for(int v = 0; v < int(soup.points.size()); ++v) {
+    const Point& p = soup.points[v];
+    if((p.x() == 0 || p.x() == 1) && (p.y() == 0 || p.y() == 1) && (p.z() == 0 || p.z() == 1))
+      corners.push_back(v);
+  }
+  return corners;
+}
+
+// The unit cube, field along the edges, H = 1/k: 6 k^2 quads, the eight corners of valence 3, 6 k^2 + 2 vertices.
+// On the 6 x 6 tessellation the iso-lines run along mesh edges and through mesh vertices (every degenerate case
+// of the extraction); on the 5 x 5 one (k = 2, 3) they mostly cross triangles.
+TEST(QuadExtraction, CubeKnownAnswers)
+{
+  for(int s : {6, 5}) {
+    const Soup soup = voxel_surface_soup({{{0, 0, 0}}}, s);
+    const std::vector<int> corners = cube_corners(soup);
+    ASSERT_EQ(corners.size(), 8u);
+    const Quad_case cube(soup, quarters(corners), true);
+    for(int k : {1, 2, 3}) {
+      if(s == 5 && k == 1)
+        continue;
+      const std::string name = "cube " + std::to_string(s) + "x" + std::to_string(s) + ", H = 1/" + std::to_string(k);
+      SCOPED_TRACE(name);
+      const Extraction_counts c = check_quad_mesh(cube, 1. / k, name);
+      EXPECT_EQ(c.folds, 0);
+      EXPECT_EQ(c.quads, 6 * k * k);
+      EXPECT_EQ(c.non_quads, 0);
+      EXPECT_EQ(c.valence_3, 8);
+      EXPECT_EQ(c.valence_5 + c.other_valence, 0);
+    }
+  }
+}
+
+// A torus of revolution without singularity: all valence 4 where the map has no fold (counted otherwise).
+TEST(QuadExtraction, TorusAllValenceFour)
+{
+  const Quad_case q(torus_soup(3, 1, 24, 12), {});
+  const Extraction_counts c = check_quad_mesh(q, 0.3, "torus");
+  if(c.folds == 0) {
+    EXPECT_EQ(c.valence_3 + c.valence_5 + c.other_valence, 0);
+  }
+  EXPECT_GT(c.quads, 0);
+}
+
+// Singular spheres and surfaces: +1/4 -> valence 3, -1/4 -> 5, checked in check_quad_mesh where fold-free.
+TEST(QuadExtraction, SingularSurfaces)
+{
+  {
+    const Quad_case q(warped(icosphere_soup(2)), quarters({0, 1, 2, 3, 4, 5, 6, 7}));
+    const Extraction_counts c = check_quad_mesh(q, 0.15, "sphere, eight +1/4");
+    if(c.folds == 0) {
+      EXPECT_EQ(c.valence_3, 8);
+    }
+  }
+  {
+    const Quad_case q(icosphere_soup(3), quarters({0, 1, 2, 3, 4, 5, 6, 7}));
+    const Extraction_counts c = check_quad_mesh(q, 0.2, "round sphere (level 3), eight +1/4");
+    if(c.folds == 0) {
+      EXPECT_EQ(c.valence_3, 8);
+    }
+  }
+  {
+    const Quad_case q(warped(torus_soup(3, 1, 24, 12)), {{5, Index(1, 4)}, {150, Index(-1, 4)}});
+    const Extraction_counts c = check_quad_mesh(q, 0.3, "warped torus, +1/4 and -1/4");
+    if(c.folds == 0) {
+      EXPECT_EQ(c.valence_3, 1);
+      EXPECT_EQ(c.valence_5, 1);
+    }
+  }
+  {
+    const Soup soup = genus2_soup(3);
+    const int nv = int(soup.points.size());
+    std::vector<int> v;
+    for(int j = 0; j < 8; ++j)
+      v.push_back(j * nv / 8 + 3);
+    const Quad_case q(soup, quarters(v, -1));
+    const Extraction_counts c = check_quad_mesh(q, 0.2, "genus 2, eight -1/4");
+    if(c.folds == 0) {
+      EXPECT_EQ(c.valence_5, 8);
+    }
+  }
+}
+
+// Maps that are not integer-grid maps, too many quads and a border are refused with Invalid_input.
+TEST(QuadExtraction, BadInputsAreRefused)
+{
+  const Quad_case q(warped(icosphere_soup(2)), quarters({0, 1, 2, 3, 4, 5, 6, 7}));
+  TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, 0.15);
+  const TCI::Seamless_parametrization::Map continuous = param.solve();
+  EXPECT_THROW(TCI::extract_quad_mesh(q.arrays, q.cut, continuous), TC::Invalid_input);
+  TCI::Integer_rounding rounding(param, q.cut);
+  const TCI::Seamless_parametrization::Map map = rounding.round(TCI::Rounding_scheme::greedy).map;
+  EXPECT_THROW(TCI::extract_quad_mesh(q.arrays, q.cut, map, 10.), TC::Invalid_input);
+  TCI::Seamless_parametrization::Map shifted = map;
+  if(!shifted.translation.empty()) {
+    shifted.translation[0][0] += 1; // the corners no longer follow the transition
+    EXPECT_THROW(TCI::extract_quad_mesh(q.arrays, q.cut, shifted), TC::Invalid_input);
+  }
+  const Quad_case disk(grid_with_holes(20), {});
+  TCI::Seamless_parametrization disk_param(disk.arrays, disk.cut, disk.angle, 0.2);
+  EXPECT_THROW(TCI::extract_quad_mesh(disk.arrays, disk.cut, disk_param.solve()), TC::Invalid_input);
 }
 
 } // namespace

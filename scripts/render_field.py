@@ -3,7 +3,9 @@
 
 Input: the legacy VTK files the program writes with --vtk FIELD.vtk (mesh, per face the n directions
 direction_0 ... direction_{n-1}, per vertex singularity_index) and optionally --streamlines S.vtk and
---features F.vtk (the sharp edges of --align-features, written by --feature-lines: drawn as orange lines).
+--features F.vtk (the sharp edges of --align-features, written by --feature-lines: drawn as orange lines)
+and --quads Q.obj (a quad mesh of the surface, e.g. written by --quad-mesh: its edges drawn as dark lines;
+the field's glyphs are then left out unless --glyphs is given).
 
 What is drawn:
   * the mesh, shaded per face (two-sided Lambert lighting from the camera side plus ambient), with a
@@ -145,6 +147,41 @@ def load_field(path):
     if sing.shape != (len(d["POINTS"]), 1):
         raise InputError(path, "singularity_index: one value per point expected")
     return d["POINTS"], tris, [dirs[k] for k in sorted(dirs)], sing[:, 0]
+
+
+def load_quads(path):
+    """The vertices and the undirected edges of the polygons of an OBJ file ('v x y z', 'f i j k ...' with
+    1-based or negative indices, 'i/t/n' tokens allowed), as (points, [[a, b], ...])."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            lines = f.read().splitlines()
+    except OSError as e:
+        raise InputError(path, e.strerror or str(e))
+    points, edges = [], set()
+    for number, line in enumerate(lines, 1):
+        tok = line.split("#", 1)[0].split()
+        if not tok:
+            continue
+        try:
+            if tok[0] == "v":
+                points.append([float(t) for t in tok[1:4]])
+                if len(tok) < 4:
+                    raise ValueError
+            elif tok[0] == "f":
+                ids = [int(t.split("/")[0]) for t in tok[1:]]
+                ids = [i - 1 if i > 0 else len(points) + i for i in ids]
+                if len(ids) < 3 or min(ids) < 0 or max(ids) >= len(points):
+                    raise InputError(path, f"line {number}: a face of fewer than 3 vertices or an index out of range")
+                for a, b in zip(ids, ids[1:] + ids[:1]):
+                    edges.add((min(a, b), max(a, b)))
+        except ValueError:
+            raise InputError(path, f"line {number}: not a number")
+    P = np.array(points, dtype=float).reshape(-1, 3)
+    if not len(edges):
+        raise InputError(path, "no face")
+    if not np.isfinite(P).all():
+        raise InputError(path, "non-finite vertex coordinates")
+    return P, [np.array(e) for e in sorted(edges)]
 
 
 def load_streamlines(path):
@@ -293,6 +330,8 @@ def write_atomically(path, write, mode):
 def render(a):
     V, tris, dirs, sing = load_field(a.field)
     stream = load_streamlines(a.streamlines) if a.streamlines else None
+    if a.glyphs is None:
+        a.glyphs = 0 if a.quads else 1500
     W, H = a.size
     top = 0.06 * H if a.title else 0
     cam = Camera(V, a.view[0], a.view[1], a.up, W, H, top)
@@ -357,6 +396,8 @@ def render(a):
             ax.add_collection(LineCollection(segs, colors="#1c1c28", linewidths=lw))
         st["glyphs"] = len(f)
 
+    if a.quads:      # the quad mesh's edges, over the field
+        st["quad_edges"], st["visible_quad_edges"] = draw_lines(*load_quads(a.quads), "#1c1c28", lw)
     if a.features:   # the feature curves (trivial_connections --feature-lines), over the field
         st["feature_segments"], st["visible_feature_segments"] = draw_lines(*load_streamlines(a.features),
                                                                             "#e8770e", 2.2 * lw)
@@ -400,6 +441,8 @@ def main():
                     help="streamlines written by --streamlines (else glyphs are drawn)")
     ap.add_argument("--features", metavar="F.vtk",
                     help="feature curves written by --feature-lines, drawn as orange lines")
+    ap.add_argument("--quads", metavar="Q.obj",
+                    help="a quad mesh of the surface (OBJ, e.g. written by --quad-mesh): its edges are drawn")
     ap.add_argument("-o", "--output", required=True, metavar="OUT.png", help="the picture to write")
     ap.add_argument("--view", nargs=2, type=float, default=(35.0, 25.0), metavar=("AZIMUTH", "ELEVATION"),
                     help="camera angles in degrees (default 35 25)")
@@ -408,13 +451,13 @@ def main():
     ap.add_argument("--size", nargs=2, type=int, default=(1200, 900), metavar=("W", "H"),
                     help="picture size in pixels (default 1200 900)")
     ap.add_argument("--title", help="title drawn at the top")
-    ap.add_argument("--glyphs", type=int, default=1500, metavar="K",
-                    help="at most K glyphs when no streamlines are given (default 1500)")
+    ap.add_argument("--glyphs", type=int, default=None, metavar="K",
+                    help="at most K glyphs when no streamlines are given (default 1500; 0 with --quads)")
     ap.add_argument("--stats", metavar="FILE", help="also write the summary numbers as JSON")
     a = ap.parse_args()
     if min(a.size) < 16 or max(a.size) > 16384:
         ap.error("--size: each side must be between 16 and 16384 pixels")
-    if a.glyphs < 0:
+    if a.glyphs is not None and a.glyphs < 0:
         ap.error("--glyphs must be >= 0")
     try:
         st = render(a)
@@ -426,8 +469,9 @@ def main():
         return 1
     print(f"{st['faces']} faces ({st['visible_faces']} visible), singularities {st['singularities']} "
           f"({st['visible_singularities']} visible), streamline segments {st['streamline_segments']} "
-          f"({st['visible_streamline_segments']} drawn), glyphs {st['glyphs']}, {a.size[0]}x{a.size[1]} "
-          f"-> {a.output}")
+          f"({st['visible_streamline_segments']} drawn), glyphs {st['glyphs']}, "
+          + (f"quad edges {st['quad_edges']} ({st['visible_quad_edges']} drawn), " if a.quads else "")
+          + f"{a.size[0]}x{a.size[1]} -> {a.output}")
     if a.stats:
         try:
             write_atomically(a.stats, lambda fh: json.dump(st, fh, indent=1), "w")

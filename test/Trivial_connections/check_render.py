@@ -9,6 +9,9 @@ must show, so that a renderer drawing something plausible but wrong fails:
     field);
   * n = 4 with eight +1/4 singularities at vertices 0..7 (four antipodal pairs of the icosahedron):
     8 singularities, exactly the 4 on the camera's side visible, glyphs drawn;
+  * --quads with a quad mesh of the sphere written by the test (a latitude-longitude grid of 6 x 16 quads,
+    208 edges): every edge counted, about half drawn, the lines on the sphere and darker than without;
+    an OBJ face with an index out of range: exit status 1, no picture;
   * a truncated VTK file and a missing file: exit status 1, a 'render_field.py: FILE: reason' message,
     no picture written (not even a temporary file).
 Usage: check_render.py PROGRAM OUTDIR   (PROGRAM: the trivial_connections executable)
@@ -181,6 +184,42 @@ def main():
     if st4.get("glyphs", 0) <= 0 or st4["streamline_segments"] != 0 or img4.std() < 0.05:
         fail(f"n = 4: no glyphs drawn ({st4})")
 
+    # ---- a quad mesh over the mesh: a latitude-longitude grid of the sphere, rings 1..7 of 8, 16 meridians
+    radius3 = float(np.linalg.norm(V, axis=1).max())
+    rings, meridians = 7, 16
+    grid = out / "sphere_grid.obj"
+    with open(grid, "w") as g:
+        for i in range(1, rings + 1):
+            t = math.pi * i / (rings + 1)
+            for j in range(meridians):
+                p = 2 * math.pi * j / meridians
+                g.write(f"v {radius3 * math.sin(t) * math.cos(p)} {radius3 * math.sin(t) * math.sin(p)} "
+                        f"{radius3 * math.cos(t)}\n")
+        for i in range(rings - 1):
+            for j in range(meridians):
+                a, b = i * meridians + j + 1, i * meridians + (j + 1) % meridians + 1
+                g.write(f"f {a} {b} {b + meridians} {a + meridians}\n")
+    edges = rings * meridians + (rings - 1) * meridians
+    stq, imgq = render(field4, out / "sphere_quads.png", out, ["--quads", grid])
+    if stq["quad_edges"] != edges or stq["glyphs"] != 0:
+        fail(f"--quads: {stq.get('quad_edges')} quad edges counted (the file has {edges}), "
+             f"{stq['glyphs']} glyphs (none expected without --glyphs)")
+    if not 0.3 * edges <= stq["visible_quad_edges"] <= 0.7 * edges:
+        fail(f"--quads: {stq['visible_quad_edges']} of {edges} edges drawn: not about half of a sphere's")
+    _, bare4 = render(field4, out / "sphere4_bare.png", out, ["--glyphs", "0"])
+    darker = (bare4 - imgq).max(axis=2) > 0.15
+    if (darker & inner).sum() < 0.005 * inner.sum():
+        fail(f"--quads: only {(darker & inner).sum()} pixels darkened inside the sphere")
+    if (darker & ((xx - cx) ** 2 + (yy - cy) ** 2 > (radius + 3) ** 2)).any():
+        fail("--quads: lines drawn outside the sphere")
+    broken = out / "broken_grid.obj"
+    broken.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")
+    png = out / "broken_grid.png"
+    png.unlink(missing_ok=True)
+    rc, _, err = run([sys.executable, RENDER, field4, "--quads", broken, "-o", png], out)
+    if rc != 1 or not err.startswith(f"render_field.py: {broken}: line 4:") or png.exists():
+        fail(f"--quads with an index out of range: exit status {rc}, stderr {err!r}, picture written: {png.exists()}")
+
     # ---- errors: truncated file, missing file
     lines = field.read_text().splitlines(keepends=True)
     bad = out / "truncated.vtk"
@@ -197,7 +236,7 @@ def main():
 
     print(f"check_render.py: OK (sphere: {st['visible_faces']}/{st['faces']} faces, "
           f"{st['visible_streamline_segments']}/{total} segments; n = 4: {st4['visible_singularities']}/8 "
-          f"singularities, {st4['glyphs']} glyphs)")
+          f"singularities, {st4['glyphs']} glyphs; quads: {stq['visible_quad_edges']}/{edges} edges)")
     return 0
 
 

@@ -655,6 +655,57 @@ TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_column
   }
 }
 
+// Past the columns' budget, prefetch() drops only the columns not asked for: those asked for and kept stay where
+// they are (not made again), and all hold the columns of M^-1.
+TEST(Refinement, columns_asked_for_stay_past_the_budget)
+{
+  const int side = 20, nn = side * side;
+  const Eigen::SparseMatrix<double> M = grid_in_fill_reducing_order(side);
+  struct View
+  {
+    Simplicial_natural s;
+    const Simplicial_natural& solver() const { return s; }
+  } view;
+  view.s.compute(M);
+  ASSERT_EQ(view.s.info(), Eigen::Success);
+  std::vector<int> row_of_vertex(static_cast<std::size_t>(nn)), position(static_cast<std::size_t>(nn));
+  std::iota(row_of_vertex.begin(), row_of_vertex.end(), 0);
+  std::iota(position.begin(), position.end(), 0);
+  auto solve = [&](const Eigen::VectorXd& e) { return Eigen::VectorXd(view.s.solve(e)); };
+  TC::internal::Unit_lower_factor f;
+  ASSERT_TRUE(TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial_natural>>::read(view, f));
+  // a budget of four columns
+  TC::internal::Move_energy energy(row_of_vertex, position.data(), nn, std::move(f), {0}, solve,
+                                   TC::internal::Move_energy::Entries::selected_inversion, 4.5 * nn * sizeof(double));
+  std::vector<int> all(static_cast<std::size_t>(nn));
+  std::iota(all.begin(), all.end(), 0);
+  energy.watch(all);
+  auto expect_columns = [&](const std::vector<int>& vertices) {
+    for(int v : vertices) {
+      ASSERT_TRUE(energy.has_column(v));
+      const Eigen::VectorXd expected = solve(Eigen::VectorXd::Unit(nn, v));
+      const double* column = energy.column_of(v);
+      for(int r = 0; r < nn; ++r)
+        EXPECT_NEAR(column[r], expected[r], 1e-10 * expected.cwiseAbs().maxCoeff()) << v << " " << r;
+    }
+  };
+  energy.prefetch({3, 50, 170});
+  EXPECT_EQ(energy.column_solves(), 3u);
+  const double* kept = energy.column_of(50);
+  // five asked for, three made: past the budget, 3 (not asked for) is dropped, 50 and 170 stay as they were
+  energy.prefetch({50, 170, 222, 301, 399});
+  EXPECT_EQ(energy.column_solves(), 6u);
+  EXPECT_EQ(energy.column_of(50), kept);
+  EXPECT_FALSE(energy.has_column(3));
+  expect_columns({50, 170, 222, 301, 399});
+  // past it again: only 50 stays, 7 is made in a released slot
+  energy.prefetch({7, 50});
+  EXPECT_EQ(energy.column_solves(), 7u);
+  EXPECT_EQ(energy.column_of(50), kept);
+  EXPECT_FALSE(energy.has_column(170));
+  expect_columns({7, 50});
+}
+
 // What the refinement calls a local minimum, checked by brute force: a solve (its integers chosen again) of every
 // move of a singularity to a free neighbouring interior vertex and of every cancellation of a unit of a pair.
 // `np`: those of the solves (symmetry_order, face_directions).

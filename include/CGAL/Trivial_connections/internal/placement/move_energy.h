@@ -53,9 +53,10 @@ public:
   // vertices whose entries are wanted first (the singular ones and their neighbours), to choose between a
   // selected inversion and paths
   Move_energy(std::vector<int> row_of_vertex, const int* position, Eigen::Index rows, Unit_lower_factor&& factor,
-              const std::vector<int>& first, Column_solve solve, Entries choice = Entries::automatic)
+              const std::vector<int>& first, Column_solve solve, Entries choice = Entries::automatic,
+              double column_budget_bytes = 256e6)
     : m_row(std::move(row_of_vertex)), m_position(position), m_rows(rows), m_factor(std::move(factor)),
-      m_solve(std::move(solve))
+      m_solve(std::move(solve)), m_store(rows, column_budget_bytes)
   {
     if(m_factor.n != int(m_rows) || m_factor.n == 0)
       return;
@@ -137,8 +138,8 @@ public:
   double resistance(int v, int w) { return diagonal(v) + diagonal(w) - 2 * entry(v, w); }
 
   // makes the columns of these vertices that are not kept yet, half on a second thread (the solves only read the
-  // factor); `make_room`: the columns kept may be dropped first when they would exceed the budget (false while
-  // columns read before are still in use)
+  // factor); `make_room`: the columns kept and not asked for may be dropped first when they would exceed the budget
+  // (false while columns read before are still in use)
   void prefetch(const std::vector<int>& vertices, bool make_room = true)
   {
     std::vector<int> missing;
@@ -151,8 +152,21 @@ public:
       return;
     watch_rows(missing);
     if(make_room && m_store.would_exceed(missing.size())) {
-      m_columns.clear();
-      m_store.clear();
+      // drop the columns not asked for: those asked for are read next whatever the budget, and dropping them too
+      // made each of them again alone (cheese_loop3, N = 4: the 81 columns of one side, 569k rows each, made
+      // again every round, 3,065 back-substitutions in all)
+      std::vector<char> asked(std::size_t(m_rows), 0);
+      for(int v : vertices)
+        if(m_row[std::size_t(v)] >= 0)
+          asked[std::size_t(m_row[std::size_t(v)])] = 1;
+      for(auto c = m_columns.begin(); c != m_columns.end();) {
+        if(asked[std::size_t(c->first)]) {
+          ++c;
+        } else {
+          m_store.release(c->second);
+          c = m_columns.erase(c);
+        }
+      }
     }
     std::vector<double*> slots;
     for(int r : missing) {
@@ -509,12 +523,13 @@ private:
   /*
     The columns kept, in chunks of at least 2 MB that the kernel may back with huge pages where it offers them
     (advise_huge_page_blocks()): thousands of fresh 4 KB pages, each a fault, cost more than the substitutions
-    that fill them (femur, N = 4: 326 columns of 3,897 rows). At most about 256 MB is kept.
+    that fill them (femur, N = 4: 326 columns of 3,897 rows). About the budget (256 MB by default) is kept, more
+    when the columns asked for at once need it.
   */
   class Column_store
   {
   public:
-    explicit Column_store(Eigen::Index rows) : m_length(std::size_t(rows))
+    Column_store(Eigen::Index rows, double budget_bytes) : m_length(std::size_t(rows)), m_budget(budget_bytes)
     {
       const std::size_t bytes = (std::max)(m_length * sizeof(double), std::size_t(1));
       m_per_chunk = (std::max)(std::size_t(1), huge / bytes);
@@ -523,11 +538,16 @@ private:
 
     bool would_exceed(std::size_t more) const
     {
-      return double(m_used + more) * double(m_length) * sizeof(double) > 256e6;
+      return double(m_used - m_free.size() + more) * double(m_length) * sizeof(double) > m_budget;
     }
 
     double* slot()
     {
+      if(!m_free.empty()) {
+        double* reused = m_free.back();
+        m_free.pop_back();
+        return reused;
+      }
       if(m_used == m_chunks.size() * m_per_chunk) {
         void* memory = ::operator new(m_chunk_bytes, std::align_val_t(huge));
         std::unique_ptr<double, Free> chunk(static_cast<double*>(memory));
@@ -540,7 +560,13 @@ private:
 
     // the chunks stay, to be written again: freed and allocated anew, their pages were zeroed by the kernel each
     // time (cheese_loop1, N = 4: 7 % of the refinement)
-    void clear() { m_used = 0; }
+    void clear()
+    {
+      m_used = 0;
+      m_free.clear();
+    }
+    // a slot to be written again by a later slot()
+    void release(double* slot) { m_free.push_back(slot); }
 
   private:
     static constexpr std::size_t huge = std::size_t(2) << 20;
@@ -549,7 +575,9 @@ private:
       void operator()(double* p) const { ::operator delete(static_cast<void*>(p), std::align_val_t(huge)); }
     };
     std::size_t m_length, m_per_chunk = 1, m_chunk_bytes = huge, m_used = 0;
+    double m_budget;
     std::vector<std::unique_ptr<double, Free>> m_chunks;
+    std::vector<double*> m_free; // released slots among the m_used
   };
 
   std::vector<int> m_row;
@@ -563,7 +591,7 @@ private:
   std::vector<int> m_covered_positions;  // those, descending
   std::vector<int> m_row_at;             // position -> row
   std::vector<int> m_parent;             // position -> its parent in the elimination tree (-1: a root)
-  Column_store m_store{m_rows};
+  Column_store m_store;
   std::size_t m_column_solves = 0;
   bool m_paths_usable = false;
   std::vector<Path> m_paths; // by row

@@ -1300,6 +1300,51 @@ TEST(QuadFeatures, FlatSquareWithBorder)
   }
 }
 
+// A flat L (the unit square without its quarter x, y > 1/2), field along x, border flagged, H = 1/k for even k:
+// 3 k^2 / 4 quads; on the border five convex corners of valence 2, the concave one of valence 4 (the rule of
+// quad_extraction.h: the quads at it plus one), the others 3. The border vertices that were inside the square
+// (the two inner sides of the L) are jittered: the border there is a few degrees off the field, which the
+// alignment tolerance accepts, and the constraints still put it on iso-lines (at a small energy).
+TEST(QuadFeatures, FlatLWithConcaveCorner)
+{
+  Soup square = unit_square(8);
+  Soup l;
+  std::vector<int> used(square.points.size(), -1);
+  for(const Tri& t : square.faces) {
+    double cx = 0, cy = 0;
+    for(int c : t) {
+      cx += square.points[c].x() / 3;
+      cy += square.points[c].y() / 3;
+    }
+    if(cx > 0.5 && cy > 0.5)
+      continue;
+    Tri r = t;
+    for(int& c : r) {
+      if(used[c] < 0) {
+        used[c] = int(l.points.size());
+        l.points.push_back(square.points[c]);
+      }
+      c = used[c];
+    }
+    l.faces.push_back(r);
+  }
+  const Quad_case q(to_surface_mesh(l), constant_field({{1., 0., 0.}}));
+  ASSERT_EQ(q.view.boundary_loops.size(), 1u);
+  for(int k : {2, 4, 6}) {
+    const std::string name = "flat L, H = 1/" + std::to_string(k);
+    SCOPED_TRACE(name);
+    const Extraction_counts c = check_quad_mesh(q, 1. / k, name, border_flags(q));
+    EXPECT_EQ(c.folds, 0);
+    EXPECT_EQ(c.quads, 3 * k * k / 4);
+    EXPECT_EQ(c.non_quads, 0);
+    EXPECT_EQ(c.border_valence[2], 5);
+    EXPECT_EQ(c.border_valence[4], 1);
+    EXPECT_EQ(c.border_valence[3], c.border_vertices - 6);
+    EXPECT_EQ(c.border_vertices, 4 * k);
+    EXPECT_EQ(c.valence_3 + c.valence_5 + c.other_valence, 0);
+  }
+}
+
 // an open cylinder of radius r and height h around the z axis, nt x nz squares of two triangles, outward
 Soup open_cylinder(double r, double h, int nt, int nz)
 {
@@ -1516,6 +1561,22 @@ TEST(QuadFeatures, Fandisk)
             << "solve) " << design.seconds << " s; H = diagonal / 40\n";
   const Extraction_counts c = check_quad_mesh(q, H, "fandisk, sharp edges", features, nullptr, 0.1);
   EXPECT_GT(c.quads, 0);
+  // the cost of the constraints: the dense system and the solves, with and without the feature lines
+  for(bool with : {false, true}) {
+    const auto start = std::chrono::steady_clock::now();
+    TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H, with ? features : std::vector<char>());
+    const double built = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    param.solve();
+    const double solved = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    TCI::Integer_rounding rounding(param, q.cut);
+    const TCI::Integer_rounding_result r = rounding.round(TCI::Rounding_scheme::greedy);
+    const double rounded = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cout << "fandisk " << (with ? "with" : "without") << " the feature lines: " << param.constraint_count()
+              << " constraint rows, " << param.feature_lines().size() << " lines; built " << built << " s, solved "
+              << solved - built << " s, greedy rounding (" << r.integer_unknowns << " unknowns, " << r.solves
+              << " solves, " << r.shifted_unknowns << " shifted) " << rounded - solved << " s, energy "
+              << r.continuous_energy << " -> " << r.map.energy << "\n";
+  }
   EXPECT_GT(flagged, 100);
 }
 

@@ -1571,7 +1571,15 @@ TEST(QuadFeatures, Fandisk)
     TCI::Integer_rounding rounding(param, q.cut);
     const TCI::Integer_rounding_result r = rounding.round(TCI::Rounding_scheme::greedy);
     const double rounded = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << "fandisk " << (with ? "with" : "without") << " the feature lines: " << param.constraint_count()
+    const TCI::Quad_mesh quad = TCI::extract_quad_mesh(q.arrays, q.cut, r.map);
+    int followed = 0;
+    for(const auto& a : quad.edge_along)
+      for(int e : a)
+        followed += features[e];
+    std::cout << "fandisk " << (with ? "with" : "without") << " the feature lines: " << quad.quads << " quads, "
+              << quad.non_quads << " other polygons, " << quad.folded_triangles << " folded and "
+              << quad.degenerate_triangles << " degenerate triangles, " << followed << " runs along feature edges; "
+              << param.constraint_count()
               << " constraint rows, " << param.feature_lines().size() << " lines; built " << built << " s, solved "
               << solved - built << " s, greedy rounding (" << r.integer_unknowns << " unknowns, " << r.solves
               << " solves, " << r.shifted_unknowns << " shifted) " << rounded - solved << " s, energy "

@@ -16,6 +16,10 @@
 #include <CGAL/Trivial_connections/internal/quad/integer_rounding.h>
 #include <CGAL/Trivial_connections/internal/quad/quad_extraction.h>
 #include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
+#include <CGAL/Trivial_connections/feature_alignment.h>
+#include <CGAL/Trivial_connections/singularity_placement.h>
+
+#include <chrono>
 
 namespace {
 
@@ -62,6 +66,23 @@ struct Quad_case
         field[f] = Vector(turned_field[0], turned_field[1], turned_field[2]);
       }
     }
+    finish();
+  }
+  // a field designed by the caller: design(mesh, view, singularities, x, field) fills the last three (x per view
+  // halfedge, field per view face)
+  using Designer = std::function<void(const Surface_mesh&, const Mesh_view<Surface_mesh>&, Singularities&,
+                                      std::vector<double>&, std::vector<Vector>&)>;
+  Quad_case(Surface_mesh m, const Designer& design)
+    : mesh(std::move(m)), view(mesh), arrays(mesh, get(CGAL::vertex_point, mesh), K()),
+      geometry(arrays, TC::Weighting::hodge_star)
+  {
+    design(mesh, view, singularities, x, field);
+    finish();
+  }
+  Quad_case(const Quad_case&) = delete;
+
+  void finish()
+  {
     geometry.compute_angles(arrays);
     for(int f = 0; f < arrays.nf; ++f)
       angle.push_back(TCI::angle_in_frame(arrays, f, V(f)));
@@ -69,11 +90,10 @@ struct Quad_case
       connection.push_back(x[view.hid.at(arrays.halfedges[i])]);
     matching = TCI::cross_field_matching(arrays, geometry, angle, connection);
     std::vector<int> singular;
-    for(const auto& s : sing)
+    for(const auto& s : singularities)
       singular.push_back(s.first);
     cut = TCI::build_cut_graph(arrays, geometry, matching, singular);
   }
-  Quad_case(const Quad_case&) = delete;
 
   TCI::Vec3 V(int f) const { return {{field[f].x(), field[f].y(), field[f].z()}}; }
   static V3 q_sub(const TCI::Vec3& a, const TCI::Vec3& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
@@ -798,12 +818,20 @@ TEST(QuadRounding, InfeasibleRoundingIsRefused)
   const double H = 0.15;
   TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H);
   TCI::Integer_rounding rounding(param, q.cut);
-  try {
-    rounding.round(TCI::Rounding_scheme::naive, TCI::Rounding_order::closest_first);
+  try { // the plain scheme: the nearest integer only
+    rounding.round(TCI::Rounding_scheme::naive, TCI::Rounding_order::closest_first, 0, 1);
     ADD_FAILURE() << "naive rounding in the closest-first order is expected to be infeasible here";
   } catch(const TC::Invalid_input& e) {
     EXPECT_NE(std::string(e.what()).find("infeasible"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("singular vertex"), std::string::npos) << e.what();
+  }
+  try { // with the next integers tried where the nearest determines a non-integer: a map, or the same refusal
+    const TCI::Integer_rounding_result naive = rounding.round(TCI::Rounding_scheme::naive, TCI::Rounding_order::closest_first);
+    EXPECT_LT(integer_grid_error(q, naive.map), 1e-9);
+    std::cout << "naive, closest first, 5 candidates: energy " << naive.map.energy << " (" << naive.shifted_unknowns
+              << " unknowns not at their nearest integer)\n";
+  } catch(const TC::Invalid_input& e) {
+    std::cout << "naive, closest first, 5 candidates: " << e.what() << "\n";
   }
   try {
     const TCI::Integer_rounding_result greedy = rounding.round(TCI::Rounding_scheme::greedy, TCI::Rounding_order::closest_first);
@@ -845,29 +873,106 @@ TEST(QuadRounding, BatchedGreedy)
 struct Extraction_counts
 {
   int quads = 0, non_quads = 0, folds = 0, valence_3 = 0, valence_5 = 0, other_valence = 0;
+  std::array<int, 6> border_valence = {{0, 0, 0, 0, 0, 0}}; // border quad vertices by valence (5: 5 or more)
+  int border_vertices = 0, features = 0, features_not_followed = 0, corners_on_features = 0;
+  int quad_edges = 0;
+  std::vector<int> along_count; // per input edge: the quad edges that run along it
 };
 
-// The quad mesh of the greedy integer-grid map of a case, checked from its definition:
+// distance from p to the segment [a, b]
+double segment_distance(const V3& p, const V3& a, const V3& b)
+{
+  const V3 d = b - a;
+  const double t = std::max(0., std::min(1., dot(p - a, d) / dot(d, d)));
+  return norm(p - (a + t * d));
+}
+
+// The feature edges followed by quad edges, from the definitions: each flagged input edge lies on an integer
+// iso-line of the map (in the chart of a face beside it, one coordinate equal and an integer at both ends), and
+// is run along by a quad edge (two where a quad vertex is inside it); every quad edge that runs along input edges runs along a path of them
+// from its first vertex (on the first edge) to its second (on the last). Returns the flagged edges not followed.
+int check_features_followed(const Quad_case& q, const TCI::Seamless_parametrization::Map& map,
+                            const TCI::Quad_mesh& quad, const std::vector<char>& features, const std::string& name,
+                            std::vector<int>& along_count)
+{
+  const TCI::Mesh_arrays<Surface_mesh>& m = q.arrays;
+  const int ne = int(q.cut.edge_corner.size());
+  along_count.assign(ne, 0);
+  for(std::size_t e = 0; e < quad.edges.size(); ++e) {
+    const std::vector<int>& along = quad.edge_along[e];
+    for(int x : along)
+      ++along_count[x];
+    if(along.empty())
+      continue;
+    auto ends = [&](int x) {
+      const int i = q.cut.edge_corner[x];
+      return std::make_pair(m.source_of(i), m.target_of(i));
+    };
+    for(std::size_t j = 0; j + 1 < along.size(); ++j) {
+      const auto a = ends(along[j]), b = ends(along[j + 1]);
+      EXPECT_TRUE(a.first == b.first || a.first == b.second || a.second == b.first || a.second == b.second)
+        << name << ": quad edge " << e << " runs along input edges that do not touch";
+    }
+    for(int end = 0; end < 2; ++end) {
+      const auto x = ends(end == 0 ? along.front() : along.back());
+      const double d = segment_distance(V3(quad.points[quad.edges[e][end]]), V3(m.points[x.first]), V3(m.points[x.second]));
+      EXPECT_LT(d, 1e-9) << name << ": quad edge " << e << " does not start on the input edge it runs along";
+    }
+  }
+  int not_followed = 0;
+  for(int e = 0; e < ne; ++e) {
+    if(features.empty() || !features[e])
+      continue;
+    const int i = q.cut.edge_corner[e];
+    const auto& a = map.corner_uv[i];
+    const auto& b = map.corner_uv[TCI::Mesh_arrays<Surface_mesh>::next_corner(i)];
+    bool on_line = false;
+    for(int k = 0; k < 2; ++k)
+      on_line = on_line || (std::abs(a[k] - b[k]) < 1e-9 && std::abs(a[k] - std::round(a[k])) < 1e-9);
+    if(!on_line || along_count[e] < 1) // (two quad edges where a quad vertex splits it)
+      ++not_followed;
+    EXPECT_TRUE(on_line) << name << ": feature edge " << e << " (vertices " << m.source_of(i) << ", " << m.target_of(i)
+                         << ") is not on an integer iso-line: (" << a[0] << ", " << a[1] << ") to (" << b[0] << ", "
+                         << b[1] << ")";
+  }
+  return not_followed;
+}
+
+// The quad mesh of the greedy integer-grid map of a case (with feature edges flagged, border edges included),
+// checked from its definition:
 // - every quad vertex is on the input: barycentric coordinates in its face in [0, 1] summing to 1, its position
 //   their combination of the face's corners, and the map interpolated there an integer point;
 // - the faces are quads of 4 distinct vertices, each directed edge in at most one face;
+// - the feature edges on integer iso-lines, each followed by one quad edge (check_features_followed);
 // and, where the map has no folded or degenerate triangle: no polygon rejected, every edge in exactly two faces
-// with opposite directions (closed, consistently oriented), every vertex a single fan of quads (its link one
-// cycle), the Euler characteristic the input's, valence 4 everywhere but at the singular vertices, which have
-// 4 - 4k.
-Extraction_counts check_quad_mesh(const Quad_case& q, double H, const std::string& name)
+// with opposite directions but along the border (one face), every interior vertex a single fan of quads (its
+// link one cycle) and every border vertex a single open fan (its link one path), the Euler characteristic the
+// input's, valence 4 everywhere inside but at the singular vertices, which have 4 - 4k, and on the border the
+// rule of quad_extraction.h: valence = the quads at the vertex + 1.
+Extraction_counts check_quad_mesh(const Quad_case& q, double H, const std::string& name,
+                                  const std::vector<char>& features = {}, TCI::Quad_mesh* out = nullptr,
+                                  double batch_distance = 0)
 {
-  TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H);
+  const auto start = std::chrono::steady_clock::now();
+  TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H, features);
   TCI::Integer_rounding rounding(param, q.cut);
-  const TCI::Seamless_parametrization::Map map = rounding.round(TCI::Rounding_scheme::greedy).map;
+  const TCI::Integer_rounding_result rounded =
+    rounding.round(TCI::Rounding_scheme::greedy, TCI::Rounding_order::roots_first, batch_distance);
+  const TCI::Seamless_parametrization::Map& map = rounded.map;
+  const double rounding_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const TCI::Quad_mesh quad = TCI::extract_quad_mesh(q.arrays, q.cut, map);
+  const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Extraction_counts counts;
   counts.quads = quad.quads;
   counts.non_quads = quad.non_quads;
   counts.folds = quad.folded_triangles + quad.degenerate_triangles;
+  counts.quad_edges = quad.quad_edges;
   const int nv = int(quad.points.size());
   EXPECT_EQ(quad.locations.size(), quad.points.size());
   EXPECT_EQ(quad.valence.size(), quad.points.size());
+  EXPECT_EQ(quad.on_border.size(), quad.points.size());
+  EXPECT_EQ(quad.edges.size(), std::size_t(quad.quad_edges));
+  EXPECT_EQ(quad.edge_along.size(), std::size_t(quad.quad_edges));
   double worst_off_surface = 0, worst_off_grid = 0;
   for(int p = 0; p < nv; ++p) {
     const TCI::Quad_mesh::Location& l = quad.locations[p];
@@ -909,25 +1014,48 @@ Extraction_counts check_quad_mesh(const Quad_case& q, double H, const std::strin
   const std::vector<long long> k4 = scaled_indices(q.view.nv(), q.singularities, 4);
   for(int p = 0; p < nv; ++p) {
     const int valence = quad.valence[p];
+    if(quad.on_border[p]) {
+      ++counts.border_vertices;
+      ++counts.border_valence[std::min(valence, 5)];
+      continue;
+    }
     counts.valence_3 += valence == 3;
     counts.valence_5 += valence == 5;
     counts.other_valence += valence != 3 && valence != 4 && valence != 5;
   }
-  std::cout << name << ": " << nv << " quad vertices, " << quad.quads << " quads, " << quad.non_quads
-            << " other polygons, " << quad.quad_edges << " edges (" << quad.dangling_edges << " dangling, "
-            << quad.open_edges << " open), valence 3: " << counts.valence_3 << ", 5: " << counts.valence_5
-            << ", other than 3-5: " << counts.other_valence << "; " << quad.folded_triangles << " folded and "
-            << quad.degenerate_triangles << " degenerate triangles of " << q.arrays.nf << "\n";
+  for(char f : features)
+    counts.features += f != 0;
+  counts.features_not_followed = check_features_followed(q, map, quad, features, name, counts.along_count);
+  std::cout << name << ": " << nv << " quad vertices (" << counts.border_vertices << " on the border), " << quad.quads
+            << " quads, " << quad.non_quads << " other polygons, " << quad.quad_edges << " edges (" << quad.dangling_edges
+            << " dangling, " << quad.open_edges << " open, " << quad.border_edges << " on the border), valence 3: "
+            << counts.valence_3 << ", 5: " << counts.valence_5 << ", other than 3-5: " << counts.other_valence
+            << "; border valence 2: " << counts.border_valence[2] << ", 3: " << counts.border_valence[3]
+            << ", 4: " << counts.border_valence[4] << "; " << quad.folded_triangles << " folded and "
+            << quad.degenerate_triangles << " degenerate triangles of " << q.arrays.nf << "; feature edges "
+            << counts.features << ", not followed " << counts.features_not_followed << "; "
+            << param.feature_lines().size() << " feature lines, " << rounded.integer_unknowns << " integer unknowns, "
+            << rounded.solves << " solves, energy " << rounded.continuous_energy << " -> " << map.energy
+            << "; parametrisation and rounding " << rounding_seconds << " s, with the extraction " << total_seconds
+            << " s\n";
+  if(out)
+    *out = quad;
   if(counts.folds > 0)
     return counts;
-  // a fold-free map: a closed, consistently oriented 2-manifold of quads with the input's topology
+  // a fold-free map: a consistently oriented 2-manifold of quads with the input's topology
   EXPECT_EQ(quad.non_quads, 0) << name;
   EXPECT_EQ(quad.dangling_edges, 0) << name;
   EXPECT_EQ(quad.open_edges, 0) << name;
+  EXPECT_EQ(counts.features_not_followed, 0) << name;
+  int border_directed = 0;
   for(const auto& d : directed)
-    EXPECT_EQ(directed.count({d.first.second, d.first.first}), 1u) << name << ": edge " << d.first.first << " - "
-                                                                   << d.first.second << " not in two opposite faces";
-  // the link of every vertex: one cycle through as many faces as its valence
+    if(!directed.count({d.first.second, d.first.first})) {
+      ++border_directed;
+      EXPECT_TRUE(quad.on_border[d.first.first] && quad.on_border[d.first.second])
+        << name << ": edge " << d.first.first << " - " << d.first.second << " in one face, not on the border";
+    }
+  EXPECT_EQ(border_directed, quad.border_edges) << name;
+  // the link of every vertex: one cycle (one path on the border) through as many faces as its valence (minus 1)
   std::vector<std::map<int, int>> link(nv); // next vertex -> previous vertex, around each vertex's faces
   for(const auto& f : quad.faces)
     for(int j = 0; j < 4; ++j)
@@ -937,8 +1065,20 @@ Extraction_counts check_quad_mesh(const Quad_case& q, double H, const std::strin
       ADD_FAILURE() << name << ": quad vertex " << p << " in no face";
       continue;
     }
+    int start = link[p].begin()->first;
+    if(quad.on_border[p]) { // the path starts at the vertex that is no face's previous one
+      std::set<int> previous;
+      for(const auto& l : link[p])
+        previous.insert(l.second);
+      int starts = 0;
+      for(const auto& l : link[p])
+        if(!previous.count(l.first)) {
+          start = l.first;
+          ++starts;
+        }
+      EXPECT_EQ(starts, 1) << name << ": border quad vertex " << p << " is not one open fan";
+    }
     int steps = 0;
-    const int start = link[p].begin()->first;
     int x = start;
     do {
       auto it = link[p].find(x);
@@ -947,23 +1087,30 @@ Extraction_counts check_quad_mesh(const Quad_case& q, double H, const std::strin
       x = it->second;
       ++steps;
     } while(x != start && steps <= int(link[p].size()));
-    EXPECT_EQ(x, start) << name << ": the faces at quad vertex " << p << " are not a fan";
+    if(!quad.on_border[p]) {
+      EXPECT_EQ(x, start) << name << ": the faces at quad vertex " << p << " are not a fan";
+    }
     EXPECT_EQ(steps, int(link[p].size())) << name << ": the faces at quad vertex " << p << " are not one fan";
-    EXPECT_EQ(int(link[p].size()), quad.valence[p]) << name << ": quad vertex " << p;
+    EXPECT_EQ(int(link[p].size()) + (quad.on_border[p] ? 1 : 0), quad.valence[p]) << name << ": quad vertex " << p;
   }
-  const long long edges = (long long)(directed.size()) / 2;
-  const long long input_edges = (3LL * q.arrays.nf) / 2;
+  std::set<std::pair<int, int>> undirected;
+  for(const auto& d : directed)
+    undirected.insert({std::min(d.first.first, d.first.second), std::max(d.first.first, d.first.second)});
+  const long long edges = (long long)(undirected.size());
+  const long long input_edges = (long long)(q.cut.edge_corner.size());
   EXPECT_EQ(nv - edges + (long long)(quad.faces.size()), q.arrays.nv - input_edges + q.arrays.nf)
     << name << ": Euler characteristic";
   EXPECT_EQ(edges, quad.quad_edges) << name;
-  // valence 4 - 4k at singular vertices, 4 everywhere else; every singular vertex is a quad vertex
+  // valence 4 - 4k at singular vertices, 4 everywhere else inside; every singular vertex is a quad vertex
   std::vector<int> seen(q.arrays.nv, 0);
   for(int p = 0; p < nv; ++p) {
     const int v = quad.locations[p].mesh_vertex;
-    const int expected = v >= 0 ? int(4 - k4[v]) : 4;
-    EXPECT_EQ(quad.valence[p], expected) << name << ": quad vertex " << p << " (mesh vertex " << v << ")";
     if(v >= 0)
       ++seen[v];
+    if(quad.on_border[p])
+      continue;
+    const int expected = v >= 0 ? int(4 - k4[v]) : 4;
+    EXPECT_EQ(quad.valence[p], expected) << name << ": quad vertex " << p << " (mesh vertex " << v << ")";
   }
   for(const auto& s : q.singularities)
     EXPECT_EQ(seen[s.first], 1) << name << ": singular vertex " << s.first << " is not one quad vertex";
@@ -1071,9 +1218,374 @@ TEST(QuadExtraction, BadInputsAreRefused)
     shifted.translation[0][0] += 1; // the corners no longer follow the transition
     EXPECT_THROW(TCI::extract_quad_mesh(q.arrays, q.cut, shifted), TC::Invalid_input);
   }
+  // a border the field is not aligned with (no feature flags): not on an iso-line, refused
   const Quad_case disk(grid_with_holes(20), {});
   TCI::Seamless_parametrization disk_param(disk.arrays, disk.cut, disk.angle, 0.2);
-  EXPECT_THROW(TCI::extract_quad_mesh(disk.arrays, disk.cut, disk_param.solve()), TC::Invalid_input);
+  try {
+    TCI::extract_quad_mesh(disk.arrays, disk.cut, disk_param.solve());
+    ADD_FAILURE() << "a border off the iso-lines is expected to be refused";
+  } catch(const TC::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("border edge"), std::string::npos) << e.what();
+  }
+}
+
+// ---- Feature curves and borders on integer iso-lines ----
+
+// the edges of a case (cut graph numbering) whose two ends satisfy `on`
+std::vector<char> edges_where(const Quad_case& q, const std::function<bool(const V3&, const V3&)>& on)
+{
+  std::vector<char> flags(q.cut.edge_corner.size(), 0);
+  for(std::size_t e = 0; e < flags.size(); ++e) {
+    const int i = q.cut.edge_corner[e];
+    flags[e] = on(V3(q.arrays.points[q.arrays.source_of(i)]), V3(q.arrays.points[q.arrays.target_of(i)]));
+  }
+  return flags;
+}
+
+std::vector<char> border_flags(const Quad_case& q)
+{
+  std::vector<char> flags(q.cut.edge_corner.size(), 0);
+  for(std::size_t e = 0; e < flags.size(); ++e)
+    flags[e] = q.arrays.opposite_corner[q.cut.edge_corner[e]] < 0;
+  return flags;
+}
+
+// a field of one direction d (tangent to every face: a flat or developable surface), parallel for x = 0
+Quad_case::Designer constant_field(const V3& d)
+{
+  return [d](const Surface_mesh&, const Mesh_view<Surface_mesh>& view, Singularities&, std::vector<double>& x,
+             std::vector<Vector>& field) {
+    x.assign(view.nh(), 0.);
+    field.assign(view.nf(), Vector(d[0], d[1], d[2]));
+  };
+}
+
+// the unit square, n x n squares of two triangles, interior vertices jittered
+Soup unit_square(int n)
+{
+  Soup s;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.25 / n, 0.25 / n);
+  for(int i = 0; i <= n; ++i)
+    for(int j = 0; j <= n; ++j) {
+      const bool border = i == 0 || j == 0 || i == n || j == n;
+      s.points.emplace_back(double(i) / n + (border ? 0 : jitter(rng)), double(j) / n + (border ? 0 : jitter(rng)), 0.);
+    }
+  for(int i = 0; i < n; ++i)
+    for(int j = 0; j < n; ++j) {
+      const int a = i * (n + 1) + j, b = (i + 1) * (n + 1) + j;
+      s.faces.push_back({{a, b, b + 1}});
+      s.faces.push_back({{a, b + 1, a + 1}});
+    }
+  return s;
+}
+
+// A flat unit square, field along x, its border flagged, H = 1/k: exactly k^2 quads; on the border the corners
+// have valence 2 (a convex quarter turn), the others 3; inside every vertex valence 4. k = 4, 5 do not divide the
+// 6 x 6 tessellation: the iso-lines cross its triangles.
+TEST(QuadFeatures, FlatSquareWithBorder)
+{
+  const Quad_case q(to_surface_mesh(unit_square(6)), constant_field({{1., 0., 0.}}));
+  for(int k : {1, 2, 3, 4, 5}) {
+    const std::string name = "unit square, H = 1/" + std::to_string(k);
+    SCOPED_TRACE(name);
+    const Extraction_counts c = check_quad_mesh(q, 1. / k, name, border_flags(q));
+    EXPECT_EQ(c.folds, 0);
+    EXPECT_EQ(c.quads, k * k);
+    EXPECT_EQ(c.non_quads, 0);
+    EXPECT_EQ(c.border_valence[2], 4);
+    EXPECT_EQ(c.border_valence[3], 4 * (k - 1));
+    EXPECT_EQ(c.border_vertices, 4 * k);
+    EXPECT_EQ(c.valence_3 + c.valence_5 + c.other_valence, 0);
+  }
+}
+
+// A flat L (the unit square without its quarter x, y > 1/2), field along x, border flagged, H = 1/k for even k:
+// 3 k^2 / 4 quads; on the border five convex corners of valence 2, the concave one of valence 4 (the rule of
+// quad_extraction.h: the quads at it plus one), the others 3. The border vertices that were inside the square
+// (the two inner sides of the L) are jittered: the border there is a few degrees off the field, which the
+// alignment tolerance accepts, and the constraints still put it on iso-lines (at a small energy).
+TEST(QuadFeatures, FlatLWithConcaveCorner)
+{
+  Soup square = unit_square(8);
+  Soup l;
+  std::vector<int> used(square.points.size(), -1);
+  for(const Tri& t : square.faces) {
+    double cx = 0, cy = 0;
+    for(int c : t) {
+      cx += square.points[c].x() / 3;
+      cy += square.points[c].y() / 3;
+    }
+    if(cx > 0.5 && cy > 0.5)
+      continue;
+    Tri r = t;
+    for(int& c : r) {
+      if(used[c] < 0) {
+        used[c] = int(l.points.size());
+        l.points.push_back(square.points[c]);
+      }
+      c = used[c];
+    }
+    l.faces.push_back(r);
+  }
+  const Quad_case q(to_surface_mesh(l), constant_field({{1., 0., 0.}}));
+  ASSERT_EQ(q.view.boundary_loops.size(), 1u);
+  for(int k : {2, 4, 6}) {
+    const std::string name = "flat L, H = 1/" + std::to_string(k);
+    SCOPED_TRACE(name);
+    const Extraction_counts c = check_quad_mesh(q, 1. / k, name, border_flags(q));
+    EXPECT_EQ(c.folds, 0);
+    EXPECT_EQ(c.quads, 3 * k * k / 4);
+    EXPECT_EQ(c.non_quads, 0);
+    EXPECT_EQ(c.border_valence[2], 5);
+    EXPECT_EQ(c.border_valence[4], 1);
+    EXPECT_EQ(c.border_valence[3], c.border_vertices - 6);
+    EXPECT_EQ(c.border_vertices, 4 * k);
+    EXPECT_EQ(c.valence_3 + c.valence_5 + c.other_valence, 0);
+  }
+}
+
+// an open cylinder of radius r and height h around the z axis, nt x nz squares of two triangles, outward
+Soup open_cylinder(double r, double h, int nt, int nz)
+{
+  Soup s;
+  for(int i = 0; i < nt; ++i)
+    for(int j = 0; j <= nz; ++j) {
+      const double t = 2 * pi * i / nt;
+      s.points.emplace_back(r * std::cos(t), r * std::sin(t), h * j / nz);
+    }
+  auto id = [&](int i, int j) { return (i % nt) * (nz + 1) + j; };
+  for(int i = 0; i < nt; ++i)
+    for(int j = 0; j < nz; ++j) {
+      s.faces.push_back({{id(i, j), id(i + 1, j), id(i + 1, j + 1)}});
+      s.faces.push_back({{id(i, j), id(i + 1, j + 1), id(i, j + 1)}});
+    }
+  return s;
+}
+
+// An open cylinder, field along the axis, both borders flagged: neither the circumference (16.98 H) nor the
+// height (5.41 H) is a whole number of cells. Quads only, both borders on iso-lines, every border vertex of
+// valence 3 (the border is straight in the map), every inner one 4: n_u columns of n_v quads, with n_u the
+// border vertices of one loop and n_v + 1 vertices per column.
+TEST(QuadFeatures, OpenCylinder)
+{
+  const double r = 1, h = 2, H = 0.37;
+  const Quad_case q(to_surface_mesh(open_cylinder(r, h, 48, 12)), constant_field({{0., 0., 1.}}));
+  ASSERT_EQ(q.view.boundary_loops.size(), 2u);
+  const Extraction_counts c = check_quad_mesh(q, H, "open cylinder", border_flags(q));
+  EXPECT_EQ(c.folds, 0);
+  EXPECT_EQ(c.non_quads, 0);
+  EXPECT_EQ(c.border_valence[3], c.border_vertices);
+  EXPECT_EQ(c.valence_3 + c.valence_5 + c.other_valence, 0);
+  ASSERT_EQ(c.border_vertices % 2, 0);
+  const int columns = c.border_vertices / 2;
+  ASSERT_GT(columns, 0);
+  const int rows = c.quads / columns;
+  EXPECT_EQ(c.quads, columns * rows);
+  EXPECT_TRUE(columns == 17 || columns == 16) << columns << " columns for a circumference of " << 2 * pi * r / H << " H";
+  EXPECT_TRUE(rows == 5 || rows == 6) << rows << " rows for a height of " << h / H << " H";
+  EXPECT_EQ(c.features_not_followed, 0);
+}
+
+// the cube's edges (both ends on one edge line of the unit cube: two coordinates 0 or 1 and equal) and, per
+// flagged edge, which of the 12 cube edges it is on (axis, and the two fixed coordinates)
+int cube_edge_of(const V3& a, const V3& b)
+{
+  int fixed = 0, axis = -1, code = 0;
+  for(int c = 0; c < 3; ++c) {
+    if(a[c] == b[c] && (a[c] == 0 || a[c] == 1)) {
+      ++fixed;
+      code = 2 * code + int(a[c]);
+    } else {
+      axis = c;
+    }
+  }
+  return fixed == 2 ? 4 * axis + code : -1;
+}
+
+// The cube with its 12 edges flagged as features, on a tessellation the grid does not fit: 5 x 5 squares per
+// face and H = 0.4 (2.5 cells per edge). The corners are singular (+1/4), so integer points either way; without
+// the flags the iso-lines between them need not follow the edges (reported), with them every edge is a chain of
+// quad edges: each cube edge followed by the same number of quad edges as its three parallel ones (a, b, c per
+// axis), and the quads are 2 (ab + bc + ca); the eight corners are the only vertices of valence other than 4.
+TEST(QuadFeatures, CubeEdgesAsFeatures)
+{
+  const Soup soup = voxel_surface_soup({{{0, 0, 0}}}, 5);
+  const std::vector<int> corners = cube_corners(soup);
+  ASSERT_EQ(corners.size(), 8u);
+  const Quad_case cube(soup, quarters(corners), true);
+  const std::vector<char> features = edges_where(cube, [](const V3& a, const V3& b) { return cube_edge_of(a, b) >= 0; });
+  EXPECT_EQ(std::count(features.begin(), features.end(), 1), 12 * 5);
+  const double H = 0.4;
+  {
+    // without the constraints, only reported: how many cube edges the quad edges follow
+    TCI::Seamless_parametrization param(cube.arrays, cube.cut, cube.angle, H);
+    TCI::Integer_rounding rounding(param, cube.cut);
+    const TCI::Seamless_parametrization::Map map = rounding.round(TCI::Rounding_scheme::greedy).map;
+    const TCI::Quad_mesh quad = TCI::extract_quad_mesh(cube.arrays, cube.cut, map);
+    std::vector<int> along(features.size(), 0);
+    for(const auto& a : quad.edge_along)
+      for(int e : a)
+        ++along[e];
+    int followed = 0;
+    for(std::size_t e = 0; e < features.size(); ++e)
+      followed += features[e] && along[e] >= 1;
+    std::cout << "cube, H = 0.4, without feature constraints: " << followed << " of 60 cube-edge mesh edges followed\n";
+  }
+  TCI::Quad_mesh quad;
+  const Extraction_counts c = check_quad_mesh(cube, H, "cube, H = 0.4, 12 feature edges", features, &quad);
+  EXPECT_EQ(c.folds, 0);
+  EXPECT_EQ(c.non_quads, 0);
+  EXPECT_EQ(c.features_not_followed, 0);
+  EXPECT_EQ(c.valence_3, 8);
+  EXPECT_EQ(c.valence_5 + c.other_valence, 0);
+  // quad edges per cube edge
+  std::vector<std::set<int>> per_cube_edge(12);
+  for(std::size_t e = 0; e < quad.edge_along.size(); ++e)
+    for(int x : quad.edge_along[e]) {
+      const int i = cube.cut.edge_corner[x];
+      const int id = cube_edge_of(V3(cube.arrays.points[cube.arrays.source_of(i)]), V3(cube.arrays.points[cube.arrays.target_of(i)]));
+      if(id >= 0)
+        per_cube_edge[id].insert(int(e));
+    }
+  std::array<int, 3> cells = {{0, 0, 0}};
+  for(int axis = 0; axis < 3; ++axis) {
+    cells[axis] = int(per_cube_edge[4 * axis].size());
+    EXPECT_TRUE(cells[axis] == 2 || cells[axis] == 3) << cells[axis] << " quad edges along a cube edge of 2.5 H";
+    for(int k = 1; k < 4; ++k)
+      EXPECT_EQ(int(per_cube_edge[4 * axis + k].size()), cells[axis]) << "axis " << axis;
+  }
+  EXPECT_EQ(c.quads, 2 * (cells[0] * cells[1] + cells[1] * cells[2] + cells[2] * cells[0]));
+  // the corners are quad vertices at the cube's corners
+  int corner_vertices = 0;
+  for(std::size_t p = 0; p < quad.points.size(); ++p)
+    corner_vertices += std::find(corners.begin(), corners.end(), quad.locations[p].mesh_vertex) != corners.end();
+  EXPECT_EQ(corner_vertices, 8);
+}
+
+// A field not aligned with a flagged edge (the cube's field turned by 30 degrees) is refused, naming the edge.
+TEST(QuadFeatures, MisalignedFeatureIsRefused)
+{
+  const Soup soup = voxel_surface_soup({{{0, 0, 0}}}, 3);
+  const Quad_case cube(soup, quarters(cube_corners(soup)), true);
+  const std::vector<char> features = edges_where(cube, [](const V3& a, const V3& b) { return cube_edge_of(a, b) >= 0; });
+  std::vector<double> turned_angle(cube.angle);
+  for(double& a : turned_angle)
+    a += pi / 6;
+  try {
+    TCI::Seamless_parametrization param(cube.arrays, cube.cut, turned_angle, 0.25, features);
+    ADD_FAILURE() << "a field 30 degrees off the feature edges is expected to be refused";
+  } catch(const TC::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("not aligned with the feature edge from vertex"), std::string::npos) << e.what();
+  }
+  // the same turn within a tolerance of 35 degrees is accepted (the tolerance must stay under 45)
+  EXPECT_NO_THROW(TCI::Seamless_parametrization(cube.arrays, cube.cut, turned_angle, 0.25, features, 35 * pi / 180));
+  EXPECT_THROW(TCI::Seamless_parametrization(cube.arrays, cube.cut, cube.angle, 0.25, std::vector<char>(3, 1)),
+               TC::Invalid_input);
+}
+
+// A field pinned along the sharp edges through the library's public calls (feature_aligned_faces() at 30 degrees,
+// the faces as constrained_faces, the directions as face_directions), singularities placed automatically
+// (place_singularities() under the pins), as the program's --auto --align-features; the sharp edges of the kept
+// feature curves flagged.
+struct Pinned_design
+{
+  double threshold = 30;
+  int pins = 0;
+  double seconds = 0;
+  void operator()(const Surface_mesh& mesh, const Mesh_view<Surface_mesh>& view, Singularities& singularities,
+                  std::vector<double>& x, std::vector<Vector>& field)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<Surface_mesh::Face_index> pinned;
+    std::map<Surface_mesh::Face_index, Vector> d;
+    auto map = boost::make_assoc_property_map(d);
+    TC::feature_aligned_faces(mesh, threshold, std::back_inserter(pinned), map, TC::parameters::symmetry_order(4));
+    pins = int(pinned.size());
+    TC::Trivial_connection_solver<Surface_mesh> solver(mesh, TC::parameters::constrained_faces(pinned));
+    const auto np = TC::parameters::face_directions(map, TC::parameters::symmetry_order(4));
+    std::vector<std::pair<Surface_mesh::Vertex_index, TC::Singularity_index>> placed;
+    TC::place_singularities(solver, std::back_inserter(placed), np);
+    for(const auto& p : placed)
+      singularities.emplace_back(view.vid.at(p.first), p.second);
+    solver.solve(placed, view.halfedge_map(x), np);
+    solver.compute_field(view.halfedge_map_const(x), view.face_map(field), np);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+};
+
+std::vector<char> sharp_edge_flags(const Quad_case& q, double threshold)
+{
+  std::vector<char> flags(q.cut.edge_corner.size(), 0);
+  for(const auto& curve : TC::feature_curves(q.mesh, threshold).curves)
+    for(auto h : curve.halfedges)
+      flags[q.cut.edge_of_corner[q.arrays.corner_of_edge(edge(h, q.mesh), q.mesh)]] = 1;
+  return flags;
+}
+
+// An L-shaped block (three unit cubes, 4 x 4 squares per face): convex and concave sharp edges, the field pinned
+// to them and its singularities placed automatically; every sharp edge followed by quad edges where fold-free.
+TEST(QuadFeatures, PinnedSharpBlock)
+{
+  Pinned_design design;
+  const Quad_case q(to_surface_mesh(voxel_surface_soup({{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}}, 4)), std::ref(design));
+  const std::vector<char> features = sharp_edge_flags(q, design.threshold);
+  EXPECT_GT(std::count(features.begin(), features.end(), 1), 0);
+  std::cout << "L block: " << q.singularities.size() << " singularities placed, " << design.pins << " pinned faces\n";
+  const Extraction_counts c = check_quad_mesh(q, 0.3, "L block, H = 0.3, sharp edges", features);
+  EXPECT_GT(c.quads, 0);
+  if(c.folds == 0) {
+    EXPECT_EQ(c.features_not_followed, 0);
+  }
+}
+
+// fandisk (CGAL's data set), the same design: a measured run. Every sharp edge must be on an integer iso-line and
+// followed by a quad edge where the map is fold-free; folds, valence errors and times are reported.
+TEST(QuadFeatures, Fandisk)
+{
+  Surface_mesh tm;
+  TC_READ_CGAL_MESH_OR_SKIP("fandisk.off", tm);
+  Pinned_design design;
+  const Quad_case q(tm, std::ref(design));
+  const std::vector<char> features = sharp_edge_flags(q, design.threshold);
+  const int flagged = int(std::count(features.begin(), features.end(), 1));
+  V3 lo = V3(q.arrays.points[0]), hi = lo;
+  for(const auto& a : q.arrays.points)
+    for(int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], a[k]);
+      hi[k] = std::max(hi[k], a[k]);
+    }
+  const double H = norm(hi - lo) / 40;
+  std::cout << "fandisk: " << q.arrays.nf << " faces, " << q.singularities.size() << " singularities, " << design.pins
+            << " pins, " << flagged << " feature edges, " << q.cut.arcs.size() << " arcs; field (pins, placement, "
+            << "solve) " << design.seconds << " s; H = diagonal / 40\n";
+  const Extraction_counts c = check_quad_mesh(q, H, "fandisk, sharp edges", features, nullptr, 0.1);
+  EXPECT_GT(c.quads, 0);
+  // the cost of the constraints: the dense system and the solves, with and without the feature lines
+  for(bool with : {false, true}) {
+    const auto start = std::chrono::steady_clock::now();
+    TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H, with ? features : std::vector<char>());
+    const double built = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    param.solve();
+    const double solved = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    TCI::Integer_rounding rounding(param, q.cut);
+    const TCI::Integer_rounding_result r = rounding.round(TCI::Rounding_scheme::greedy);
+    const double rounded = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const TCI::Quad_mesh quad = TCI::extract_quad_mesh(q.arrays, q.cut, r.map);
+    int followed = 0;
+    for(const auto& a : quad.edge_along)
+      for(int e : a)
+        followed += features[e];
+    std::cout << "fandisk " << (with ? "with" : "without") << " the feature lines: " << quad.quads << " quads, "
+              << quad.non_quads << " other polygons, " << quad.folded_triangles << " folded and "
+              << quad.degenerate_triangles << " degenerate triangles, " << followed << " runs along feature edges; "
+              << param.constraint_count()
+              << " constraint rows, " << param.feature_lines().size() << " lines; built " << built << " s, solved "
+              << solved - built << " s, greedy rounding (" << r.integer_unknowns << " unknowns, " << r.solves
+              << " solves, " << r.shifted_unknowns << " shifted) " << rounded - solved << " s, energy "
+              << r.continuous_energy << " -> " << r.map.energy << "\n";
+  }
+  EXPECT_GT(flagged, 100);
 }
 
 } // namespace

@@ -42,6 +42,12 @@ namespace internal {
   are rounded before the translations (integer roots and translations rounded one by one keep every closure
   with a single free translation integer, as the turns are unimodular).
 
+  Even so, the integers fixed first can leave a later unknown determined at a half or a quarter (a feature line
+  through a singular vertex, tied to its root by a closure). So each unknown is fixed to the integer nearest to
+  its value among those that keep every unknown it determines an integer: the nearest, then the next ones by
+  distance (up to integer_candidates; the divisors are 2 and 4, so 5 cover every residue). Counted in
+  shifted_unknowns; with 1 candidate the schemes are the plain ones below.
+
   Two schemes:
   - greedy (the scheme of Bommes, Zimmer and Kobbelt, "Mixed-integer quadrangulation", 2009, in our words): solve
     the least squares, fix the free integer unknown closest to an integer (roots first, then translations; ties
@@ -54,6 +60,12 @@ namespace internal {
   The energy after either is >= the continuous one (a relaxation); nothing guarantees that the greedy one is
   lower than the naive one (on the test meshes it is lower or equal). In the closest_first order both schemes
   were infeasible on the tests' sphere with eight +1/4 (a root implied at a half-integer): hence roots_first.
+
+  Feature lines (Seamless_parametrization::feature_lines(), when edges were flagged as features) are a third kind
+  of integer unknown, one per line, rounded after the singular roots and before the translations: a line through
+  a singular vertex (a cube's corner) is tied to its root, so the roots go first, and a line's integer then fixes
+  the translations that carry it across the cut. A singular root coordinate eliminated by a line is not an unknown
+  of its own (it follows from the line and the translations) but is checked like the others at the end.
 
   The rounding owns the parametrisation's fixed values: it clears them before it starts.
 */
@@ -68,9 +80,11 @@ struct Integer_rounding_result
 {
   Seamless_parametrization::Map map; // the integer-grid map; map.energy is the energy after rounding
   double continuous_energy = 0;      // before rounding
-  int integer_unknowns = 0;          // the (u or v) roots of singular vertices and translations of arcs
+  int integer_unknowns = 0;          // the (u or v) roots of singular vertices, feature lines, translations of arcs
+  int feature_lines = 0;             // of which feature lines
   int fixed_unknowns = 0;            // rounded and fixed by the scheme
   int implied_unknowns = 0;          // made integers by the fixed ones through the transitions
+  int shifted_unknowns = 0;          // fixed to an integer other than the nearest, to keep the implied ones integers
   int solves = 0;                    // least-squares solves, the continuous one included
 };
 
@@ -82,13 +96,26 @@ public:
     : m_param(param)
   {
     CGAL_precondition(cut.holonomy.size() == cut.is_singular.size());
+    std::vector<char> taken(param.number_of_variables(), 0);
     for(int v = 0; v < int(cut.is_singular.size()); ++v)
       if(cut.is_singular[v] || cut.holonomy[v] != 0)
-        for(int k = 0; k < 2; ++k)
-          m_unknowns.push_back({param.root_variable(v) + k, v, -1, k});
+        for(int k = 0; k < 2; ++k) {
+          const int z = param.root_variable(v) + k;
+          if(param.is_eliminated(z)) {
+            m_implied.push_back({z, v, -1, k, false});
+          } else {
+            m_unknowns.push_back({z, v, -1, k, false});
+            taken[z] = 1;
+          }
+        }
+    for(const Seamless_parametrization::Feature_line& line : param.feature_lines())
+      if(!taken[line.variable]) {
+        m_unknowns.push_back({line.variable, line.vertex, -1, line.coordinate, true});
+        ++m_feature_lines;
+      }
     for(int a = 0; a < int(cut.arcs.size()); ++a)
       for(int k = 0; k < 2; ++k)
-        m_unknowns.push_back({param.translation_variable(a) + k, -1, a, k});
+        m_unknowns.push_back({param.translation_variable(a) + k, -1, a, k, false});
   }
 
   // the integer unknowns (z indices of the parametrisation), in the order the schemes visit them
@@ -102,13 +129,16 @@ public:
 
   // Throws Invalid_input when the integers fixed determine another integer unknown to a non-integer value, or
   // when a solve fails.
+  // integer_candidates: how many integers, nearest first, may be tried for an unknown (see fix below; 1: the
+  // nearest only, the plain schemes)
   Integer_rounding_result round(Rounding_scheme scheme, Rounding_order order = Rounding_order::roots_first,
-                                double batch_distance = 0)
+                                double batch_distance = 0, int integer_candidates = 5)
   {
-    CGAL_precondition(batch_distance >= 0);
+    CGAL_precondition(batch_distance >= 0 && integer_candidates >= 1);
     m_order = order;
     Integer_rounding_result result;
     result.integer_unknowns = int(m_unknowns.size());
+    result.feature_lines = m_feature_lines;
     m_param.clear_fixed();
     Seamless_parametrization::Map map = m_param.solve();
     result.solves = 1;
@@ -129,8 +159,37 @@ public:
           ++result.implied_unknowns;
         }
     };
+    // the nearest integer that leaves every unknown it determines an integer: the closures and the lines' loops
+    // divide by 2 or 4 at most, so among the 5 nearest integers one does whenever the earlier integers allow it
+    // (tried in order of distance; none: the nearest, and settle_implied() reports the contradiction)
     auto fix = [&](std::size_t k, double value) {
-      const double integer = std::round(value);
+      const double nearest = std::round(value);
+      std::vector<double> candidates = {nearest - 2, nearest - 1, nearest, nearest + 1, nearest + 2};
+      std::stable_sort(candidates.begin(), candidates.end(),
+                       [&](double a, double b) { return std::abs(a - value) < std::abs(b - value); });
+      double integer = nearest;
+      if(integer_candidates > 1) {
+        // the unknowns it determines do not depend on the integer, their values do, linearly (step)
+        const Eigen::VectorXd step = set.step(m_special[k]);
+        Affine_set trial = set;
+        trial.fix(m_special[k], nearest);
+        std::vector<std::size_t> determined;
+        for(std::size_t j = 0; j < m_unknowns.size(); ++j)
+          if(!done[j] && j != k && trial.determined(m_special[j]))
+            determined.push_back(j);
+        for(int n = 0; n < std::min(integer_candidates, int(candidates.size())); ++n) {
+          bool integers = true;
+          for(std::size_t j : determined)
+            integers = integers && distance_to_integer(trial.point[m_special[j]] +
+                                                       step[m_special[j]] * (candidates[n] - nearest)) <= 1e-6;
+          if(integers) {
+            integer = candidates[n];
+            break;
+          }
+        }
+      }
+      if(integer != nearest)
+        ++result.shifted_unknowns;
       m_param.fix(m_unknowns[k].z, integer);
       set.fix(m_special[k], integer);
       done[k] = 1;
@@ -163,7 +222,7 @@ public:
         settle_implied();
         // the closest to an integer among the free unknowns of the first kind left
         std::size_t best = m_unknowns.size();
-        int best_kind = 2;
+        int best_kind = 3;
         double best_distance = 1;
         for(std::size_t k = 0; k < m_unknowns.size(); ++k) {
           if(done[k])
@@ -191,7 +250,9 @@ public:
       }
     }
     // the map itself, not only the bookkeeping: every integer unknown an integer
-    for(const Unknown& u : m_unknowns) {
+    std::vector<Unknown> checked(m_unknowns);
+    checked.insert(checked.end(), m_implied.begin(), m_implied.end());
+    for(const Unknown& u : checked) {
       const double value = value_of(map, u);
       if(!(std::abs(value - std::round(value)) <= 1e-9 * (1 + std::abs(value))))
         throw Invalid_input(Error_code::solver_failure, "the integer rounding left " + describe(u) + " at " +
@@ -208,6 +269,7 @@ private:
     int vertex; // a singular vertex's root, or -1
     int arc;    // an arc's translation, or -1
     int coordinate; // 0: u, 1: v
+    bool feature;   // a feature line (vertex: the vertex of its representative)
   };
 
   // z_S = point + directions tau over the constrained unknowns S: every value they can take under the
@@ -217,6 +279,13 @@ private:
     Eigen::VectorXd point;
     Eigen::MatrixXd directions; // columns scaled to a largest entry of 1
 
+    // how the point moves per unit of z_s when fix(s, .) is called
+    Eigen::VectorXd step(int s) const
+    {
+      Eigen::Index pivot = 0;
+      directions.row(s).cwiseAbs().maxCoeff(&pivot);
+      return directions.col(pivot) / directions(s, pivot);
+    }
     bool determined(int s) const
     {
       return directions.cols() == 0 || directions.row(s).cwiseAbs().maxCoeff() <= 1e-9;
@@ -245,7 +314,10 @@ private:
   };
 
   static double distance_to_integer(double x) { return std::abs(x - std::round(x)); }
-  int kind_of(const Unknown& u) const { return m_order == Rounding_order::closest_first || u.vertex >= 0 ? 0 : 1; }
+  int kind_of(const Unknown& u) const
+  {
+    return m_order == Rounding_order::closest_first ? 0 : u.feature ? 1 : u.vertex >= 0 ? 0 : 2;
+  }
 
   static double value_of(const Seamless_parametrization::Map& map, const Unknown& u)
   {
@@ -255,6 +327,8 @@ private:
   static std::string describe(const Unknown& u)
   {
     const std::string coordinate = u.coordinate == 0 ? "u" : "v";
+    if(u.feature)
+      return "the " + coordinate + " of the feature line through vertex " + std::to_string(u.vertex);
     return u.vertex >= 0 ? "the " + coordinate + " of singular vertex " + std::to_string(u.vertex)
                          : "the " + coordinate + " of the translation of arc " + std::to_string(u.arc);
   }
@@ -293,6 +367,8 @@ private:
 
   Seamless_parametrization& m_param;
   std::vector<Unknown> m_unknowns;
+  std::vector<Unknown> m_implied; // singular root coordinates eliminated by feature lines: checked only
+  int m_feature_lines = 0;
   std::vector<int> m_special;
   Rounding_order m_order = Rounding_order::roots_first;
 };

@@ -56,8 +56,22 @@ namespace internal {
   kept apart, in rejected_polygons, never in faces: the faces are quads only. Where polygons were rejected the
   quad mesh has a hole, counted in open_edges. Nothing of this happens on a fold-free integer-grid map.
 
-  Not done here: surfaces with border (the border is not an iso-line; it would close the cells along it). They
-  are refused with an Invalid_input.
+  Surfaces with border: every border edge must lie on an integer iso-line of its face's chart (put there by the
+  parametrisation's feature flags, for a field aligned with the border); a border that is not is refused with an
+  Invalid_input naming the edge. The pieces along the border close the cells along it; the cycles of the
+  rotation system that run along the border on the outside (the border pieces walked backwards) are the holes,
+  neither faces nor rejected polygons. At a mesh vertex of the border the pieces are sorted from the clockwise
+  border edge to the counter-clockwise one (the open fan).
+
+  Valence on the border: a quad vertex on the border has valence q + 1, q the number of quads at it, which is
+  its (u, v) angle inside the surface in quarter turns: 3 where the border is straight in the map, 2 at a convex
+  corner (a quarter turn), 4 at a concave one (three quarter turns), and so on. Written like the interior rule
+  (valence 4 - 4 k at an interior vertex of index k), it is 3 - 4 k_b with k_b = (2 - q) / 4 the vertex's share
+  of its border loop's index: a convex corner counts +1/4, a concave one -1/4, and they sum over a loop to its
+  index k_B (CONVENTIONS.md: a square's border, a constant field's loop on a disk, has k_B = 1 = four +1/4).
+
+  What follows the input's edges: for every quad edge, the input edges it runs along (edges on an iso-line, the
+  pieces between its nodes), so that a caller can check that every feature edge is followed by quad edges.
 */
 
 struct Quad_mesh
@@ -76,13 +90,19 @@ struct Quad_mesh
   std::vector<int> valence;                       // per quad vertex: the iso-line pieces leaving it
   std::vector<std::array<int, 4>> faces;          // the quads, counter-clockwise like the input
   std::vector<std::vector<int>> rejected_polygons; // the other cycles (their integer points), not in faces
+  std::vector<std::array<int, 2>> edges;          // per quad edge: its two quad vertices
+  std::vector<std::vector<int>> edge_along;       // per quad edge: the input edges (cut graph numbering) it runs
+                                                  // along, in order from edges[e][0] (empty: across faces)
+  std::vector<char> on_border;                    // per quad vertex: on the border of the input
+  int border_edges = 0;          // quad edges along the border
+  int holes = 0;                 // outside cycles along the border (not faces)
   int quads = 0;
   int non_quads = 0;             // rejected polygons
   int folded_triangles = 0;      // negative (u, v) area
   int degenerate_triangles = 0;  // zero (u, v) area (after snapping)
   int quad_edges = 0;            // iso-line chains from an integer point to an integer point
   int dangling_edges = 0;        // chains from an integer point that end elsewhere (at a fold)
-  int open_edges = 0;            // quad edges in fewer than two faces
+  int open_edges = 0;            // quad edges in fewer than two faces (fewer than one on the border)
 };
 
 namespace quad_extraction_impl {
@@ -153,6 +173,8 @@ struct Piece
 {
   std::array<int, 2> node;
   std::array<double, 2> key;
+  int along = -1;        // the input edge it runs along, or -1
+  bool border = false;   // along a border edge, from its source to its target (the surface on its left)
 };
 
 } // namespace quad_extraction_impl
@@ -160,8 +182,9 @@ struct Piece
 /*
   The quad mesh of the integer-grid map `map` (corner_uv, translation) on the cut graph `cut` it was built on
   (layer 3's result). Throws Invalid_input when the map is not an integer-grid map (a transition that is not a
-  quarter turn plus an integer translation, a singular vertex off the integer points), when the surface has a
-  border, and when the map has more than max_quads cells (estimated by its (u, v) area before anything is built).
+  quarter turn plus an integer translation, a singular vertex off the integer points), when a border edge is not
+  on an integer iso-line, and when the map has more than max_quads cells (estimated by its (u, v) area before
+  anything is built).
 */
 template <class TriangleMesh>
 Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph& cut,
@@ -173,12 +196,6 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
   const int nc = 3 * m.nf;
   CGAL_precondition(map.corner_uv.size() == std::size_t(nc) && map.translation.size() == cut.arcs.size());
   CGAL_precondition(cut.edge_of_corner.size() == std::size_t(nc));
-  for(int i = 0; i < nc; ++i)
-    if(m.opposite_corner[i] < 0)
-      throw Invalid_input(Error_code::invalid_argument,
-                          "the quad extraction of a surface with border is not implemented (border edge from vertex " +
-                            std::to_string(m.source_of(i)) + " to vertex " + std::to_string(m.target_of(i)) + ")",
-                          std::size_t(i));
   Quad_mesh result;
 
   // the corners, snapped
@@ -190,6 +207,23 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
         throw Invalid_input(Error_code::invalid_argument, "the map is not finite at corner " + std::to_string(c));
       uv[c][k] = std::abs(x - std::round(x)) <= snap_tolerance ? std::round(x) : x;
     }
+
+  // every border edge on an integer iso-line of its face's chart
+  for(int i = 0; i < nc; ++i) {
+    if(m.opposite_corner[i] >= 0)
+      continue;
+    const UV &a = uv[i], &b = uv[MA::next_corner(i)];
+    bool on_line = false;
+    for(int k = 0; k < 2; ++k)
+      on_line = on_line || (a[k] == b[k] && is_integer(a[k]));
+    if(!on_line)
+      throw Invalid_input(Error_code::invalid_argument,
+                          "the border edge from vertex " + std::to_string(m.source_of(i)) + " to vertex " +
+                            std::to_string(m.target_of(i)) +
+                            " is not on an integer iso-line of the map (the field is not aligned with the border, or "
+                            "the border was not given to the parametrisation as a feature)",
+                          std::size_t(i));
+  }
 
   // per face: its (u, v) area; folded and degenerate faces are skipped
   std::vector<char> active(m.nf, 0);
@@ -258,10 +292,13 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
   std::vector<Node> nodes;
 
   // vertex nodes, and the counter-clockwise ring of corners around each vertex
+  // (on the border: an open fan, from the corner whose halfedge is a border edge)
   std::vector<int> vertex_node(m.nv, -1), ring_position(nc, -1), first_corner(m.nv, -1);
-  for(int c = 0; c < nc; ++c)
-    if(first_corner[m.source_of(c)] < 0)
-      first_corner[m.source_of(c)] = c;
+  for(int c = 0; c < nc; ++c) {
+    int& first = first_corner[m.source_of(c)];
+    if(first < 0 || (m.opposite_corner[c] < 0 && m.opposite_corner[first] >= 0))
+      first = c;
+  }
   for(int v = 0; v < m.nv; ++v) {
     const int start = first_corner[v];
     if(start < 0)
@@ -270,7 +307,7 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
     for(int c = start;;) {
       ring_position[c] = position++;
       c = m.opposite_corner[MA::prev_corner(c)];
-      if(c == start)
+      if(c == start || c < 0)
         break;
     }
     const UV& w = uv[start];
@@ -360,8 +397,10 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
     CGAL_assertion(chain.front() >= 0 && chain.back() >= 0);
     for(std::size_t j = 0; j + 1 < chain.size(); ++j) {
       const double from_key = j == 0 ? 8. * ring_position[i] : 0.;
-      const double to_key = j + 2 == chain.size() ? 8. * ring_position[o] : CGAL_PI;
-      pieces.push_back({{{chain[j], chain[j + 1]}}, {{from_key, to_key}}});
+      // at the target of a border edge: the last corner of its open fan, after every direction in it
+      const double to_key = j + 2 == chain.size() ? (o >= 0 ? 8. * ring_position[o] : 8. * ring_position[MA::next_corner(i)] + 7.)
+                                                  : CGAL_PI;
+      pieces.push_back({{{chain[j], chain[j + 1]}}, {{from_key, to_key}}, e, o < 0});
     }
   };
 
@@ -463,7 +502,7 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
           return vertex_key(3 * f + int(-1 - x.key), d);
         };
         for(std::size_t j = 0; j + 1 < chain.size(); ++j)
-          pieces.push_back({{{chain[j].node, chain[j + 1].node}}, {{key_at(chain[j], forward), key_at(chain[j + 1], backward)}}});
+          pieces.push_back({{{chain[j].node, chain[j + 1].node}}, {{key_at(chain[j], forward), key_at(chain[j + 1], backward)}}, -1, false});
       }
     }
   }
@@ -489,6 +528,9 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
     return list[(j + int(list.size()) - 1) % int(list.size())];
   };
 
+  // the half-pieces outside the surface: border pieces walked backwards
+  auto outside = [&](int h) { return pieces[h / 2].border && h % 2 == 1; };
+
   // the quad vertices
   std::vector<int> vertex_of_node(nodes.size(), -1);
   for(std::size_t n = 0; n < nodes.size(); ++n)
@@ -502,22 +544,41 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
       result.points.push_back(p);
       result.locations.push_back(l);
       result.valence.push_back(int(leaving[n].size()));
+      bool border = false;
+      for(int h : leaving[n])
+        border = border || pieces[h / 2].border;
+      result.on_border.push_back(border);
     }
 
   // the chains (quad edges) from the integer points through the pass-through nodes
   auto passes_through = [&](int n) { return !nodes[n].integer_point && leaving[n].size() == 2; };
   std::map<std::pair<int, int>, int> faces_at_edge; // (first half-piece of the chain from each end) -> faces
   std::vector<int> chain_id(nh, -1);                // per half-piece leaving an integer point: its chain
+  std::vector<char> border_chain;
   for(int h = 0; h < nh; ++h) {
     if(!nodes[tail(h)].integer_point || chain_id[h] >= 0)
       continue;
     int g = h;
+    std::vector<int> along;
+    bool border = pieces[h / 2].border;
+    auto note = [&](int x) {
+      const int e = pieces[x / 2].along;
+      if(e >= 0 && (along.empty() || along.back() != e))
+        along.push_back(e);
+    };
+    note(g);
     while(passes_through(head(g))) {
       const std::vector<int>& list = leaving[head(g)];
       g = list[0] == twin(g) ? list[1] : list[0];
+      note(g);
+      border = border && pieces[g / 2].border;
     }
     if(nodes[head(g)].integer_point) {
       chain_id[h] = chain_id[twin(g)] = result.quad_edges++;
+      result.edges.push_back({{vertex_of_node[tail(h)], vertex_of_node[head(g)]}});
+      result.edge_along.push_back(along);
+      border_chain.push_back(border);
+      result.border_edges += border;
     } else {
       chain_id[h] = -2;
       ++result.dangling_edges;
@@ -532,9 +593,12 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
       continue;
     std::vector<int> polygon, edges;
     bool simple = true;
+    int outside_pieces = 0, all_pieces = 0;
     int h = h0;
     do {
       visited[h] = 1;
+      outside_pieces += outside(h);
+      ++all_pieces;
       const int n = tail(h);
       if(nodes[n].integer_point) {
         polygon.push_back(vertex_of_node[n]);
@@ -547,7 +611,9 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
     std::vector<int> distinct(polygon);
     std::sort(distinct.begin(), distinct.end());
     simple = simple && std::unique(distinct.begin(), distinct.end()) == distinct.end();
-    if(simple && polygon.size() == 4) { // (a cycle without integer point is never one: not on a valid map)
+    if(outside_pieces == all_pieces) { // (a cycle partly outside is no hole: rejected below)
+      ++result.holes;
+    } else if(simple && outside_pieces == 0 && polygon.size() == 4) { // (a cycle without integer point is never one: not on a valid map)
       result.faces.push_back({{polygon[0], polygon[1], polygon[2], polygon[3]}});
       for(int e : edges)
         if(e >= 0)
@@ -558,8 +624,8 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
   }
   result.quads = int(result.faces.size());
   result.non_quads = int(result.rejected_polygons.size());
-  for(int count : edge_face_count)
-    result.open_edges += count < 2;
+  for(std::size_t e = 0; e < edge_face_count.size(); ++e)
+    result.open_edges += edge_face_count[e] < (border_chain[e] ? 1 : 2);
   return result;
 }
 

@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,8 +49,24 @@ namespace internal {
   at (0, 0)) and any values the caller fixes (fix(): the next layer's integers, for singular roots and t_a) form
   a small dense system G z_S = h on the few unknowns they involve; z_S = z_particular + K tau with K a basis of
   its kernel, the other unknowns stay as they are, and the least squares in (free unknowns, tau) is solved by a
-  sparse Cholesky factorization (SimplicialLDLT, AMD order) of its normal equations.
+  sparse Cholesky factorization (SimplicialLDLT, AMD order) of its normal equations. A fixed unknown that is in
+  no constraint is substituted, not added as a row: G grows with the constraints, not with the fixed values.
+
+  Feature curves on iso-lines (optional: a flag per edge of the cut graph's numbering, border edges included).
+  In the chart of the face of its canonical corner, a flagged edge must run along the field's u or v direction
+  (within `alignment_tolerance` radians, on both its faces; otherwise an Invalid_input names it), and the other
+  coordinate is constant along it: w_source[k] = w_target[k]. Each side is (a sign) times a root coordinate plus
+  integer combinations of translations (the wedges' expressions), so every such equation identifies two root
+  coordinates up to sign and translations. They are merged by a union-find whose links carry that affine
+  relation: a class of root coordinates (an iso-line through feature edges, along chains and across corners)
+  becomes one unknown, its representative, and the others are eliminated (z = P z_kept, P sparse). No row is added
+  per feature edge; only an equation that closes a loop of the classes (a feature loop, or two relations of one
+  coordinate with opposite signs) adds a row to G, over representatives and translations. The representatives
+  are the feature lines: the rounding makes them integers (feature_lines()). A vertex where two lines of
+  different coordinates meet (a corner of the features) has both coordinates identified: an integer point.
 */
+inline constexpr double default_feature_alignment_tolerance = 20 * CGAL_PI / 180;
+
 class Seamless_parametrization
 {
 public:
@@ -71,18 +88,46 @@ public:
   // the quarter turns q_a of arc a's transition
   int arc_turns(int a) const { return m_arc_turns[a]; }
 
+  // a feature line: a class of root coordinates tied by flagged edges, one unknown (its representative)
+  struct Feature_line
+  {
+    int variable;   // z index of the representative: root_variable(vertex) + coordinate
+    int vertex;
+    int coordinate;
+    int edge;       // a flagged edge of the line (cut graph numbering), for messages
+  };
+  const std::vector<Feature_line>& feature_lines() const { return m_feature_lines; }
+  // per flagged edge (cut graph numbering, -1 elsewhere): the coordinate (0: u, 1: v) constant along it in the
+  // chart of its canonical corner's face
+  const std::vector<int>& feature_coordinate() const { return m_feature_coordinate; }
+  // a root coordinate eliminated by a feature line (its value follows from the line's and the translations)
+  bool is_eliminated(int j) const { return !m_eliminated.empty() && m_eliminated[j]; }
+
+  /*
+    feature_edges: empty, or a flag per edge of the cut graph's numbering (cut.edge_corner); a flagged edge is put
+    on an iso-line (see above). Throws Invalid_input for H not positive and finite, a flag vector of the wrong
+    size, and a flagged edge the field is not aligned with within alignment_tolerance (radians).
+  */
   template <class TriangleMesh>
   Seamless_parametrization(const Mesh_arrays<TriangleMesh>& m, const Cut_graph& cut, const std::vector<double>& angle,
-                           double H)
+                           double H, const std::vector<char>& feature_edges = {},
+                           double alignment_tolerance = default_feature_alignment_tolerance)
     : m_nv(m.nv), m_nf(m.nf), m_arcs(int(cut.arcs.size()))
   {
     if(!(H > 0) || !std::isfinite(H))
       throw Invalid_input(Error_code::invalid_argument, "the quad size H must be positive and finite");
+    if(!feature_edges.empty() && feature_edges.size() != cut.edge_corner.size())
+      throw Invalid_input(Error_code::invalid_argument, "the feature flags must be one per edge (" +
+                                                          std::to_string(cut.edge_corner.size()) + "), not " +
+                                                          std::to_string(feature_edges.size()));
+    if(!(alignment_tolerance >= 0 && alignment_tolerance < CGAL_PI / 4))
+      throw Invalid_input(Error_code::invalid_argument, "the feature alignment tolerance must be in [0, pi/4) radians");
     CGAL_precondition(angle.size() == std::size_t(m.nf) && cut.combing.size() == std::size_t(m.nf));
     m_arc_turns.resize(m_arcs);
     for(int a = 0; a < m_arcs; ++a)
       m_arc_turns[a] = modulo_quarter_turns(-cut.arcs[a].matching);
     build_wedges(m, cut);
+    build_feature_lines(m, cut, angle, feature_edges, alignment_tolerance);
     build_least_squares(m, cut, angle, H);
   }
 
@@ -122,7 +167,7 @@ public:
     map.corner_uv.resize(3 * std::size_t(m_nf));
     for(int c = 0; c < 3 * m_nf; ++c)
       map.corner_uv[c] = {{corners[2 * c], corners[2 * c + 1]}};
-    const Eigen::VectorXd z = m_variable_basis * y + m_variable_offset;
+    const Eigen::VectorXd z = m_substitution * (m_variable_basis * y + m_variable_offset);
     map.root_uv.resize(m_nv);
     for(int v = 0; v < m_nv; ++v)
       map.root_uv[v] = {{z[2 * v], z[2 * v + 1]}};
@@ -140,9 +185,10 @@ public:
   const Sparse& normal_matrix() const { return m_normal_matrix; }
   const Eigen::VectorXd& normal_rhs() const { return m_normal_rhs; }
   const Eigen::VectorXd& reduced_solution() const { return m_reduced_solution; }
-  // The linear constraints on z that hold whatever is fixed (closures around cut vertices and the gauges), as
-  // rows (row, unknown, coefficient) of G z = 0 with constraint_count() rows: for the rounding layer, which must
-  // know which unknowns the integers it fixed already determine.
+  // The linear constraints on z that hold whatever is fixed (closures around cut vertices, the gauges and the
+  // feature lines' loops), as rows (row, unknown, coefficient) of G z = 0 with constraint_count() rows, over the
+  // unknowns that are not eliminated: for the rounding layer, which must know which unknowns the integers it
+  // fixed already determine.
   const std::vector<Eigen::Triplet<double>>& constraint_rows() const { return m_constraint_rows; }
   int constraint_count() const { return m_constraint_count; }
 
@@ -229,6 +275,7 @@ private:
       int c = start;
       int wedge = wedges++;
       add_expression(w, v, 2 * wedge, 1., wedge_rows);
+      m_wedge_expression.push_back(w);
       ++m_wedges_of_vertex[v];
       bool crossed_cut = false;
       for(;;) {
@@ -255,6 +302,7 @@ private:
         if(cut_here) {
           wedge = wedges++;
           add_expression(w, v, 2 * wedge, 1., wedge_rows);
+          m_wedge_expression.push_back(w);
           ++m_wedges_of_vertex[v];
         }
         c = next;
@@ -272,38 +320,28 @@ private:
     select.setFromTriplets(s.begin(), s.end());
     m_corner_map = select * wedge_map;
     m_corner_map.prune(0.);
+    m_wedge_of_corner = wedge_of_corner;
 
-    Sparse closure(2 * closures, number_of_variables());
-    closure.setFromTriplets(closure_rows.begin(), closure_rows.end());
-    closure.prune(0.); // the terms of an arc through a regular vertex cancel exactly (integer entries)
+    m_closure = Sparse(2 * closures, number_of_variables());
+    m_closure.setFromTriplets(closure_rows.begin(), closure_rows.end());
+    m_closure.prune(0.); // the terms of an arc through a regular vertex cancel exactly (integer entries)
     // the gauge: per component, a vertex at (0, 0): a singular vertex when there is one (its root must be an
     // integer in the next layer anyway, while a regular vertex pinned at (0, 0) would be one more integer
     // constraint on the rounding), else one not on the cut when there is one
     auto gauge_rank = [&](int v) {
       return (cut.is_singular[v] || cut.holonomy[v] != 0) ? 0 : m_wedges_of_vertex[v] == 1 ? 1 : 2;
     };
-    std::vector<int> gauge(cut.number_of_components, -1);
+    m_gauge.assign(cut.number_of_components, -1);
+    m_gauge_rank.assign(m.nv, -1);
+    m_vertex_component.assign(m.nv, -1);
     for(int v = 0; v < m.nv; ++v) {
       if(first[v] < 0)
         continue;
-      int& g = gauge[cut.component_of_face[MA::face_of(first[v])]];
+      m_gauge_rank[v] = gauge_rank(v);
+      m_vertex_component[v] = cut.component_of_face[MA::face_of(first[v])];
+      int& g = m_gauge[m_vertex_component[v]];
       if(g < 0 || gauge_rank(v) < gauge_rank(g))
         g = v;
-    }
-    // the closures that are not 0 = 0, renumbered
-    m_constraint_rows.clear();
-    std::vector<int> row_of(2 * std::size_t(closures), -1);
-    m_constraint_count = 0;
-    for(int k = 0; k < closure.outerSize(); ++k)
-      for(Sparse::InnerIterator it(closure, k); it; ++it) {
-        int& row = row_of[it.row()];
-        if(row < 0)
-          row = m_constraint_count++;
-        m_constraint_rows.emplace_back(row, int(it.col()), it.value());
-      }
-    for(int g : gauge) {
-      m_constraint_rows.emplace_back(m_constraint_count++, root_variable(g), 1.);
-      m_constraint_rows.emplace_back(m_constraint_count++, root_variable(g) + 1, 1.);
     }
     m_used.assign(number_of_variables(), 0);
     for(int v = 0; v < m.nv; ++v)
@@ -311,6 +349,229 @@ private:
         m_used[root_variable(v)] = m_used[root_variable(v) + 1] = 1;
     for(int a = 0; a < m_arcs; ++a)
       m_used[translation_variable(a)] = m_used[translation_variable(a) + 1] = 1;
+  }
+
+  // coordinate k of corner c's (u, v) as sign * (root coordinate) + integer combination of translations
+  struct Coordinate
+  {
+    int variable;
+    int sign;
+    std::map<int, int> translations; // z index -> coefficient
+  };
+  Coordinate corner_coordinate(int vertex, int c, int k) const
+  {
+    const Expression& w = m_wedge_expression[m_wedge_of_corner[c]];
+    Coordinate r{-1, 0, {}};
+    const std::array<int, 4> R = rotation(w.turns);
+    for(int j = 0; j < 2; ++j)
+      if(R[2 * k + j] != 0) {
+        r.variable = root_variable(vertex) + j;
+        r.sign = R[2 * k + j];
+      }
+    for(const auto& t : w.terms) {
+      const std::array<int, 4> T = rotation(t[1]);
+      for(int j = 0; j < 2; ++j)
+        if(T[2 * k + j] != 0)
+          r.translations[translation_variable(t[0]) + j] += t[2] * T[2 * k + j];
+    }
+    return r;
+  }
+
+  // x = sign * parent + translations, for the union-find of root coordinates
+  struct Link
+  {
+    int parent = -1; // -1: a representative
+    int sign = 1;
+    std::map<int, int> translations;
+  };
+  static void add_to(std::map<int, int>& into, const std::map<int, int>& a, int factor)
+  {
+    for(const auto& t : a)
+      if((into[t.first] += factor * t.second) == 0)
+        into.erase(t.first);
+  }
+  // the representative r of x, with x = sign * r + translations; compresses the path
+  Link find(std::vector<Link>& links, int x) const
+  {
+    std::vector<int> path;
+    int r = x;
+    while(links[r].parent >= 0) {
+      path.push_back(r);
+      r = links[r].parent;
+    }
+    // from the top of the path down: each link made relative to r
+    for(std::size_t j = path.size(); j-- > 0;) {
+      Link& l = links[path[j]];
+      if(l.parent == r)
+        continue;
+      const Link& up = links[l.parent]; // already relative to r
+      std::map<int, int> t;
+      add_to(t, up.translations, l.sign);
+      add_to(t, l.translations, 1);
+      l.sign *= up.sign;
+      l.translations = t;
+      l.parent = r;
+    }
+    if(links[x].parent < 0)
+      return Link{x, 1, {}};
+    Link out = links[x];
+    return out;
+  }
+
+  template <class TriangleMesh>
+  void build_feature_lines(const Mesh_arrays<TriangleMesh>& m, const Cut_graph& cut, const std::vector<double>& angle,
+                           const std::vector<char>& feature_edges, double tolerance)
+  {
+    using MA = Mesh_arrays<TriangleMesh>;
+    const int nz = number_of_variables();
+    std::vector<Link> links(nz);
+    std::vector<int> class_size(nz, 1);
+    std::vector<Eigen::Triplet<double>> loop_rows;
+    int loops = 0;
+    m_feature_coordinate.assign(cut.edge_corner.size(), -1);
+    const double quarter = CGAL_PI / 2;
+    for(std::size_t e = 0; e < feature_edges.size(); ++e) {
+      if(!feature_edges[e])
+        continue;
+      const int i = cut.edge_corner[e];
+      const int a = m.source_of(i), b = m.target_of(i);
+      const Vec3 d = sub(m.points[b], m.points[a]);
+      int k = -1;
+      for(int side = 0; side < 2; ++side) {
+        const int c = side == 0 ? i : m.opposite_corner[i];
+        if(c < 0)
+          continue;
+        const int f = MA::face_of(c);
+        Vec3 ex, ey;
+        Mesh_geometry::frame(m, f, ex, ey);
+        const double turns = (std::atan2(dot(d, ey), dot(d, ex)) - angle[f] - cut.combing[f] * quarter) / quarter;
+        const double off = std::abs(turns - std::round(turns)) * quarter;
+        if(!(off <= tolerance))
+          throw Invalid_input(Error_code::invalid_argument,
+                              "the cross field is not aligned with the feature edge from vertex " + std::to_string(a) +
+                                " to vertex " + std::to_string(b) + " (off by " + std::to_string(off * 180 / CGAL_PI) +
+                                " degrees in face " + std::to_string(f) + ", more than the tolerance of " +
+                                std::to_string(tolerance * 180 / CGAL_PI) + ")",
+                              e);
+        if(side == 0) // along +-d: u varies, v is constant; along +-J d: u is constant
+          k = modulo_quarter_turns((long long)std::round(turns)) % 2 == 0 ? 1 : 0;
+      }
+      m_feature_coordinate[e] = k;
+      // w_a[k] = w_b[k]: x = sa sb y + sa (Tb - Ta)
+      const Coordinate ca = corner_coordinate(a, i, k), cb = corner_coordinate(b, MA::next_corner(i), k);
+      const Link fx = find(links, ca.variable), fy = find(links, cb.variable);
+      const int rx = fx.parent, ry = fy.parent;
+      const int sigma = ca.sign * cb.sign;
+      std::map<int, int> L;
+      add_to(L, cb.translations, ca.sign);
+      add_to(L, ca.translations, -ca.sign);
+      // x = sx rx + Lx, y = sy ry + Ly, x = sigma y + L
+      if(rx != ry) {
+        // rx = sx sigma sy ry + sx (sigma Ly + L - Lx)
+        Link l;
+        l.sign = fx.sign * sigma * fy.sign;
+        add_to(l.translations, fy.translations, fx.sign * sigma);
+        add_to(l.translations, L, fx.sign);
+        add_to(l.translations, fx.translations, -fx.sign);
+        if(class_size[rx] <= class_size[ry]) {
+          l.parent = ry;
+          links[rx] = l;
+          class_size[ry] += class_size[rx];
+        } else { // ry = s rx - s T, the inverse
+          Link inverse;
+          inverse.parent = rx;
+          inverse.sign = l.sign;
+          add_to(inverse.translations, l.translations, -l.sign);
+          links[ry] = inverse;
+          class_size[rx] += class_size[ry];
+        }
+      } else {
+        // (sx - sigma sy) r + Lx - sigma Ly - L = 0
+        std::map<int, int> row;
+        add_to(row, fx.translations, 1);
+        add_to(row, fy.translations, -sigma);
+        add_to(row, L, -1);
+        const int coefficient = fx.sign - sigma * fy.sign;
+        if(coefficient != 0 || !row.empty()) {
+          if(coefficient != 0)
+            loop_rows.emplace_back(loops, rx, double(coefficient));
+          for(const auto& t : row)
+            loop_rows.emplace_back(loops, t.first, double(t.second));
+          ++loops;
+        }
+      }
+    }
+    // with feature lines, the gauge of a component without singular vertex goes to a vertex whose two coordinates
+    // are on lines (both integers anyway), else one (its other coordinate is then the only one pinned): a vertex
+    // off the lines pinned at (0, 0) would put the lines at non-integers the rounding then pays for
+    if(!feature_edges.empty()) {
+      std::vector<int> on_lines(m.nv, 0);
+      for(int j = 0; j < 2 * m.nv; ++j)
+        if(links[j].parent >= 0 || class_size[j] > 1)
+          ++on_lines[j / 2];
+      auto rank = [&](int v) { return m_gauge_rank[v] == 0 ? 0 : on_lines[v] == 2 ? 1 : on_lines[v] == 1 ? 2 : 3 + m_gauge_rank[v]; };
+      for(int v = 0; v < m.nv; ++v)
+        if(m_vertex_component[v] >= 0) {
+          int& g = m_gauge[m_vertex_component[v]];
+          if(rank(v) < rank(g))
+            g = v;
+        }
+    }
+    // the substitution z = P z_kept, the eliminated coordinates, the lines
+    m_eliminated.assign(nz, 0);
+    std::vector<Eigen::Triplet<double>> p;
+    std::vector<int> line_of(nz, -1);
+    for(int j = 0; j < nz; ++j) {
+      if(links[j].parent < 0) {
+        p.emplace_back(j, j, 1.);
+        continue;
+      }
+      const Link l = find(links, j);
+      m_eliminated[j] = 1;
+      m_used[j] = 0;
+      p.emplace_back(j, l.parent, double(l.sign));
+      for(const auto& t : l.translations)
+        p.emplace_back(j, t.first, double(t.second));
+      if(line_of[l.parent] < 0) {
+        line_of[l.parent] = int(m_feature_lines.size());
+        m_feature_lines.push_back({l.parent, l.parent / 2, l.parent % 2, -1});
+      }
+    }
+    for(std::size_t e = 0; e < feature_edges.size(); ++e)
+      if(feature_edges[e]) {
+        const int i = cut.edge_corner[e];
+        const Link l = find(links, corner_coordinate(m.source_of(i), i, m_feature_coordinate[e]).variable);
+        Feature_line& line = m_feature_lines[line_of[l.parent]];
+        if(line.edge < 0)
+          line.edge = int(e);
+      }
+    m_substitution = Row_sparse(nz, nz);
+    m_substitution.setFromTriplets(p.begin(), p.end());
+    m_corner_map = Sparse(m_corner_map * m_substitution);
+    m_corner_map.prune(0.);
+
+    // the constraints over the kept unknowns: closures, gauges, the lines' loops
+    m_constraint_rows.clear();
+    m_constraint_count = 0;
+    Sparse closure = m_closure * m_substitution;
+    closure.prune(0.);
+    std::vector<int> row_of(closure.rows(), -1);
+    for(int k = 0; k < closure.outerSize(); ++k)
+      for(Sparse::InnerIterator it(closure, k); it; ++it) {
+        int& row = row_of[it.row()];
+        if(row < 0)
+          row = m_constraint_count++;
+        m_constraint_rows.emplace_back(row, int(it.col()), it.value());
+      }
+    for(int g : m_gauge)
+      for(int k = 0; k < 2; ++k) {
+        for(Row_sparse::InnerIterator it(m_substitution, root_variable(g) + k); it; ++it)
+          m_constraint_rows.emplace_back(m_constraint_count, int(it.col()), it.value());
+        ++m_constraint_count;
+      }
+    for(const auto& t : loop_rows)
+      m_constraint_rows.emplace_back(m_constraint_count + t.row(), t.col(), t.value());
+    m_constraint_count += loops;
   }
 
   // per face, 4 rows: sqrt(area) times the two gradients, and the targets sqrt(area) (d, J d) / H
@@ -352,48 +613,69 @@ private:
     m_gradients.setFromTriplets(rows.begin(), rows.end());
   }
 
-  // z = variable_basis y + variable_offset: the special unknowns (those of the constraints and the fixed ones)
-  // from a particular solution and a kernel basis of the dense constraint system, the others as they are
+  // z_kept = variable_basis y + variable_offset: the fixed unknowns substituted (a fixed eliminated coordinate
+  // is a row: its substitution's), the special unknowns (those left in the constraints) from a particular solution
+  // and a kernel basis of the dense constraint system, the others as they are
   void reduce()
   {
     const int nz = number_of_variables();
-    std::vector<int> special_of(nz, -1), specials;
-    auto mark = [&](int j) {
-      if(special_of[j] < 0) {
-        special_of[j] = int(specials.size());
-        specials.push_back(j);
+    std::vector<char> is_fixed(nz, 0);
+    std::vector<double> fixed_value(nz, 0.);
+    std::vector<std::pair<int, double>> fixed_rows; // eliminated coordinates fixed
+    for(const auto& f : m_fixed) {
+      if(is_eliminated(f.first)) {
+        fixed_rows.push_back(f);
+        continue;
       }
-    };
-    for(const auto& t : m_constraint_rows)
-      mark(t.col());
-    for(const auto& f : m_fixed)
-      mark(f.first);
-    const int rows = m_constraint_count + int(m_fixed.size());
+      if(is_fixed[f.first] && fixed_value[f.first] != f.second)
+        throw Invalid_input(Error_code::invalid_argument,
+                            "the seamless parametrisation has an unknown fixed to two different values");
+      is_fixed[f.first] = 1;
+      fixed_value[f.first] = f.second;
+    }
+    // the rows: constraints, then the fixed eliminated coordinates
+    std::vector<Eigen::Triplet<double>> all(m_constraint_rows);
+    int rows = m_constraint_count;
+    std::vector<double> rhs(m_constraint_count, 0.);
+    for(const auto& f : fixed_rows) {
+      for(Row_sparse::InnerIterator it(m_substitution, f.first); it; ++it)
+        all.emplace_back(rows, int(it.col()), it.value());
+      rhs.push_back(f.second);
+      ++rows;
+    }
+    std::vector<int> special_of(nz, -1), specials;
+    for(const auto& t : all)
+      if(!is_fixed[t.col()] && special_of[t.col()] < 0) {
+        special_of[t.col()] = int(specials.size());
+        specials.push_back(t.col());
+      }
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(rows, int(specials.size()));
-    Eigen::VectorXd h = Eigen::VectorXd::Zero(rows);
-    for(const auto& t : m_constraint_rows)
-      G(t.row(), special_of[t.col()]) += t.value();
-    for(std::size_t k = 0; k < m_fixed.size(); ++k) {
-      G(m_constraint_count + int(k), special_of[m_fixed[k].first]) = 1;
-      h[m_constraint_count + int(k)] = m_fixed[k].second;
+    Eigen::VectorXd h = Eigen::Map<Eigen::VectorXd>(rhs.data(), rows);
+    for(const auto& t : all) {
+      if(is_fixed[t.col()])
+        h[t.row()] -= t.value() * fixed_value[t.col()];
+      else
+        G(t.row(), special_of[t.col()]) += t.value();
     }
     Eigen::VectorXd particular = Eigen::VectorXd::Zero(int(specials.size()));
     Eigen::MatrixXd kernel(int(specials.size()), 0);
-    if(!specials.empty()) {
-      Eigen::FullPivLU<Eigen::MatrixXd> lu(G);
-      lu.setThreshold(1e-10); // the entries are small integers but for the fixed values' rows
-      particular = lu.solve(h);
+    if(rows > 0) {
+      if(!specials.empty()) {
+        Eigen::FullPivLU<Eigen::MatrixXd> lu(G);
+        lu.setThreshold(1e-10); // the entries are small integers
+        particular = lu.solve(h);
+        if(lu.dimensionOfKernel() > 0)
+          kernel = lu.kernel();
+      }
       if(!((G * particular - h).norm() <= 1e-9 * (1 + h.norm())))
         throw Invalid_input(Error_code::invalid_argument,
                             "the fixed values of the seamless parametrisation contradict its transitions");
-      if(lu.dimensionOfKernel() > 0)
-        kernel = lu.kernel();
     }
-    // the reduced unknowns: the free z (used, not special), then tau
+    // the reduced unknowns: the free z (used, neither special nor fixed), then tau
     std::vector<Eigen::Triplet<double>> basis;
     int free_count = 0;
     for(int j = 0; j < nz; ++j)
-      if(m_used[j] && special_of[j] < 0)
+      if(m_used[j] && special_of[j] < 0 && !is_fixed[j])
         basis.emplace_back(j, free_count++, 1.);
     for(int s = 0; s < int(specials.size()); ++s)
       for(int k = 0; k < kernel.cols(); ++k)
@@ -402,6 +684,9 @@ private:
     m_variable_basis.resize(nz, free_count + int(kernel.cols()));
     m_variable_basis.setFromTriplets(basis.begin(), basis.end());
     m_variable_offset = Eigen::VectorXd::Zero(nz);
+    for(int j = 0; j < nz; ++j)
+      if(is_fixed[j])
+        m_variable_offset[j] = fixed_value[j];
     for(int s = 0; s < int(specials.size()); ++s)
       m_variable_offset[specials[s]] = particular[s];
     m_corner_basis = m_corner_map * m_variable_basis;
@@ -418,6 +703,16 @@ private:
   std::vector<Eigen::Triplet<double>> m_constraint_rows;
   int m_constraint_count = 0;
   std::vector<std::pair<int, double>> m_fixed;
+  using Row_sparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  std::vector<Expression> m_wedge_expression; // per wedge
+  std::vector<int> m_wedge_of_corner;
+  Sparse m_closure;                           // closures over all z
+  std::vector<int> m_gauge;                   // per component
+  std::vector<int> m_gauge_rank, m_vertex_component; // per vertex
+  Row_sparse m_substitution;                  // z = P z_kept
+  std::vector<char> m_eliminated;
+  std::vector<Feature_line> m_feature_lines;
+  std::vector<int> m_feature_coordinate;
   Sparse m_gradients;            // 4 rows per face over the corners' (u, v)
   Eigen::VectorXd m_target;
   Sparse m_variable_basis, m_corner_basis, m_normal_matrix;

@@ -185,7 +185,7 @@ class NearestTriangle:
     nearer triangle would touch one of those cells); the others are asked again with r doubled, at the end
     against all triangles."""
 
-    def __init__(self, points, tris, chunk_pairs=4_000_000):
+    def __init__(self, points, tris, chunk_pairs=1_000_000):
         self.a, self.b, self.c = points[tris[:, 0]], points[tris[:, 1]], points[tris[:, 2]]
         self.m = len(tris)
         self.chunk_pairs = chunk_pairs
@@ -220,17 +220,23 @@ class NearestTriangle:
         n = len(p)
         best = np.full(n, np.inf)
         arg = np.full(n, -1, np.int64)
+        cell_all = np.floor((p - self.origin) / self.s).astype(np.int64)
+        # the distance from each point to its own cell's walls: ring r covers at least r cells plus that
+        lo_wall = p - (self.origin + cell_all * self.s)
+        wall = np.minimum(lo_wall, self.s - lo_wall).min(axis=1)
         todo = np.arange(n)
-        r = 1
+        r = 0
         while len(todo):
             if (2 * r + 1) ** 3 > 8 * self.dims.prod() or r > 64:
                 self._brute(p, todo, best, arg)
                 break
-            cell = np.floor((p[todo] - self.origin) / self.s).astype(np.int64)
+            cell = cell_all[todo]
             offsets = np.arange(-r, r + 1)
             for dx in offsets:
                 for dy in offsets:
                     for dz in offsets:
+                        if max(abs(dx), abs(dy), abs(dz)) < r // 2 + (r > 0) and r > 1:
+                            continue  # tested in the previous ring (r // 2), with the same triangles
                         c = cell + np.array([dx, dy, dz])
                         inside = np.all((c >= 0) & (c < self.dims), axis=1)
                         q, c = todo[inside], c[inside]
@@ -238,9 +244,9 @@ class NearestTriangle:
                         start = np.searchsorted(self.keys, key, "left")
                         stop = np.searchsorted(self.keys, key, "right")
                         self._test(p, q, start, stop - start, best, arg)
-            exact = np.sqrt(best[todo]) <= r * self.s
+            exact = np.sqrt(best[todo]) <= r * self.s + wall[todo]
             todo = todo[~exact]
-            r *= 2
+            r = max(1, 2 * r)
         return np.sqrt(best), arg
 
     def _test(self, p, q, start, count, best, arg):
@@ -259,14 +265,13 @@ class NearestTriangle:
             t = self.ids[ss[rep] + np.arange(len(rep)) - first[rep]]
             pts = qq[rep]
             d = closest_on_triangles(p[pts], self.a[t], self.b[t], self.c[t])
-            # the minimum per query: sort by (query, distance), take the first of each query
-            order = np.lexsort((d, rep))
-            head = np.ones(len(order), bool)
-            head[1:] = rep[order][1:] != rep[order][:-1]
-            w = order[head]
-            better = d[w] < best[qq[rep[w]]]
-            best[qq[rep[w]][better]] = d[w][better]
-            arg[qq[rep[w]][better]] = t[w][better]
+            # the minimum per query: the pairs are grouped by query (rep is non-decreasing)
+            mins = np.minimum.reduceat(d, first)
+            hit = np.flatnonzero(d == mins[rep])
+            hit = hit[np.unique(rep[hit], return_index=True)[1]]
+            better = mins < best[qq]
+            best[qq[better]] = mins[better]
+            arg[qq[better]] = t[hit][better]
             lo = hi
 
     def _brute(self, p, todo, best, arg):

@@ -44,9 +44,10 @@ mkdir -p "$out"
 [ -x "$program" ] || { echo "compare_quads.sh: no program at $program (build the target trivial_connections)" >&2; exit 1; }
 [ -x "$peer" ] || { echo "compare_quads.sh: no peer program at $peer" >&2; exit 1; }
 has_quads=0
-"$program" --help 2>&1 | grep -q -- '--quad-mesh' && has_quads=1
+help=$("$program" --help 2>&1 || true) # captured whole: grep -q on a pipe could cut the program short (pipefail)
+[[ "$help" == *--quad-mesh* ]] && has_quads=1
 
-median() { sort -g | awk '{t[NR] = $1} END {if (NR) print t[int((NR + 1) / 2)]; else print "?"}'; }
+median() { awk NF | sort -g | awk '{t[NR] = $1} END {if (NR) print t[int((NR + 1) / 2)]; else print "?"}'; }
 value() { grep -m1 "^$2: " "$1" | cut -d' ' -f2 || true; } # LOG KEY: a 'key: value' line's value
 
 # quality cells from quad_quality.py's JSON: quads | non-quads | valence errors | flipped | angle | area | Hausdorff/H

@@ -706,6 +706,45 @@ TEST(Refinement, columns_asked_for_stay_past_the_budget)
   expect_columns({7, 50});
 }
 
+// Chosen for the few vertices wanted first, the paths give way to the selected inversion once the paths asked for
+// would cost more than it (the automatic choice's own break-even); the entries stay those of M^-1.
+TEST(Refinement, paths_give_way_to_the_inversion_when_they_grow)
+{
+  const int side = 30, nn = side * side;
+  const Eigen::SparseMatrix<double> M = grid_in_fill_reducing_order(side);
+  struct View
+  {
+    Simplicial_natural s;
+    const Simplicial_natural& solver() const { return s; }
+  } view;
+  view.s.compute(M);
+  ASSERT_EQ(view.s.info(), Eigen::Success);
+  std::vector<int> row_of_vertex(static_cast<std::size_t>(nn)), position(static_cast<std::size_t>(nn));
+  std::iota(row_of_vertex.begin(), row_of_vertex.end(), 0);
+  std::iota(position.begin(), position.end(), 0);
+  auto solve = [&](const Eigen::VectorXd& e) { return Eigen::VectorXd(view.s.solve(e)); };
+  TC::internal::Unit_lower_factor f;
+  ASSERT_TRUE(TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial_natural>>::read(view, f));
+  TC::internal::Move_energy energy(row_of_vertex, position.data(), nn, std::move(f), {0, 1}, solve);
+  ASSERT_TRUE(energy.paths());
+  energy.prefetch_paths({0, 1, 2});
+  EXPECT_TRUE(energy.paths()); // three paths: far below the inversion
+  auto expect_entries = [&]() {
+    for(int v = 0; v < nn; v += 37)
+      for(int w : {v, (std::min)(v + 1, nn - 1), (std::min)(v + side, nn - 1)}) {
+        const double expected = solve(Eigen::VectorXd::Unit(nn, v))[w];
+        EXPECT_NEAR(energy.entry(v, w), expected, 1e-10 * (1 + std::abs(expected))) << v << " " << w;
+      }
+  };
+  expect_entries();
+  std::vector<int> all(static_cast<std::size_t>(nn));
+  std::iota(all.begin(), all.end(), 0);
+  energy.prefetch_paths(all);
+  EXPECT_FALSE(energy.paths());
+  EXPECT_TRUE(energy.selected());
+  expect_entries();
+}
+
 // What the refinement calls a local minimum, checked by brute force: a solve (its integers chosen again) of every
 // move of a singularity to a free neighbouring interior vertex and of every cancellation of a unit of a pair.
 // `np`: those of the solves (symmetry_order, face_directions).

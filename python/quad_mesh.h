@@ -30,6 +30,7 @@ py::dict quad_report_dict(const TC::Quad_mesh_report& r)
   d["open_edges"] = r.open_edges;
   d["dangling_edges"] = r.dangling_edges;
   d["flipped_quads"] = r.flipped_quads;
+  d["concave_quads"] = r.concave_quads;
   d["hausdorff_distance"] = r.hausdorff_distance();
   d["hausdorff_quads_to_input"] = r.hausdorff_quads_to_input;
   d["hausdorff_input_to_quads"] = r.hausdorff_input_to_quads;

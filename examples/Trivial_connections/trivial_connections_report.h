@@ -236,7 +236,7 @@ inline void print_quads(std::ostream& out, const Options& o, const Quads& quads)
       << " quads, " << r.number_of_vertices << " vertices, H = " << std::setprecision(6) << r.quad_size
       << "; valence errors " << r.valence_errors << ", folded triangles " << r.folded_triangles << " (degenerate "
       << r.degenerate_triangles << "), rejected polygons " << r.rejected_polygons << ", open edges " << r.open_edges
-      << ", flipped quads " << r.flipped_quads << "; Hausdorff distance " << fixed(r.hausdorff_distance() / r.quad_size, 3)
+      << ", flipped quads " << r.flipped_quads << " (concave " << r.concave_quads << "); Hausdorff distance " << fixed(r.hausdorff_distance() / r.quad_size, 3)
       << " H (quads to input " << fixed(r.hausdorff_quads_to_input / r.quad_size, 3) << " H, input to quads "
       << fixed(r.hausdorff_input_to_quads / r.quad_size, 3) << " H)\n";
 }

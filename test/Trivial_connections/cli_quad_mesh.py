@@ -127,15 +127,16 @@ def check_cube(k, size_args):
     check(len(line) == 1, f"{tag}: one report line 'quad mesh: ...'")
     if line:
         m = re.search(r": (\d+) quads, (\d+) vertices, H = ([0-9.e+-]+); valence errors (\d+), folded triangles (\d+) "
-                      r"\(degenerate (\d+)\), rejected polygons (\d+), open edges (\d+), flipped quads (\d+); "
+                      r"\(degenerate (\d+)\), rejected polygons (\d+), open edges (\d+), flipped quads (\d+) \(concave (\d+)\); "
                       r"Hausdorff distance ([0-9.]+) H", line[0])
         check(m is not None, f"{tag}: the report line reads: {line[0]}")
         if m:
             g = m.groups()
             check(int(g[0]) == len(Q) and int(g[1]) == len(V), f"{tag}: the report counts the file's quads and vertices")
             check(abs(float(g[2]) - H) < 1e-5, f"{tag}: H = {g[2]}")
-            check(all(int(x) == 0 for x in g[3:9]), f"{tag}: no valence error, fold, rejected polygon, open edge, flip")
-            check(float(g[9]) <= 0.5, f"{tag}: Hausdorff distance {g[9]} H <= H/2")
+            check(all(int(x) == 0 for x in g[3:10]),
+                  f"{tag}: no valence error, fold, rejected polygon, open edge, flipped or concave quad")
+            check(float(g[10]) <= 0.5, f"{tag}: Hausdorff distance {g[10]} H <= H/2")
 
 
 check_cube(1, ["--quad-size", "1"])

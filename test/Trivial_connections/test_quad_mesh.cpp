@@ -194,6 +194,7 @@ void check_cube(const Solved& cube, int k, const std::string& name)
   EXPECT_EQ(r.valence_histogram.at(3), 8u);
   EXPECT_EQ(r.folded_triangles + r.degenerate_triangles + r.rejected_polygons + r.open_edges, 0u);
   EXPECT_EQ(r.flipped_quads, 0u);
+  EXPECT_EQ(r.concave_quads, 0u);
   EXPECT_EQ(r.split_vertices, 0u);
   EXPECT_LE(r.hausdorff_distance(), H / 2);
   EXPECT_LT(r.hausdorff_distance(), 1e-9) << "the quads are on the cube's faces";
@@ -281,6 +282,19 @@ TEST(QuadMesh, SphereEightValenceThree)
     EXPECT_EQ(c.unpaired, 0u);
     EXPECT_EQ(c.euler, 2);
     EXPECT_EQ(r.valence_errors, 0u);
+    EXPECT_EQ(r.flipped_quads, 0u);
+    // every quad faces out: its vector area along the sphere's normal (the position) at its centre
+    int inward = 0;
+    for(face_descriptor f : out.faces()) {
+      Vector area(0, 0, 0), centre(0, 0, 0);
+      const halfedge_descriptor h0 = out.halfedge(f);
+      for(halfedge_descriptor h : CGAL::halfedges_around_face(h0, out)) {
+        area = area + CGAL::cross_product(out.point(out.source(h)) - CGAL::ORIGIN, out.point(out.target(h)) - CGAL::ORIGIN);
+        centre = centre + (out.point(out.source(h)) - CGAL::ORIGIN);
+      }
+      inward += area * centre <= 0;
+    }
+    EXPECT_EQ(inward, 0);
     // the valence-3 vertices are at the singular vertices
     for(vertex_descriptor v : out.vertices())
       if(out.degree(v) == 3) {

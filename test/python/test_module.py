@@ -1123,6 +1123,7 @@ def test_quad_mesh_cube():
         assert report["quads"] == len(Q) and report["vertices"] == len(P)
         assert abs(report["quad_size"] - 1 / k) < 1e-12
         assert report["valence_errors"] == 0 and report["flipped_quads"] == 0 and report["folded_triangles"] == 0
+        assert report["concave_quads"] == 0
         assert report["valence_histogram"] == {3: 8, 4: len(P) - 8}
         assert report["hausdorff_distance"] <= 0.5 / k
     P2, Q2, naive = solver.quad_mesh(result, s, quad_size=0.5, rounding="naive")
@@ -1142,6 +1143,10 @@ def test_quad_mesh_sphere_and_errors():
         # a vertex of valence 4 - 4k at each singularity of index k, 4 elsewhere
         expected = sorted(4 - int(4 * k) for k in placed.values())
         assert sorted(v for v in valence if v != 4) == [e for e in expected if e != 4]
+        # every quad faces out: its vector area along the sphere's normal (the position) at its centre
+        area = sum(np.cross(P[Q[:, j]], P[Q[:, (j + 1) % 4]]) for j in range(4))
+        assert np.all(np.einsum("ij,ij->i", area, P[Q].mean(axis=1)) > 0)
+        assert report["flipped_quads"] == 0 and report["valence_errors"] == 0
     # errors: not a cross field, a bad size, neither or both sizes, a bad rounding
     line = solver.solve({0: 1, 5: 1}, n=2)
     with pytest.raises(tc.InvalidInput) as error:

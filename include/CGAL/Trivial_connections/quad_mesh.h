@@ -60,9 +60,12 @@ struct Quad_mesh_report
   std::size_t rejected_polygons = 0;       ///< cells of the iso-lines that are not quads (left out: holes)
   std::size_t open_edges = 0;              ///< quad edges in fewer than two quads (0 on a closed output)
   std::size_t dangling_edges = 0;          ///< iso-line chains from an integer point that end at a fold
-  /// quads one of whose two triangles (split along the diagonal from its first vertex) has a normal that points
-  /// against the input's normal at the triangle's vertices
+  /// quads whose vector area (half the sum of the cross products of consecutive vertices) points against the sum
+  /// of the input's normals at their four vertices
   std::size_t flipped_quads = 0;
+  /// quads with a corner (the triangle of a vertex and its two neighbours) pointing against that sum: valid cells
+  /// of the map, but not convex
+  std::size_t concave_quads = 0;
   /// the largest distance from a point of the quads (each split into two triangles) to the input surface
   double hausdorff_quads_to_input = 0;
   /// the largest distance from a point of the input to the quads (infinity when there is no quad)
@@ -235,6 +238,7 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   report.open_edges = std::size_t(quads.open_edges);
   report.dangling_edges = std::size_t(quads.dangling_edges);
   report.flipped_quads = std::size_t(measures.flipped_quads);
+  report.concave_quads = std::size_t(measures.concave_quads);
   report.hausdorff_quads_to_input = measures.hausdorff_quads_to_input;
   report.hausdorff_input_to_quads = measures.hausdorff_input_to_quads;
   report.continuous_energy = made.continuous_energy;

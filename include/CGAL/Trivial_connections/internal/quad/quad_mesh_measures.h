@@ -73,6 +73,7 @@ inline double one_sided_distance(const Triangles& from, const Triangles& to, dou
 struct Quad_measures
 {
   int flipped_quads = 0;
+  int concave_quads = 0;
   double hausdorff_quads_to_input = 0; // the largest distance from a point of the quads to the input
   double hausdorff_input_to_quads = 0; // the largest distance from a point of the input to the quads
 };
@@ -84,10 +85,13 @@ inline std::array<std::array<int, 3>, 2> quad_triangles(const std::array<int, 4>
 }
 
 /*
-  A quad is flipped when the normal of one of its two triangles points against the input's normal at its three
-  vertices (their sum; a negative scalar product). The input's normal at a quad vertex: at a mesh vertex the
-  angle-weighted mean of the unit normals of its faces, inside an edge the sum of its two faces' unit normals,
-  inside a face the face's. `spacing`: the sampling step of the distances (see one_sided_distance()).
+  A quad is flipped when its vector area (half the sum of p_j x p_j+1, the normal of a planar quad times its area)
+  points against the sum of the input's normals at its four vertices (a negative scalar product); it is concave
+  when one of its corners (the triangle previous, vertex, next) does. A concave quad is a valid cell of a
+  fold-free map (its iso-lines bend inside the triangles); a flipped one is not. The input's normal at a quad
+  vertex: at a mesh vertex the angle-weighted mean of the unit normals of its faces, inside an edge the sum of its
+  two faces' unit normals, inside a face the face's. `spacing`: the sampling step of the distances (see
+  one_sided_distance()).
 */
 template <class TriangleMesh>
 Quad_measures measure_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Quad_mesh& quads, double spacing)
@@ -126,18 +130,29 @@ Quad_measures measure_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Quad_m
   Quad_measures result;
   Triangles quad_triangles_3, input_triangles;
   for(const std::array<int, 4>& q : quads.faces) {
-    bool flipped = false;
+    Vec3 reference = {{0, 0, 0}}, area = {{0, 0, 0}}; // the input's normals at the 4 vertices; the vector area
+    for(int j = 0; j < 4; ++j) {
+      const Vec3 n = location_normal(quads.locations[q[j]]);
+      const Vec3 c = cross(quads.points[q[j]], quads.points[q[(j + 1) % 4]]);
+      for(int x = 0; x < 3; ++x) {
+        reference[x] += n[x];
+        area[x] += c[x] / 2;
+      }
+    }
+    result.flipped_quads += dot(area, reference) < 0;
+    // a corner turning the wrong way: the triangle (previous, vertex, next) against the input's normals
+    bool concave = false;
+    for(int j = 0; j < 4; ++j) {
+      const Vec3& p = quads.points[q[j]];
+      const Vec3 corner = cross(sub(quads.points[q[(j + 1) % 4]], p), sub(quads.points[q[(j + 3) % 4]], p));
+      concave = concave || dot(corner, reference) < 0;
+    }
+    result.concave_quads += concave;
     for(const std::array<int, 3>& t : quad_triangles(q)) {
       const Vec3 n = cross(sub(quads.points[t[1]], quads.points[t[0]]), sub(quads.points[t[2]], quads.points[t[0]]));
-      Vec3 reference = {{0, 0, 0}};
-      for(int v : t)
-        for(int x = 0; x < 3; ++x)
-          reference[x] += location_normal(quads.locations[v])[x];
-      flipped = flipped || dot(n, reference) < 0;
       if(norm(n) > 0) // a degenerate one (a quad folded onto a diagonal) has no plane: its points are its neighbours'
         quad_triangles_3.emplace_back(point(quads.points[t[0]]), point(quads.points[t[1]]), point(quads.points[t[2]]));
     }
-    result.flipped_quads += flipped;
   }
   for(int f = 0; f < m.nf; ++f)
     input_triangles.emplace_back(point(m.points[m.corner_vertex[3 * f]]), point(m.points[m.corner_vertex[3 * f + 1]]),

@@ -51,6 +51,11 @@ public:
   py::list trace_streamlines(const Result& result, const py::object& singularities, const py::object& seed_faces,
                              std::size_t maximum_faces_per_ray);
 
+  // defined in quad_mesh.h
+  // the quads of the cross field of `result`: (vertices, quads, report)
+  py::tuple quad_mesh(const Result& result, const py::object& singularities, const py::object& quad_size,
+                      const py::object& target_faces, const std::string& rounding, double max_quads);
+
   // defined in files.h
   // the field of `result` as a field file (.txt), or the mesh with it and the singularities as a VTK (.vtk) or PLY
   // (.ply) file, written completely or not at all

@@ -148,6 +148,15 @@ class Solver:
         seed_faces: Optional[Sequence[int]] = None,
         maximum_faces_per_ray: int = 0,
     ) -> List[npt.NDArray[np.float64]]: ...
+    def quad_mesh(
+        self,
+        result: Result,
+        singularities: Optional[_Singularities],
+        quad_size: Optional[float] = None,
+        target_faces: Optional[int] = None,
+        rounding: str = "greedy",
+        max_quads: float = 1e7,
+    ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Dict[str, Any]]: ...
     def write_field(self, path: _StrPath, result: Result, singularities: Optional[_Singularities]) -> None: ...
     @property
     def feature_pins(self) -> Optional[Tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]]: ...

@@ -11,7 +11,7 @@
 // read_mesh()), features.h (sharp features), the solver: solver_backend.h (the C++ solver of either backend),
 // solver_state.h (the class Solver: its state and construction), solving.h (solve(), set_constraints()),
 // solver_outputs.h (Result, topology, the mesh's arrays), solver_bindings.h (Result's and Solver's binding), then
-// placement.h (automatic placement and refinement), streamlines.h and files.h. This file holds the types they
+// placement.h (automatic placement and refinement), streamlines.h, quad_mesh.h (quad meshes) and files.h. This file holds the types they
 // share and the module itself: numpy at import, __version__, the exception InvalidInput, the bindings' calls.
 //
 // Arrays come in as numpy arrays of any integer (faces) or real (points) type and layout; each is read once
@@ -37,6 +37,7 @@
 #include <CGAL/Trivial_connections/singularity_placement.h>
 #include <CGAL/Trivial_connections/singularity_refinement.h>
 #include <CGAL/Trivial_connections/streamlines.h>
+#include <CGAL/Trivial_connections/quad_mesh.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 
 #include <pybind11/numpy.h>
@@ -93,6 +94,7 @@ using Singularities = std::vector<std::pair<std::size_t, TC::Singularity_index>>
 #include "solver_bindings.h"
 #include "placement.h"
 #include "streamlines.h"
+#include "quad_mesh.h"
 #include "files.h"
 
 #ifndef TC_VERSION
@@ -153,6 +155,7 @@ honour Ctrl-C (KeyboardInterrupt) between phases. Type stubs: trivial_connection
   py::class_<Python_solver> solver = bind_solver(m);
   bind_placement(solver);
   bind_streamlines(m, solver);
+  bind_quad_mesh(solver);
   bind_files(m, solver);
   bind_features(m);
 }

@@ -30,6 +30,7 @@
 #include <CGAL/Trivial_connections/IO/viewer_files.h>
 #include <CGAL/Trivial_connections/Progress.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
+#include <CGAL/Trivial_connections/quad_mesh.h>
 #include <CGAL/Trivial_connections/singularity_placement.h>
 #include <CGAL/Trivial_connections/singularity_refinement.h>
 
@@ -104,8 +105,9 @@ int run(const Options& o, Progress_printer& progress)
   Design design;
   design_singularities(o, in, solver, design, progress, time);
   const Solution solution = solve(o, in, solver, solver_progress, time);
-  write_outputs(o, in, solver, solution, progress, time);
-  print_report(std::cout, o, in, solution, design, time, solver);
+  const Quads quads = make_quad_mesh(o, in, solution, progress, time);
+  write_outputs(o, in, solver, solution, quads, progress, time);
+  print_report(std::cout, o, in, solution, design, quads, time, solver);
 #ifndef __SANITIZE_ADDRESS__
   // Done: the files are complete. Freeing the mesh, the solver and its factor piece by piece would take about 3 %
   // of the run for memory that the kernel takes back at once (the sanitizer builds still destroy everything).

@@ -51,7 +51,8 @@ inline const char* const usage_text =
   "                           [--connection OUT] [--field OUT] [--vtk OUT] [--ply OUT]\n"
   "                           [--singularity-points OUT] [--streamlines OUT] [--streamline-seeds K]\n"
   "                           [--auto] [--no-refine] [--align-curvature] [--alignment-strength S]\n"
-  "                           [--refine] [--cancel-pairs] [--write-singularities OUT] [--progress]\n"
+  "                           [--refine] [--cancel-pairs] [--write-singularities OUT]\n"
+  "                           [--quad-mesh OUT.obj (--quad-size H | --target-faces N)] [--progress]\n"
   "                           [--error-codes] [--help] [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
@@ -128,6 +129,13 @@ inline const char* const usage_text =
   "  --streamlines OUT     streamlines of the field as legacy VTK polylines (ParaView), traced from K seed\n"
   "                        faces spread over the mesh (--streamline-seeds K, default 100); a ray stops at\n"
   "                        a singularity, a boundary, where it meets itself, or after 50 sqrt(faces) faces\n"
+  "  --quad-mesh OUT      a quad mesh of the cross field (needs --n 4), as an OBJ file of quads: the integer\n"
+  "                        iso-lines of a seamless parametrisation whose gradients follow the field, with\n"
+  "                        quad vertices of valence 4 - 4k exactly at the singularities of index k. A line\n"
+  "                        'quad mesh: ...' reports the quads, valence errors, folded triangles of the map,\n"
+  "                        flipped quads and the Hausdorff distance to the input over H. Closed meshes only.\n"
+  "  --quad-size H         the quads' edge length, in the mesh's unit (with --quad-mesh)\n"
+  "  --target-faces N      instead of --quad-size: about N quads (H = sqrt(area / N))\n"
   "  --error-codes         the error line names the error code: 'trivial_connections: error [CODE]: ...'\n"
   "                        (CODE: an error code of the library, usage_error, out_of_memory or internal_error)\n"
   "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
@@ -191,6 +199,9 @@ struct Options
   bool align_features = false;
   double feature_angle = CGAL::Trivial_connections::default_feature_angle_degrees; // --align-features DEGREES
   std::string feature_lines, write_constraints;
+  std::string quad_mesh;     // --quad-mesh OUT
+  double quad_size = 0;      // --quad-size H (0: not given)
+  std::size_t target_faces = 0; // --target-faces N (0: not given)
 };
 
 using String_field = std::string Options::*;
@@ -219,6 +230,22 @@ inline void parse_guidance_weight(Options& o, const std::string& text)
   o.guidance_weight = std::strtod(text.c_str(), &end);
   if(end != text.c_str() + text.size() || !(o.guidance_weight > 0) || !std::isfinite(o.guidance_weight))
     throw Usage_error("--guidance-weight expects a positive finite number, got '" + text + "'");
+}
+
+inline void parse_quad_size(Options& o, const std::string& text)
+{
+  char* end = nullptr;
+  o.quad_size = std::strtod(text.c_str(), &end);
+  if(text.empty() || end != text.c_str() + text.size() || !(o.quad_size > 0) || !std::isfinite(o.quad_size))
+    throw Usage_error("--quad-size expects a positive finite number, got '" + text + "'");
+}
+
+inline void parse_target_faces(Options& o, const std::string& text)
+{
+  if(text.empty() || text.size() > 12 || text.find_first_not_of("0123456789") != std::string::npos ||
+     std::stoull(text) == 0)
+    throw Usage_error("--target-faces expects a positive integer, got '" + text + "'");
+  o.target_faces = std::size_t(std::stoull(text));
 }
 
 inline void parse_alignment_strength(Options& o, const std::string& text)
@@ -273,7 +300,7 @@ struct Valued_option
 };
 
 // The options that take a value. Each may be given once, as `--name value` or `--name=value`.
-inline const std::array<Valued_option, 19> valued_options = {{
+inline const std::array<Valued_option, 22> valued_options = {{
   {"--write-mesh", &Options::write_mesh, nullptr},
   {"--write-singularities", &Options::write_singularities, nullptr},
   {"--write-constraints", &Options::write_constraints, nullptr},
@@ -293,6 +320,9 @@ inline const std::array<Valued_option, 19> valued_options = {{
   {"--n", nullptr, parse_symmetry_order},
   {"--weights", nullptr, parse_weights},
   {"--streamline-seeds", nullptr, parse_streamline_seeds},
+  {"--quad-mesh", &Options::quad_mesh, nullptr},
+  {"--quad-size", nullptr, parse_quad_size},
+  {"--target-faces", nullptr, parse_target_faces},
 }};
 
 inline bool same_file(const std::string& a, const std::string& b)
@@ -309,7 +339,7 @@ inline void check_outputs(const Options& o)
 {
   std::vector<const std::string*> outputs = {&o.connection, &o.field};
   for(const std::string* extra : {&o.vtk, &o.ply, &o.singularity_points, &o.streamlines, &o.write_singularities,
-                                  &o.feature_lines, &o.write_constraints, &o.write_mesh})
+                                  &o.feature_lines, &o.write_constraints, &o.write_mesh, &o.quad_mesh})
     if(!extra->empty())
       outputs.push_back(extra);
   for(std::size_t a = 0; a < outputs.size(); ++a)
@@ -439,6 +469,13 @@ inline Options parse_arguments(int argc, char** argv)
     o.refine = o.cancel_pairs = true;
   if(!o.feature_lines.empty() && !o.align_features)
     throw Usage_error("--feature-lines is an option of --align-features");
+  if(o.quad_mesh.empty() && (o.quad_size > 0 || o.target_faces > 0))
+    throw Usage_error(std::string(o.quad_size > 0 ? "--quad-size" : "--target-faces") + " is an option of --quad-mesh");
+  if(!o.quad_mesh.empty() && o.n != 4)
+    throw Usage_error("--quad-mesh needs a cross field: --n 4 (got --n " + std::to_string(o.n) + ")");
+  if(!o.quad_mesh.empty() && (o.quad_size > 0) == (o.target_faces > 0))
+    throw Usage_error(o.quad_size > 0 ? "--quad-size and --target-faces cannot be combined (give one)"
+                                      : "--quad-mesh needs --quad-size H or --target-faces N");
   const std::string stem = std::filesystem::path(o.mesh).stem().string();
   if(o.connection.empty())
     o.connection = stem + ".connection.txt";

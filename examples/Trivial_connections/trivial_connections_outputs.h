@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <iomanip>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -66,8 +67,44 @@ inline std::vector<face_descriptor> streamline_seeds(const Inputs& in, std::size
   return seeds;
 }
 
+// --quad-mesh: the quads of the cross field, computed before any file is written (an error leaves no file)
+inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& s, Progress_printer& progress,
+                            Timings& time)
+{
+  Quads q;
+  if(o.quad_mesh.empty())
+    return q;
+  Stopwatch stopwatch{time.quads};
+  progress.begin("quad mesh");
+  namespace P = TC::parameters;
+  q.report = o.quad_size > 0
+               ? TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh, P::quad_size(o.quad_size))
+               : TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh, P::target_faces(o.target_faces));
+  progress.end("quad mesh");
+  return q;
+}
+
+// The quads as an OBJ file: 'v x y z' per vertex, 'f a b c d' (1-based) per quad, counter-clockwise seen from outside
+inline void write_quads_obj(std::ostream& os, const Mesh& quads)
+{
+  os << std::setprecision(17);
+  std::vector<std::size_t> number(quads.number_of_vertices() + quads.number_of_removed_vertices(), 0);
+  std::size_t next = 0;
+  for(auto v : quads.vertices()) {
+    number[std::size_t(v)] = ++next;
+    const auto& p = quads.point(v);
+    os << "v " << p.x() << " " << p.y() << " " << p.z() << "\n";
+  }
+  for(auto f : quads.faces()) {
+    os << "f";
+    for(auto v : CGAL::vertices_around_face(quads.halfedge(f), quads))
+      os << " " << number[std::size_t(v)];
+    os << "\n";
+  }
+}
+
 inline void write_outputs(const Options& o, const Inputs& in, const Solver& solver, const Solution& s,
-                   Progress_printer& progress, Timings& time)
+                          const Quads& quads, Progress_printer& progress, Timings& time)
 {
   Stopwatch stopwatch{time.write};
   progress.begin("writing files");
@@ -117,6 +154,8 @@ inline void write_outputs(const Options& o, const Inputs& in, const Solver& solv
                                         TC::parameters::maximum_faces_per_ray(bound, n));
     files.push_back({o.streamlines, [&](std::ostream& os) { TC::write_streamlines_vtk(os, streamlines); }});
   }
+  if(quads.report)
+    files.push_back({o.quad_mesh, [&](std::ostream& os) { write_quads_obj(os << header, quads.mesh); }});
   // all written or none; the writers only read the mesh, the maps and the solver
   TC::write_files_atomically(files, /* concurrently = */ true);
   progress.end("writing files");

@@ -225,8 +225,24 @@ std::string factorization_backend(const TC::Cost_based_solver_traits<Crossover>&
 }
 #endif
 
+// --quad-mesh: one line, the quads and their defects; the Hausdorff distance in units of H
+inline void print_quads(std::ostream& out, const Options& o, const Quads& quads)
+{
+  if(!quads.report)
+    return;
+  const TC::Quad_mesh_report& r = *quads.report;
+  std::error_code ec;
+  out << "quad mesh: " << std::filesystem::absolute(o.quad_mesh, ec).string() << ": " << r.number_of_quads
+      << " quads, " << r.number_of_vertices << " vertices, H = " << std::setprecision(6) << r.quad_size
+      << "; valence errors " << r.valence_errors << ", folded triangles " << r.folded_triangles << " (degenerate "
+      << r.degenerate_triangles << "), rejected polygons " << r.rejected_polygons << ", open edges " << r.open_edges
+      << ", flipped quads " << r.flipped_quads << " (concave " << r.concave_quads << "); Hausdorff distance " << fixed(r.hausdorff_distance() / r.quad_size, 3)
+      << " H (quads to input " << fixed(r.hausdorff_quads_to_input / r.quad_size, 3) << " H, input to quads "
+      << fixed(r.hausdorff_input_to_quads / r.quad_size, 3) << " H)\n";
+}
+
 inline void print_report(std::ostream& out, const Options& o, const Inputs& in, const Solution& s, const Design& design,
-                  const Timings& time, const Solver& solver)
+                         const Quads& quads, const Timings& time, const Solver& solver)
 {
   const std::size_t interior_edges = number_of_interior_edges(in.mesh);
   print_mesh(out, o, in, s.report, interior_edges);
@@ -241,11 +257,14 @@ inline void print_report(std::ostream& out, const Options& o, const Inputs& in, 
   out << "connection: " << std::filesystem::absolute(o.connection, ec).string() << " (" << interior_edges
       << " interior edges)\n";
   out << "field: " << std::filesystem::absolute(o.field, ec).string() << " (" << num_faces(in.mesh) << " faces)\n";
+  print_quads(out, o, quads);
   out << "time: read " << fixed(time.read, 3) << " s, set-up " << fixed(time.setup, 3) << " s, ";
   if(o.automatic || o.refine || o.align_curvature)
     out << "placement " << fixed(time.placement, 3) << " s, ";
-  out << "solve "
-      << fixed(time.solve, 3) << " s, write " << fixed(time.write, 3) << " s\n";
+  out << "solve " << fixed(time.solve, 3) << " s, ";
+  if(quads.report)
+    out << "quad mesh " << fixed(time.quads, 3) << " s, ";
+  out << "write " << fixed(time.write, 3) << " s\n";
 }
 
 } // namespace trivial_connections_program

@@ -17,6 +17,7 @@
 #include <CGAL/Trivial_connections/IO/read_triangle_mesh.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
+#include <CGAL/Trivial_connections/quad_mesh.h>
 #include <CGAL/Trivial_connections/singularity_placement.h>
 #include <CGAL/Trivial_connections/singularity_refinement.h>
 
@@ -98,9 +99,16 @@ struct Solution
   Face_vectors field;
 };
 
+// --quad-mesh: the quads and what compute_quad_mesh() reports
+struct Quads
+{
+  std::optional<TC::Quad_mesh_report> report;
+  Mesh mesh;
+};
+
 struct Timings
 {
-  double read = 0, setup = 0, placement = 0, solve = 0, write = 0;
+  double read = 0, setup = 0, placement = 0, solve = 0, quads = 0, write = 0;
 };
 
 // Sets `seconds` to its lifetime when it goes: it also times a step that returns the solver, which can

@@ -1056,3 +1056,109 @@ def test_repair_mesh_as_the_program():
     with pytest.raises(tc.InvalidInput) as error:
         tc.repair_mesh(cgal_mesh("b9.ply"))
     assert error.value.code == "empty_mesh"
+
+
+# ---- quad meshes (Solver.quad_mesh) ---------------------------------------------------------------------------
+
+
+def unit_cube(s):
+    """The unit cube's surface, each face s x s squares cut into two triangles, outward; and its eight corners."""
+    index, V, F = {}, [], []
+
+    def vertex(q):
+        if q not in index:
+            index[q] = len(V)
+            V.append(q)
+        return index[q]
+
+    for a in range(3):
+        for sign in (-1, 1):
+            u, w = (a + 1) % 3, (a + 2) % 3
+            for p in range(s):
+                for q in range(s):
+                    def corner(dp, dq):
+                        L = [0, 0, 0]
+                        L[a], L[u], L[w] = (s if sign > 0 else 0), p + dp, q + dq
+                        return vertex(tuple(L))
+
+                    quad = [corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)]
+                    if sign < 0:
+                        quad[1], quad[3] = quad[3], quad[1]
+                    F += [(quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3])]
+    corners = [i for i, p in enumerate(V) if all(x in (0, s) for x in p)]
+    return np.array(V, float) / s, np.array(F, np.int64), corners
+
+
+def quad_topology(Q, nv):
+    """(every edge in two quads with opposite directions, V - E + F, valence per vertex) from the quads alone."""
+    directed = {}
+    for q in Q:
+        for j in range(4):
+            e = (int(q[j]), int(q[(j + 1) % 4]))
+            directed[e] = directed.get(e, 0) + 1
+    paired = all(c == 1 and directed.get((b, a)) == 1 for (a, b), c in directed.items())
+    neighbours = [set() for _ in range(nv)]
+    for a, b in directed:
+        neighbours[a].add(b)
+        neighbours[b].add(a)
+    return paired, nv - len(directed) // 2 + len(Q), [len(n) for n in neighbours]
+
+
+def test_quad_mesh_cube():
+    # the field along the cube's edges (feature pins), the eight corners +1/4: with H = 1/k, 6 k^2 quads, the
+    # corners of valence 3 and every other vertex 4, closed, V - E + F = 2, every vertex on the cube
+    V, F, corners = unit_cube(4)
+    solver = tc.Solver(V, F, align_features=True)
+    s = {c: fractions.Fraction(1, 4) for c in corners}
+    result = solver.solve(s, n=4)
+    for k, kwargs in [(2, {"quad_size": 0.5}), (4, {"quad_size": 0.25}), (3, {"target_faces": 54})]:
+        P, Q, report = solver.quad_mesh(result, s, **kwargs)
+        assert P.dtype == np.float64 and P.shape[1] == 3 and Q.dtype == np.int64 and Q.shape == (6 * k * k, 4)
+        paired, euler, valence = quad_topology(Q, len(P))
+        assert paired and euler == 2
+        assert valence.count(3) == 8 and valence.count(4) == len(P) - 8
+        for v in np.flatnonzero(np.array(valence) == 3):
+            assert np.all(np.minimum(np.abs(P[v]), np.abs(P[v] - 1)) < 1e-9)  # a corner of the cube
+        assert np.all(np.min(np.minimum(np.abs(P), np.abs(P - 1)), axis=1) < 1e-9)  # on the cube
+        assert report["quads"] == len(Q) and report["vertices"] == len(P)
+        assert abs(report["quad_size"] - 1 / k) < 1e-12
+        assert report["valence_errors"] == 0 and report["flipped_quads"] == 0 and report["folded_triangles"] == 0
+        assert report["concave_quads"] == 0
+        assert report["valence_histogram"] == {3: 8, 4: len(P) - 8}
+        assert report["hausdorff_distance"] <= 0.5 / k
+    P2, Q2, naive = solver.quad_mesh(result, s, quad_size=0.5, rounding="naive")
+    assert len(Q2) == 24 and naive["valence_errors"] == 0
+
+
+def test_quad_mesh_sphere_and_errors():
+    V, F = icosphere(3)
+    solver = tc.Solver(V, F)
+    placed, _ = solver.place_singularities(n=4)
+    result = solver.solve(placed, n=4)
+    P, Q, report = solver.quad_mesh(result, placed, quad_size=0.3)
+    assert len(Q) > 0 and np.all(np.isfinite(P)) and Q.min() >= 0 and Q.max() < len(P)
+    if report["folded_triangles"] == 0 and report["degenerate_triangles"] == 0:
+        paired, euler, valence = quad_topology(Q, len(P))
+        assert paired and euler == 2
+        # a vertex of valence 4 - 4k at each singularity of index k, 4 elsewhere
+        expected = sorted(4 - int(4 * k) for k in placed.values())
+        assert sorted(v for v in valence if v != 4) == [e for e in expected if e != 4]
+        # every quad faces out: its vector area along the sphere's normal (the position) at its centre
+        area = sum(np.cross(P[Q[:, j]], P[Q[:, (j + 1) % 4]]) for j in range(4))
+        assert np.all(np.einsum("ij,ij->i", area, P[Q].mean(axis=1)) > 0)
+        assert report["flipped_quads"] == 0 and report["valence_errors"] == 0
+    # errors: not a cross field, a bad size, neither or both sizes, a bad rounding
+    line = solver.solve({0: 1, 5: 1}, n=2)
+    with pytest.raises(tc.InvalidInput) as error:
+        solver.quad_mesh(line, {0: 1, 5: 1}, quad_size=0.3)
+    assert error.value.code == "invalid_symmetry_order"
+    for H in [0.0, -1.0, float("nan"), float("inf"), 1e-6]:
+        with pytest.raises(tc.InvalidInput) as error:
+            solver.quad_mesh(result, placed, quad_size=H)
+        assert error.value.code == "invalid_argument"
+    with pytest.raises(tc.InvalidInput):
+        solver.quad_mesh(result, placed, quad_size=0.1, max_quads=10)
+    for kwargs in [{}, {"quad_size": 0.3, "target_faces": 100}, {"target_faces": 0},
+                   {"quad_size": 0.3, "rounding": "best"}]:
+        with pytest.raises(ValueError):
+            solver.quad_mesh(result, placed, **kwargs)

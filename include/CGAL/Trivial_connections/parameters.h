@@ -42,6 +42,10 @@ enum fixed_singularities_t { fixed_singularities };
 enum fixed_vertices_t { fixed_vertices };
 enum cancel_pairs_t { cancel_pairs };
 enum maximum_trials_t { maximum_trials };
+enum quad_size_t { quad_size };
+enum target_faces_t { target_faces };
+enum quad_rounding_t { quad_rounding };
+enum max_quads_t { max_quads };
 } // namespace tc_np
 
 /*!
@@ -175,6 +179,27 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(cancel_pairs)
 /// \param value the budget of trial solves
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(maximum_trials)
+
+/// `double` H > 0: the edge length of the quads of `compute_quad_mesh()`, in the mesh's length unit (one unit
+/// of the parametrisation is H long)
+/// \param value H, positive and finite
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(quad_size)
+/// `std::size_t` N > 0: the number of quads `compute_quad_mesh()` aims at, instead of `quad_size`: H is then
+/// sqrt(area / N), the area of the mesh
+/// \param value N, positive
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(target_faces)
+/// a `Quad_rounding`, default `Quad_rounding::greedy`: how `compute_quad_mesh()` makes its parametrisation an
+/// integer-grid map
+/// \param value the rounding scheme
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(quad_rounding)
+/// `double`, default 1e7: the largest number of quads `compute_quad_mesh()` may make (more is refused: the quad
+/// size is too small)
+/// \param value the bound, positive
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(max_quads)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
 } // namespace parameters

@@ -1,0 +1,103 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_QUAD_QUAD_MESH_PIPELINE_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_QUAD_QUAD_MESH_PIPELINE_H
+
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/internal/mesh/geometry.h>
+#include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/quad/cut_graph.h>
+#include <CGAL/Trivial_connections/internal/quad/integer_rounding.h>
+#include <CGAL/Trivial_connections/internal/quad/quad_extraction.h>
+#include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
+
+#include <CGAL/number_utils.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  The four layers of quad meshing (issue 43) in a row, from a solved cross field to the quad mesh: the only place
+  that calls them, so that new options of a layer (feature curves and borders as iso-lines) are wired here once.
+  The public call is compute_quad_mesh() (quad_mesh.h); the measures of its result are in quad_mesh_measures.h.
+*/
+
+// The cross field as the layers read it: per face its angle in the face's frame, per interior edge the connection
+// of its canonical corner halfedge (Mesh_geometry numbering). `g` has its angles computed.
+struct Quad_field
+{
+  std::vector<double> angle;      // per face
+  std::vector<double> connection; // per interior edge
+};
+
+template <class TriangleMesh, class HalfedgeAngleMap, class FaceVectorMap>
+Quad_field quad_field(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g, HalfedgeAngleMap x,
+                      FaceVectorMap field)
+{
+  Quad_field q;
+  q.angle.resize(m.nf);
+  for(int f = 0; f < m.nf; ++f) {
+    const auto v = get(field, m.face_descriptors[f]);
+    const Vec3 d = {{CGAL::to_double(v.x()), CGAL::to_double(v.y()), CGAL::to_double(v.z())}};
+    // the field's component in the face's plane must not vanish: its angle would be noise
+    Vec3 ex, ey;
+    Mesh_geometry::frame(m, f, ex, ey);
+    const double in_plane = std::hypot(dot(d, ex), dot(d, ey));
+    if(!(in_plane > 1e-12 * std::sqrt(dot(d, d))) || !std::isfinite(in_plane))
+      throw Invalid_input(Error_code::invalid_argument,
+                          "the field of face " + std::to_string(f) + " is zero, not finite or normal to the face",
+                          std::size_t(f));
+    q.angle[f] = angle_in_frame(m, f, d);
+  }
+  q.connection.resize(g.number_of_interior_edges());
+  for(int e = 0; e < g.number_of_interior_edges(); ++e) {
+    q.connection[e] = double(get(x, m.halfedges[g.edge_corner[e]]));
+    if(!std::isfinite(q.connection[e]))
+      throw Invalid_input(Error_code::invalid_argument,
+                          "the connection is not finite across interior edge " + std::to_string(e), std::size_t(e));
+  }
+  return q;
+}
+
+struct Quad_pipeline_result
+{
+  Quad_mesh mesh;
+  double continuous_energy = 0, rounded_energy = 0;
+  int integer_unknowns = 0, solves = 0, arcs = 0;
+};
+
+// singular: the singular vertices (array numbering), each once; H > 0 the quad size; max_quads the bound of
+// the extraction. Throws Invalid_input as the layers do.
+template <class TriangleMesh>
+Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
+                                        const Quad_field& field, const std::vector<int>& singular, double H,
+                                        Rounding_scheme scheme, double max_quads)
+{
+  const std::vector<int> matching = cross_field_matching(m, g, field.angle, field.connection);
+  const Cut_graph cut = build_cut_graph(m, g, matching, singular);
+  Seamless_parametrization parametrization(m, cut, field.angle, H);
+  Integer_rounding rounding(parametrization, cut);
+  const Integer_rounding_result rounded = rounding.round(scheme);
+  Quad_pipeline_result result;
+  result.mesh = extract_quad_mesh(m, cut, rounded.map, max_quads);
+  result.continuous_energy = rounded.continuous_energy;
+  result.rounded_energy = rounded.map.energy;
+  result.integer_unknowns = rounded.integer_unknowns;
+  result.solves = rounded.solves;
+  result.arcs = int(cut.arcs.size());
+  return result;
+}
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_QUAD_QUAD_MESH_PIPELINE_H

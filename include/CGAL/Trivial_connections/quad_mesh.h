@@ -1,0 +1,278 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_QUAD_MESH_H
+#define CGAL_TRIVIAL_CONNECTIONS_QUAD_MESH_H
+
+#include <CGAL/Trivial_connections/Singularity_index.h>
+#include <CGAL/Trivial_connections/exceptions.h>
+#include <CGAL/Trivial_connections/parameters.h>
+#include <CGAL/Trivial_connections/internal/mesh/geometry.h>
+#include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
+#include <CGAL/Trivial_connections/internal/quad/quad_mesh_measures.h>
+#include <CGAL/Trivial_connections/internal/quad/quad_mesh_pipeline.h>
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <cmath>
+#include <cstddef>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+How `compute_quad_mesh()` rounds the integer unknowns of its parametrisation (the (u, v) of the singular
+vertices and the translations across the cut).
+*/
+enum class Quad_rounding {
+  greedy, ///< the unknown closest to an integer first, fixed, then a new solve, and so on (one sparse solve each)
+  naive   ///< all rounded at once from the continuous solution, then one more solve (fast, more distortion)
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+What `compute_quad_mesh()` made and measured. The counts of the map (folded, degenerate triangles) are those of
+the integer-grid map; the others are measured on the quads themselves.
+*/
+struct Quad_mesh_report
+{
+  double quad_size = 0;                    ///< H, the quad size used (given, or from `target_faces`)
+  std::size_t number_of_quads = 0;         ///< the quads written to the output mesh
+  std::size_t number_of_vertices = 0;      ///< the vertices written (the integer points of the map in some quad)
+  std::size_t integer_points = 0;          ///< all integer points of the map, in a quad or not
+  /// per valence (the iso-line pieces leaving an integer point): how many integer points have it
+  std::map<int, std::size_t> valence_histogram;
+  /// the integer points whose valence is not 4 - 4k, k the index of the singularity at the mesh vertex they are
+  /// on (0 off the singular vertices)
+  std::size_t valence_errors = 0;
+  std::size_t folded_triangles = 0;        ///< input triangles whose (u, v) image is inverted (skipped)
+  std::size_t degenerate_triangles = 0;    ///< input triangles whose (u, v) image has zero area (skipped)
+  std::size_t rejected_polygons = 0;       ///< cells of the iso-lines that are not quads (left out: holes)
+  std::size_t open_edges = 0;              ///< quad edges in fewer than two quads (0 on a closed output)
+  std::size_t dangling_edges = 0;          ///< iso-line chains from an integer point that end at a fold
+  /// quads whose vector area (half the sum of the cross products of consecutive vertices) points against the sum
+  /// of the input's normals at their four vertices
+  std::size_t flipped_quads = 0;
+  /// quads with a corner (the triangle of a vertex and its two neighbours) pointing against that sum: valid cells
+  /// of the map, but not convex
+  std::size_t concave_quads = 0;
+  /// the largest distance from a point of the quads (each split into two triangles) to the input surface
+  double hausdorff_quads_to_input = 0;
+  /// the largest distance from a point of the input to the quads (infinity when there is no quad)
+  double hausdorff_input_to_quads = 0;
+  std::size_t split_vertices = 0;          ///< vertices duplicated to make the output a manifold (around holes)
+  double continuous_energy = 0;            ///< the parametrisation's energy before rounding
+  double rounded_energy = 0;               ///< and after
+  std::size_t solves = 0;                  ///< the sparse least-squares solves of the rounding
+
+  /// the Hausdorff distance: the larger of the two one-sided distances
+  /// \returns `max(hausdorff_quads_to_input, hausdorff_input_to_quads)`
+  double hausdorff_distance() const
+  {
+    return hausdorff_quads_to_input > hausdorff_input_to_quads ? hausdorff_quads_to_input : hausdorff_input_to_quads;
+  }
+};
+
+/*!
+\ingroup PkgTrivialConnectionsRef
+The quad mesh of a cross field: the integer iso-lines of a seamless integer-grid map whose gradients follow the
+field, scaled so that a unit of the map is `H` long (the quad size). The steps (cut graph through the
+singularities, seamless parametrisation, integer rounding, extraction of the quads), in words:
+- the field's matching across each edge (the quarter turns that bring one face's directions onto the next
+  ones' under the connection) and a cut graph that makes every component a disk through all the singular
+  vertices;
+- a map (u, v) per corner minimising the squared difference of its gradients with the field over `H` (and its
+  quarter turn), with transitions across the cut that are quarter turns plus translations;
+- the (u, v) of the singular vertices and the translations made integers (`quad_rounding`), so that the integer
+  iso-lines are continuous across the cut;
+- the quads: the cells those iso-lines cut the surface into. Triangles whose map is folded or degenerate are
+  skipped and counted; the cells that are not quads around them are left out (holes in the output) and counted.
+
+A vertex of the quad mesh at a singular vertex of index k has valence 4 - 4k (+1/4 gives 3, -1/4 gives 5); every
+other one valence 4, where the map has no fold. The quads are added to `quad_mesh` only when everything
+succeeded, as a polygon soup made a mesh by `CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh()`
+(after `orient_polygon_soup()`, which splits the vertices where holes meet, when needed).
+
+The Hausdorff distances of the report are sampled: on every triangle of each side (the quads split into two) the
+points of a barycentric grid of spacing at most H/4 (at most 33 points per edge), each at its exact distance to
+the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided distance, within about H/4 of it.
+
+\param tm the triangle mesh the connection and the field were computed on: closed (a border is refused, the
+          extraction does not follow it yet)
+\param x the connection (from `solve()` with `symmetry_order(4)`): a readable property map `halfedge_descriptor
+         -> double`
+\param field the cross field (from `compute_field()` with the same connection): a readable property map
+             `face_descriptor -> Vector_3`, parallel for `x` up to quarter turns
+\param singularities a range of pairs (`vertex_descriptor`, `Singularity_index`): the singularities given to
+                     `solve()`
+\param quad_mesh a model of `MutableFaceGraph` the quads are added to, counter-clockwise like `tm`
+\param np a sequence of named parameters among the ones listed below; exactly one of `quad_size` and `target_faces`
+\returns the counts and measures of the quads
+\throws Invalid_input `invalid_symmetry_order` when `symmetry_order` is not 4 (not a cross field);
+        `index_not_multiple` for an index that is not a multiple of 1/4; `duplicate_singularity`,
+        `invalid_vertex`, `singularity_on_boundary` for such singularities; `invalid_argument` when neither or
+        both of `quad_size` and `target_faces` are given, when H is not positive and finite, when the quad mesh
+        would have more than `max_quads` quads (estimated by area / H^2 first, then by the map's area: "the quad
+        size is too small"), when the field is not parallel for the connection up to quarter turns or turns around
+        a vertex that is not singular, when the mesh has a border, and when the integer rounding is infeasible
+        (it says which unknown); `solver_failure` when a sparse solve fails; and the mesh errors of the solver.
+\cgalNamedParamsBegin
+  \cgalParamNBegin{quad_size} \cgalParamType{`double`} \cgalParamDescription{H, the quads' edge length, in the
+    mesh's unit} \cgalParamNEnd
+  \cgalParamNBegin{target_faces} \cgalParamType{`std::size_t`} \cgalParamDescription{instead of `quad_size`:
+    about that many quads, H = sqrt(area / N)} \cgalParamNEnd
+  \cgalParamNBegin{quad_rounding} \cgalParamType{`Quad_rounding`} \cgalParamDefault{`Quad_rounding::greedy`} \cgalParamNEnd
+  \cgalParamNBegin{max_quads} \cgalParamType{`double`} \cgalParamDefault{1e7} \cgalParamNEnd
+  \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{4, the only value accepted} \cgalParamNEnd
+  \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
+  \cgalParamNBegin{geom_traits} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+\cgalNamedParamsEnd
+\sa `trace_streamlines()`, which follows the same field's lines one by one
+*/
+template <class TriangleMesh, class HalfedgeAngleMap, class FaceVectorMap, class SingularityRange, class PolygonMesh,
+          class NamedParameters = parameters::Default_named_parameters>
+Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, FaceVectorMap field,
+                                   const SingularityRange& singularities, PolygonMesh& quad_mesh,
+                                   const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using Geom_traits = typename CGAL::GetGeomTraits<TriangleMesh, NamedParameters>::type;
+
+  const int n = choose_parameter(get_parameter(np, tc_np::symmetry_order), 4);
+  if(n != 4)
+    throw Invalid_input(Error_code::invalid_symmetry_order,
+                        "a quad mesh needs a cross field (n = 4), not an n-direction field with n = " + std::to_string(n));
+  constexpr bool has_size = !CGAL::parameters::is_default_parameter<NamedParameters, tc_np::quad_size_t>::value;
+  constexpr bool has_target = !CGAL::parameters::is_default_parameter<NamedParameters, tc_np::target_faces_t>::value;
+  if(has_size == has_target)
+    throw Invalid_input(Error_code::invalid_argument, has_size ? "give the quad size or the target number of faces, not both"
+                                                               : "give the quad size or the target number of faces");
+  const double max_quads = double(choose_parameter(get_parameter(np, tc_np::max_quads), 1e7));
+  if(!(max_quads >= 1) || !std::isfinite(max_quads))
+    throw Invalid_input(Error_code::invalid_argument, "max_quads must be a finite number of at least 1");
+
+  const internal::Mesh_arrays<TriangleMesh> m(
+    tm, choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm)),
+    choose_parameter(get_parameter(np, CGAL::internal_np::geom_traits), Geom_traits()));
+  internal::Mesh_geometry g(m, Weighting::hodge_star);
+  g.compute_angles(m);
+
+  double area = 0;
+  for(int f = 0; f < m.nf; ++f)
+    area += internal::norm(internal::cross(internal::sub(m.points[m.corner_vertex[3 * f + 1]], m.points[m.corner_vertex[3 * f]]),
+                                           internal::sub(m.points[m.corner_vertex[3 * f + 2]], m.points[m.corner_vertex[3 * f]]))) / 2;
+  double H = 0;
+  if constexpr(has_size) {
+    H = double(get_parameter(np, tc_np::quad_size));
+  } else if constexpr(has_target) {
+    const double target = double(get_parameter(np, tc_np::target_faces));
+    if(!(target >= 1) || !std::isfinite(target))
+      throw Invalid_input(Error_code::invalid_argument, "the target number of faces must be at least 1");
+    H = std::sqrt(area / target);
+  }
+  if(!(H > 0) || !std::isfinite(H)) {
+    std::ostringstream s;
+    s << "the quad size H must be positive and finite (got " << H << ")";
+    throw Invalid_input(Error_code::invalid_argument, s.str());
+  }
+  if(!(area / (H * H) <= max_quads)) {
+    std::ostringstream s;
+    s << "the quad size is too small: H = " << H << " would give about " << area / (H * H)
+      << " quads on this mesh (area " << area << "), more than the " << max_quads << " allowed (max_quads)";
+    throw Invalid_input(Error_code::invalid_argument, s.str());
+  }
+
+  // the singular vertices (array numbering) and their indices times 4
+  std::vector<long long> k4(m.nv, 0);
+  std::vector<char> listed(m.nv, 0);
+  std::vector<int> singular;
+  for(const auto& s : singularities) {
+    const std::size_t v = std::size_t(get(m.vertex_index, s.first));
+    if(v >= std::size_t(m.nv) || m.faces_at_vertex[v] == 0)
+      throw Invalid_input(Error_code::invalid_vertex, "singular vertex " + std::to_string(v) + " is in no face", v);
+    if(listed[v])
+      throw Invalid_input(Error_code::duplicate_singularity, "vertex " + std::to_string(v) + " is listed twice", v);
+    listed[v] = 1;
+    const Singularity_index k(s.second);
+    if((4 * k.numerator()) % k.denominator() != 0)
+      throw Invalid_input(Error_code::index_not_multiple, "the index of vertex " + std::to_string(v) +
+                                                            " is not a multiple of 1/4", v);
+    k4[v] = 4 * k.numerator() / k.denominator();
+    if(k4[v] == 0)
+      continue;
+    if(g.on_boundary[v])
+      throw Invalid_input(Error_code::singularity_on_boundary, "singular vertex " + std::to_string(v) + " is on the boundary", v);
+    singular.push_back(int(v));
+  }
+
+  const internal::Quad_field q = internal::quad_field(m, g, x, field);
+  const internal::Rounding_scheme scheme =
+    choose_parameter(get_parameter(np, tc_np::quad_rounding), Quad_rounding::greedy) == Quad_rounding::naive
+      ? internal::Rounding_scheme::naive : internal::Rounding_scheme::greedy;
+  const internal::Quad_pipeline_result made = internal::quad_mesh_pipeline(m, g, q, singular, H, scheme, max_quads);
+  const internal::Quad_mesh& quads = made.mesh;
+  const internal::Quad_measures measures = internal::measure_quad_mesh(m, quads, H / 4);
+
+  Quad_mesh_report report;
+  report.quad_size = H;
+  report.integer_points = quads.points.size();
+  for(std::size_t p = 0; p < quads.points.size(); ++p) {
+    ++report.valence_histogram[quads.valence[p]];
+    const int v = quads.locations[p].mesh_vertex;
+    report.valence_errors += quads.valence[p] != 4 - (v >= 0 ? k4[v] : 0);
+  }
+  report.folded_triangles = std::size_t(quads.folded_triangles);
+  report.degenerate_triangles = std::size_t(quads.degenerate_triangles);
+  report.rejected_polygons = std::size_t(quads.non_quads);
+  report.open_edges = std::size_t(quads.open_edges);
+  report.dangling_edges = std::size_t(quads.dangling_edges);
+  report.flipped_quads = std::size_t(measures.flipped_quads);
+  report.concave_quads = std::size_t(measures.concave_quads);
+  report.hausdorff_quads_to_input = measures.hausdorff_quads_to_input;
+  report.hausdorff_input_to_quads = measures.hausdorff_input_to_quads;
+  report.continuous_energy = made.continuous_energy;
+  report.rounded_energy = made.rounded_energy;
+  report.solves = std::size_t(made.solves);
+
+  // the soup: the integer points in some quad, in the extraction's order
+  using Out_point = typename boost::property_traits<typename CGAL::GetVertexPointMap<PolygonMesh>::type>::value_type;
+  std::vector<int> new_index(quads.points.size(), -1);
+  std::vector<Out_point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  for(const std::array<int, 4>& quad : quads.faces) {
+    std::vector<std::size_t> polygon;
+    for(int p : quad) {
+      if(new_index[p] < 0) {
+        new_index[p] = int(points.size());
+        points.emplace_back(quads.points[p][0], quads.points[p][1], quads.points[p][2]);
+      }
+      polygon.push_back(std::size_t(new_index[p]));
+    }
+    polygons.push_back(std::move(polygon));
+  }
+  if(!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(polygons)) {
+    const std::size_t before = points.size();
+    CGAL::Polygon_mesh_processing::orient_polygon_soup(points, polygons);
+    report.split_vertices = points.size() - before;
+  }
+  report.number_of_quads = polygons.size();
+  report.number_of_vertices = points.size();
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, quad_mesh);
+  return report;
+}
+
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_QUAD_MESH_H

@@ -14,6 +14,7 @@
 #include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
 #include <CGAL/Trivial_connections/IO/viewer_files.h>
+#include <CGAL/property_map.h>
 
 #include "trivial_connections_command_line.h"
 #include "trivial_connections_features.h"
@@ -77,9 +78,18 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
   Stopwatch stopwatch{time.quads};
   progress.begin("quad mesh");
   namespace P = TC::parameters;
+  // with --align-features, the sharp edges the field was pinned along: on iso-lines
+  std::vector<bool> sharp(num_edges(in.mesh), false);
+  if(o.align_features)
+    for(const auto& curve : TC::feature_curves(in.mesh, o.feature_angle).curves)
+      for(auto h : curve.halfedges)
+        sharp[std::size_t(edge(h, in.mesh))] = true;
+  const auto features = CGAL::make_random_access_property_map(sharp, get(boost::edge_index, in.mesh));
   q.report = o.quad_size > 0
-               ? TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh, P::quad_size(o.quad_size))
-               : TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh, P::target_faces(o.target_faces));
+               ? TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
+                                       P::quad_size(o.quad_size).edge_is_constrained_map(features))
+               : TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
+                                       P::target_faces(o.target_faces).edge_is_constrained_map(features));
   progress.end("quad mesh");
   return q;
 }

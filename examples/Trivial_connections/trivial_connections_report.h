@@ -238,7 +238,8 @@ inline void print_quads(std::ostream& out, const Options& o, const Quads& quads)
       << r.degenerate_triangles << "), rejected polygons " << r.rejected_polygons << ", open edges " << r.open_edges
       << ", flipped quads " << r.flipped_quads << " (concave " << r.concave_quads << "); Hausdorff distance " << fixed(r.hausdorff_distance() / r.quad_size, 3)
       << " H (quads to input " << fixed(r.hausdorff_quads_to_input / r.quad_size, 3) << " H, input to quads "
-      << fixed(r.hausdorff_input_to_quads / r.quad_size, 3) << " H)\n";
+      << fixed(r.hausdorff_input_to_quads / r.quad_size, 3) << " H); on iso-lines: " << r.feature_edges
+      << " feature edges, border corners " << r.border_corners << "\n";
 }
 
 inline void print_report(std::ostream& out, const Options& o, const Inputs& in, const Solution& s, const Design& design,

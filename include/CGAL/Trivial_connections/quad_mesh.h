@@ -53,8 +53,10 @@ struct Quad_mesh_report
   /// per valence (the iso-line pieces leaving an integer point): how many integer points have it
   std::map<int, std::size_t> valence_histogram;
   /// the integer points whose valence is not 4 - 4k, k the index of the singularity at the mesh vertex they are
-  /// on (0 off the singular vertices)
+  /// on (0 off the singular vertices); on the border: not 3, 2 (a convex corner) or 4 (a concave one)
   std::size_t valence_errors = 0;
+  std::size_t border_corners = 0;          ///< integer points on the border of valence 2 or 4: corners of quads
+  std::size_t feature_edges = 0;           ///< input edges put on integer iso-lines (`edge_is_constrained_map`)
   std::size_t folded_triangles = 0;        ///< input triangles whose (u, v) image is inverted (skipped)
   std::size_t degenerate_triangles = 0;    ///< input triangles whose (u, v) image has zero area (skipped)
   std::size_t rejected_polygons = 0;       ///< cells of the iso-lines that are not quads (left out: holes)
@@ -107,8 +109,9 @@ The Hausdorff distances of the report are sampled: on every triangle of each sid
 points of a barycentric grid of spacing at most H/4 (at most 33 points per edge), each at its exact distance to
 the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided distance, within about H/4 of it.
 
-\param tm the triangle mesh the connection and the field were computed on: closed (a border is refused, the
-          extraction does not follow it yet)
+\param tm the triangle mesh the connection and the field were computed on. Its border edges are put on integer
+          iso-lines (the quads end there): the field must be aligned with them (`boundary_alignment`), otherwise
+          the call is refused
 \param x the connection (from `solve()` with `symmetry_order(4)`): a readable property map `halfedge_descriptor
          -> double`
 \param field the cross field (from `compute_field()` with the same connection): a readable property map
@@ -124,7 +127,8 @@ the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided d
         both of `quad_size` and `target_faces` are given, when H is not positive and finite, when the quad mesh
         would have more than `max_quads` quads (estimated by area / H^2 first, then by the map's area: "the quad
         size is too small"), when the field is not parallel for the connection up to quarter turns or turns around
-        a vertex that is not singular, when the mesh has a border, and when the integer rounding is infeasible
+        a vertex that is not singular, when the field is not aligned with a border or feature edge (it names
+        the edge), and when the integer rounding is infeasible
         (it says which unknown); `solver_failure` when a sparse solve fails; and the mesh errors of the solver.
 \cgalNamedParamsBegin
   \cgalParamNBegin{quad_size} \cgalParamType{`double`} \cgalParamDescription{H, the quads' edge length, in the
@@ -133,6 +137,11 @@ the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided d
     about that many quads, H = sqrt(area / N)} \cgalParamNEnd
   \cgalParamNBegin{quad_rounding} \cgalParamType{`Quad_rounding`} \cgalParamDefault{`Quad_rounding::greedy`} \cgalParamNEnd
   \cgalParamNBegin{max_quads} \cgalParamType{`double`} \cgalParamDefault{1e7} \cgalParamNEnd
+  \cgalParamNBegin{edge_is_constrained_map} \cgalParamType{a readable property map `edge_descriptor -> bool`}
+    \cgalParamDescription{the feature edges (e.g. the sharp edges of `feature_curves()`): each is put on an integer
+    iso-line, so that quad edges follow it. The field must be aligned with them (as `feature_aligned_faces()`
+    pins it), within 20 degrees on both faces; a feature curve keeps one iso-value along it}
+    \cgalParamDefault{no feature edge} \cgalParamNEnd
   \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{4, the only value accepted} \cgalParamNEnd
   \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
   \cgalParamNBegin{geom_traits} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
@@ -220,7 +229,20 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   const internal::Rounding_scheme scheme =
     choose_parameter(get_parameter(np, tc_np::quad_rounding), Quad_rounding::greedy) == Quad_rounding::naive
       ? internal::Rounding_scheme::naive : internal::Rounding_scheme::greedy;
-  const internal::Quad_pipeline_result made = internal::quad_mesh_pipeline(m, g, q, singular, H, scheme, max_quads);
+  // the feature edges, per corner halfedge
+  std::vector<char> feature_corners;
+  std::size_t feature_edges = 0;
+  if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, CGAL::internal_np::edge_is_constrained_t>::value) {
+    const auto constrained = get_parameter(np, CGAL::internal_np::edge_is_constrained);
+    feature_corners.assign(std::size_t(3 * m.nf), 0);
+    for(int i = 0; i < 3 * m.nf; ++i)
+      if(get(constrained, edge(m.halfedges[std::size_t(i)], tm))) {
+        feature_corners[std::size_t(i)] = 1;
+        feature_edges += m.opposite_corner[i] < 0 || i < m.opposite_corner[i];
+      }
+  }
+  const internal::Quad_pipeline_result made =
+    internal::quad_mesh_pipeline(m, g, q, singular, H, scheme, max_quads, feature_corners);
   const internal::Quad_mesh& quads = made.mesh;
   const internal::Quad_measures measures = internal::measure_quad_mesh(m, quads, H / 4);
 
@@ -228,9 +250,15 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   report.quad_size = H;
   report.integer_points = quads.points.size();
   for(std::size_t p = 0; p < quads.points.size(); ++p) {
-    ++report.valence_histogram[quads.valence[p]];
+    const int valence = quads.valence[p];
+    ++report.valence_histogram[valence];
+    if(quads.on_border[p]) {
+      report.border_corners += valence == 2 || valence == 4;
+      report.valence_errors += valence < 2 || valence > 4;
+      continue;
+    }
     const int v = quads.locations[p].mesh_vertex;
-    report.valence_errors += quads.valence[p] != 4 - (v >= 0 ? k4[v] : 0);
+    report.valence_errors += valence != 4 - (v >= 0 ? k4[v] : 0);
   }
   report.folded_triangles = std::size_t(quads.folded_triangles);
   report.degenerate_triangles = std::size_t(quads.degenerate_triangles);
@@ -244,6 +272,7 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   report.continuous_energy = made.continuous_energy;
   report.rounded_energy = made.rounded_energy;
   report.solves = std::size_t(made.solves);
+  report.feature_edges = feature_edges;
 
   // the soup: the integer points in some quad, in the extraction's order
   using Out_point = typename boost::property_traits<typename CGAL::GetVertexPointMap<PolygonMesh>::type>::value_type;

@@ -75,15 +75,25 @@ struct Quad_pipeline_result
 };
 
 // singular: the singular vertices (array numbering), each once; H > 0 the quad size; max_quads the bound of
-// the extraction. Throws Invalid_input as the layers do.
+// the extraction; feature_corners: empty, or per corner halfedge whether its edge is a feature edge, put on an
+// integer iso-line like every border edge. Throws Invalid_input as the layers do.
 template <class TriangleMesh>
 Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
                                         const Quad_field& field, const std::vector<int>& singular, double H,
-                                        Rounding_scheme scheme, double max_quads)
+                                        Rounding_scheme scheme, double max_quads,
+                                        const std::vector<char>& feature_corners = {})
 {
   const std::vector<int> matching = cross_field_matching(m, g, field.angle, field.connection);
   const Cut_graph cut = build_cut_graph(m, g, matching, singular);
-  Seamless_parametrization parametrization(m, cut, field.angle, H);
+  // per edge of the cut graph's numbering: on an iso-line (borders always: the quads end there)
+  std::vector<char> on_iso_line(cut.edge_corner.size(), 0);
+  bool any = false;
+  for(std::size_t e = 0; e < cut.edge_corner.size(); ++e) {
+    const int i = cut.edge_corner[e], o = m.opposite_corner[i];
+    on_iso_line[e] = o < 0 || (!feature_corners.empty() && (feature_corners[std::size_t(i)] || feature_corners[std::size_t(o)]));
+    any = any || on_iso_line[e];
+  }
+  Seamless_parametrization parametrization(m, cut, field.angle, H, any ? on_iso_line : std::vector<char>());
   Integer_rounding rounding(parametrization, cut);
   const Integer_rounding_result rounded = rounding.round(scheme);
   Quad_pipeline_result result;

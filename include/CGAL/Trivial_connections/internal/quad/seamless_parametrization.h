@@ -448,10 +448,12 @@ private:
         const double off = std::abs(turns - std::round(turns)) * quarter;
         if(!(off <= tolerance))
           throw Invalid_input(Error_code::invalid_argument,
-                              "the cross field is not aligned with the feature edge from vertex " + std::to_string(a) +
+                              std::string("the cross field is not aligned with the ") +
+                                (m.opposite_corner[i] < 0 ? "border" : "feature") + " edge from vertex " + std::to_string(a) +
                                 " to vertex " + std::to_string(b) + " (off by " + std::to_string(off * 180 / CGAL_PI) +
                                 " degrees in face " + std::to_string(f) + ", more than the tolerance of " +
-                                std::to_string(tolerance * 180 / CGAL_PI) + ")",
+                                std::to_string(tolerance * 180 / CGAL_PI) + ")" +
+                                (m.opposite_corner[i] < 0 ? ": quads end on the border, align the field with it" : ""),
                               e);
         if(side == 0) // along +-d: u varies, v is constant; along +-J d: u is constant
           k = modulo_quarter_turns((long long)std::round(turns)) % 2 == 0 ? 1 : 0;

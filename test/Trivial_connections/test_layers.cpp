@@ -23,6 +23,7 @@
 #include <CGAL/Trivial_connections/internal/topology/dual_tree_paths.h>
 #include <CGAL/Trivial_connections/internal/topology/loop_holonomy.h>
 
+#include <array>
 #include <cstring>
 #include <optional>
 #include <thread>
@@ -317,6 +318,105 @@ TEST(Move_integers, prices_are_energy_changes_of_actual_integers)
   EXPECT_GT(exact, 5);
   EXPECT_GT(priced, 20);
   EXPECT_GT(improved, 5);
+}
+
+// In a round of unproven integers the price of a move is never worse than Babai's nearest plane point of its own
+// real minimiser c1 in the reduced lattice, computed here from its definition (coordinate by coordinate, last
+// first, each rounded with the ones after it fixed), whether or not the move leaves that point where it was
+// without the move (Move_integers reads it then from the point of the round, in O(k)). Moves of every size: tiny
+// ones leave it, large ones change it. price_unproven() and best() give the same prices.
+TEST(Move_integers, unproven_prices_are_never_worse_than_babais_point_of_the_moved_centre)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u01(-1, 1);
+  const Eigen::Index rows = 60;
+  std::vector<int> free;
+  for(int r = 1; r < rows; r += 2)
+    free.push_back(r);
+  const Eigen::Index k = Eigen::Index(free.size());
+  const double unit = 2 * CGAL_PI / 4;
+  int checked = 0, improved = 0;
+  for(int trial = 0; trial < 12; ++trial) {
+    Eigen::MatrixXd B(rows, rows);
+    for(Eigen::Index i = 0; i < rows; ++i)
+      for(Eigen::Index j = 0; j < rows; ++j)
+        B(i, j) = u01(rng) / std::sqrt(double(rows));
+    const Eigen::MatrixXd M = B * B.transpose() + 0.2 * Eigen::MatrixXd::Identity(rows, rows);
+    const Eigen::MatrixXd G = M.inverse();
+    auto solve = [&](const Eigen::VectorXd& e) { return Eigen::VectorXd(G * e); };
+    // from integers near the best (small lambda on the free rows) to far from it
+    Eigen::VectorXd lambda(rows);
+    for(Eigen::Index i = 0; i < rows; ++i)
+      lambda[i] = u01(rng);
+    const double scale = std::array<double, 4>{{0.05, 0.3, 1, 3}}[std::size_t(trial % 4)];
+    for(int r : free)
+      lambda[r] *= scale;
+    const Eigen::VectorXd b = M * lambda;
+    TCI::Move_integers integers({free}, rows, unit, solve);
+    ASSERT_FALSE(integers.empty());
+    integers.start_round(lambda, false);
+    // the reduced lattice of G_FF, made as the constructor makes it
+    Eigen::MatrixXd G_FF(k, k);
+    for(Eigen::Index c = 0; c < k; ++c) {
+      const Eigen::VectorXd column = solve(Eigen::VectorXd::Unit(rows, free[std::size_t(c)]));
+      for(Eigen::Index a = 0; a < k; ++a)
+        G_FF(a, c) = column[free[std::size_t(a)]];
+    }
+    G_FF = (G_FF + G_FF.transpose()).eval() / 2;
+    const Eigen::LLT<Eigen::MatrixXd> llt(G_FF);
+    ASSERT_EQ(llt.info(), Eigen::Success);
+    const TCI::Reduced_lattice lattice = TCI::reduce_lattice(G_FF, llt.matrixU(), TCI::lattice_reduction_budget(k));
+    const Eigen::MatrixXd U = lattice.reduced ? Eigen::MatrixXd(lattice.basis) : Eigen::MatrixXd::Identity(k, k);
+    const Eigen::MatrixXd& R = lattice.factor;
+    auto energy = [&](const Eigen::VectorXd& v) { return v.dot(G * v); };
+    std::vector<TCI::Move_integers::Unproven_search> searches;
+    std::vector<double> prices;
+    for(int move = 0; move < 30; ++move) {
+      const int rv = 2 * int(rng() % (rows / 2)), rw = 2 * int(rng() % (rows / 2)); // rows without integers
+      if(rv == rw)
+        continue;
+      const double d = unit * std::array<double, 3>{{1e-3, 0.1, 1}}[std::size_t(move % 3)] * (move % 2 == 0 ? 1 : -1);
+      Eigen::VectorXd moved = b;
+      moved[rw] += d;
+      moved[rv] -= d;
+      const double kept = energy(moved) - energy(b);
+      // no threshold: best() searches every move
+      const double price = integers.best(0, rv, rw, d, kept, std::numeric_limits<double>::infinity());
+      EXPECT_LE(price, kept);
+      const Eigen::VectorXd g_moved = G * moved;
+      Eigen::VectorXd g_F(k);
+      for(Eigen::Index a = 0; a < k; ++a)
+        g_F[a] = g_moved[free[std::size_t(a)]];
+      auto change_of = [&](const Eigen::VectorXd& s) { return kept + 2 * unit * s.dot(g_F) + unit * unit * s.dot(G_FF * s); };
+      // Babai's point of c1 = -G_FF^-1 g_F / u, in reduced coordinates w = U^-1 c1
+      const Eigen::VectorXd w = U.lu().solve(Eigen::VectorXd(-llt.solve(g_F) / unit));
+      Eigen::VectorXd z(k);
+      for(Eigen::Index i = k - 1; i >= 0; --i) {
+        double tail = 0;
+        for(Eigen::Index j = i + 1; j < k; ++j)
+          tail += R(i, j) * (z[j] - w[j]);
+        z[i] = std::round(w[i] - tail / R(i, i));
+      }
+      const Eigen::VectorXd babai = (U * z).array().round().matrix();
+      EXPECT_LE(price, change_of(babai) + 1e-8 * (1 + std::abs(change_of(babai)))) << "trial " << trial << " move " << move;
+      if(price < kept) { // actual integers, which change() gives
+        ASSERT_EQ(integers.change().size(), free.size());
+        Eigen::VectorXd s(k);
+        for(Eigen::Index a = 0; a < k; ++a)
+          s[a] = double(integers.change()[std::size_t(a)]);
+        EXPECT_NEAR(change_of(s), price, 1e-8 * (1 + std::abs(price)));
+        ++improved;
+      }
+      searches.push_back({0, rv, rw, d, kept});
+      prices.push_back(price);
+      ++checked;
+    }
+    integers.price_unproven(searches, std::numeric_limits<double>::infinity(), [](std::size_t count, const auto& f) { f(std::size_t(0), count); });
+    for(std::size_t i = 0; i < searches.size(); ++i)
+      EXPECT_EQ(searches[i].change, prices[i]);
+  }
+  EXPECT_GT(checked, 200);
+  EXPECT_GT(improved, 20);
 }
 
 // LLL with deep insertions: U unimodular with U^-1 exact, H = U^T G U, and the basis size reduced and Lovasz

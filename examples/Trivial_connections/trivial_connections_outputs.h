@@ -14,7 +14,7 @@
 #include <CGAL/Trivial_connections/IO/field_file.h>
 #include <CGAL/Trivial_connections/IO/singularities.h>
 #include <CGAL/Trivial_connections/IO/viewer_files.h>
-#include <CGAL/property_map.h>
+#include <boost/property_map/property_map.hpp>
 
 #include "trivial_connections_command_line.h"
 #include "trivial_connections_features.h"
@@ -79,12 +79,12 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
   progress.begin("quad mesh");
   namespace P = TC::parameters;
   // with --align-features, the sharp edges the field was pinned along: on iso-lines
-  std::vector<bool> sharp(num_edges(in.mesh), false);
+  std::vector<char> sharp(num_edges(in.mesh), 0);
   if(o.align_features)
     for(const auto& curve : TC::feature_curves(in.mesh, o.feature_angle).curves)
       for(auto h : curve.halfedges)
-        sharp[std::size_t(edge(h, in.mesh))] = true;
-  const auto features = CGAL::make_random_access_property_map(sharp, get(boost::edge_index, in.mesh));
+        sharp[std::size_t(edge(h, in.mesh))] = 1;
+  const auto features = boost::make_iterator_property_map(sharp.begin(), get(boost::edge_index, in.mesh));
   q.report = o.quad_size > 0
                ? TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
                                        P::quad_size(o.quad_size).edge_is_constrained_map(features))

@@ -7,7 +7,9 @@
 #    Hausdorff distance <= H/2); --target-faces 54 gives H = 1/3 and 54 quads;
 #  - the usage errors (status 2): --quad-mesh without --n 4, without or with both of --quad-size and
 #    --target-faces, a bad H; the input errors (status 1): H so small that the mesh would exceed the bound, a
-#    surface with border; no file written on any error.
+#    surface with border the field does not follow; no file written on any error;
+#  - the open box with --align-boundary: 5 k^2 quads ending on its rim; the cube of 5 x 5 squares per face with
+#    H = 0.4 and --align-features: its 12 edges are chains of quad edges.
 # Usage: cli_quad_mesh.py PROGRAM OUT_DIR
 import os, re, subprocess, sys
 from collections import Counter
@@ -164,14 +166,67 @@ for args, status, what in [
     if what == "H too small":
         check("[invalid_argument]" in p.stderr and "too small" in p.stderr, f"{what}: says so: {p.stderr.strip()}")
 
-# a surface with border (the cube without its top): refused by the extraction, nothing written
-P, F, _ = cube(3, open_top=True)
+# a surface with border (the cube without its top) whose field does not follow it: refused, nothing written
+P, F, box_corners = cube(3, open_top=True)
 open_mesh = os.path.join(out, "open_box.off")
 write_off(open_mesh, P, F)
 p = run([open_mesh, "--n", "4", "--quad-mesh", obj, "--quad-size", "0.5", "--connection", written[1], "--field",
          written[2]], 1)
-check("border" in p.stderr, f"a border: the error says so: {p.stderr.strip()}")
+check("border" in p.stderr, f"a border the field does not follow: the error says so: {p.stderr.strip()}")
 check(not any(os.path.exists(w) for w in written), "a border: no file written")
+
+# the same box with --align-boundary and its four bottom corners +1/4: the quads end on the border (the rim)
+box_sing = os.path.join(out, "box.sing")
+with open(box_sing, "w") as f:
+    f.writelines(f"{v} 1/4\n" for v in box_corners if P[v][2] == 0)
+box_obj = os.path.join(out, "box_quads.obj")
+p = run([open_mesh, "--n", "4", "--singularities", box_sing, "--align-boundary", "--quad-mesh", box_obj,
+         "--quad-size", "0.5", "--connection", written[1], "--field", written[2]], 0)
+if p.returncode == 0:
+    V, Q = read_obj(box_obj)
+    check(len(Q) == 20 and all(len(q) == 4 for q in Q), f"open box, H = 1/2: {len(Q)} quads, 5 k^2 = 20")
+    directed = Counter((q[j], q[(j + 1) % 4]) for q in Q for j in range(4))
+    border = [(a, b) for (a, b) in directed if (b, a) not in directed]
+    check(len(border) == 8 and all(abs(V[a][2] - 1) < 1e-9 and abs(V[b][2] - 1) < 1e-9 for a, b in border),
+          f"open box: the {len(border)} edges in one quad are the rim's 8 (4 k), at z = 1")
+    neighbours = [set() for _ in V]
+    for a, b in directed:
+        neighbours[a].add(b)
+        neighbours[b].add(a)
+    valence = Counter(len(n) for n in neighbours)
+    check(valence[3] == 4 + 8 and valence[4] == len(V) - 12,
+          f"open box: valence 3 at the 4 bottom corners and the 8 rim vertices, 4 elsewhere: {dict(valence)}")
+
+# sharp edges on iso-lines: the cube of 5 x 5 squares per face with H = 0.4 (the side is not a multiple of H, and
+# no iso-line would run along the cube's edges by itself): with --align-features every cube edge is a chain of quad
+# edges, and the report counts its 60 mesh edges as feature edges
+P5, F5, corners5 = cube(5)
+mesh5, sing5, obj5 = os.path.join(out, "cube5.off"), os.path.join(out, "cube5.sing"), os.path.join(out, "cube5.obj")
+write_off(mesh5, P5, F5)
+with open(sing5, "w") as f:
+    f.writelines(f"{v} 1/4\n" for v in corners5)
+p = run([mesh5, "--singularities", sing5, "--n", "4", "--align-features", "--quad-mesh", obj5, "--quad-size", "0.4",
+         "--connection", written[1], "--field", written[2]], 0)
+if p.returncode == 0:
+    V, Q = read_obj(obj5)
+    quad_edges = {tuple(sorted((q[j], q[(j + 1) % 4]))) for q in Q for j in range(4)}
+    covered = 0
+    for axis in range(3):
+        for c1 in (0.0, 1.0):
+            for c2 in (0.0, 1.0):
+                fixed = [a for a in range(3) if a != axis]
+                on = lambda v: abs(V[v][fixed[0]] - c1) < 1e-9 and abs(V[v][fixed[1]] - c2) < 1e-9
+                spans = sorted(sorted((V[a][axis], V[b][axis])) for a, b in quad_edges if on(a) and on(b))
+                reach = 0.0
+                for lo, hi in spans:
+                    if lo <= reach + 1e-9:
+                        reach = max(reach, hi)
+                covered += reach >= 1 - 1e-9
+    check(covered == 12, f"cube 5 x 5, H = 0.4, --align-features: {covered} of the 12 cube edges are chains of quad edges")
+    line = [l for l in p.stdout.splitlines() if l.startswith("quad mesh:")]
+    m = re.search(r"valence errors (\d+), folded triangles (\d+).*on iso-lines: (\d+) feature edges", line[0]) if line else None
+    check(m is not None and m.group(1) == "0" and m.group(2) == "0" and m.group(3) == "60",
+          f"cube 5 x 5: no valence error or fold, 60 feature edges: {line}")
 
 if failures:
     sys.exit(f"cli_quad_mesh.py: {len(failures)} failures")

@@ -149,6 +149,9 @@ check_cube(3, ["--target-faces", "54"])
 # errors: nothing written
 obj = os.path.join(out, "refused.obj")
 written = [obj, os.path.join(out, "e_c.txt"), os.path.join(out, "e_f.txt")]
+for w in written:
+    if os.path.exists(w):
+        os.remove(w)
 err = [mesh, "--singularities", sing, "--connection", written[1], "--field", written[2]]
 for args, status, what in [
     (["--quad-mesh", obj, "--quad-size", "0.5"], 2, "without --n 4"),
@@ -181,7 +184,7 @@ with open(box_sing, "w") as f:
     f.writelines(f"{v} 1/4\n" for v in box_corners if P[v][2] == 0)
 box_obj = os.path.join(out, "box_quads.obj")
 p = run([open_mesh, "--n", "4", "--singularities", box_sing, "--align-boundary", "--quad-mesh", box_obj,
-         "--quad-size", "0.5", "--connection", written[1], "--field", written[2]], 0)
+         "--quad-size", "0.5", "--connection", os.path.join(out, "ok_c.txt"), "--field", os.path.join(out, "ok_f.txt")], 0)
 if p.returncode == 0:
     V, Q = read_obj(box_obj)
     check(len(Q) == 20 and all(len(q) == 4 for q in Q), f"open box, H = 1/2: {len(Q)} quads, 5 k^2 = 20")
@@ -206,7 +209,7 @@ write_off(mesh5, P5, F5)
 with open(sing5, "w") as f:
     f.writelines(f"{v} 1/4\n" for v in corners5)
 p = run([mesh5, "--singularities", sing5, "--n", "4", "--align-features", "--quad-mesh", obj5, "--quad-size", "0.4",
-         "--connection", written[1], "--field", written[2]], 0)
+         "--connection", os.path.join(out, "ok_c.txt"), "--field", os.path.join(out, "ok_f.txt")], 0)
 if p.returncode == 0:
     V, Q = read_obj(obj5)
     quad_edges = {tuple(sorted((q[j], q[(j + 1) % 4]))) for q in Q for j in range(4)}

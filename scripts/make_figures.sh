@@ -9,7 +9,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 program="$1" python="$2" meshes="$3" out="$4"
 data="$root/test/Trivial_connections/data"
-for f in cow.off elk.off pig.off fandisk.off; do
+for f in cow.off elk.off pig.off fandisk.off bunny00.off; do
   [ -f "$meshes/$f" ] || { echo "make_figures.sh: $meshes/$f is missing (bash scripts/fetch_cgal_data.sh)" >&2; exit 1; }
 done
 mkdir -p "$out/work"
@@ -45,3 +45,9 @@ figure pig_aligned "$meshes/pig.off" --glyphs 1500 --size 900 600 -- --n 4 --ali
 figure fandisk_feature_field "$meshes/fandisk.off" --streamlines "$work/fandisk_feature_field.streamlines.vtk" \
   --features "$work/fandisk_feature_field.features.vtk" --view 20 50 --size 900 600 -- \
   --auto --n 4 --align-features --feature-lines "$work/fandisk_feature_field.features.vtk" --streamline-seeds 60
+# quad meshes (--quad-mesh): fandisk with its sharp edges on iso-lines, and an organic mesh, drawn over the surface
+figure fandisk_quads "$meshes/fandisk.off" --quads "$work/fandisk_quads.obj" --features "$work/fandisk_quads.features.vtk" \
+  --view 20 50 --size 900 600 -- --auto --n 4 --align-features --feature-lines "$work/fandisk_quads.features.vtk" \
+  --quad-mesh "$work/fandisk_quads.obj" --target-faces 2000 --streamline-seeds 1
+figure bunny00_quads "$meshes/bunny00.off" --quads "$work/bunny00_quads.obj" --view 0 10 --size 900 700 -- \
+  --auto --n 4 --quad-mesh "$work/bunny00_quads.obj" --target-faces 2000 --streamline-seeds 1

@@ -655,27 +655,38 @@ TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_column
   }
 }
 
+// A grid's matrix in a fill-reducing order, factored: vertex v on row v, the factor as the refinement reads it
+struct Factored_grid
+{
+  int nn;
+  Simplicial_natural s;
+  std::vector<int> row_of_vertex, position;
+  TC::internal::Unit_lower_factor factor;
+  bool read = false; // factored and read
+  const Simplicial_natural& solver() const { return s; }
+  Eigen::VectorXd solve(const Eigen::VectorXd& e) const { return s.solve(e); }
+
+  explicit Factored_grid(int side)
+    : nn(side * side), row_of_vertex(std::size_t(side * side)), position(std::size_t(side * side))
+  {
+    s.compute(grid_in_fill_reducing_order(side));
+    std::iota(row_of_vertex.begin(), row_of_vertex.end(), 0);
+    std::iota(position.begin(), position.end(), 0);
+    read = s.info() == Eigen::Success &&
+           TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial_natural>>::read(*this, factor);
+  }
+};
+
 // Past the columns' budget, prefetch() drops only the columns not asked for: those asked for and kept stay where
 // they are (not made again), and all hold the columns of M^-1.
 TEST(Refinement, columns_asked_for_stay_past_the_budget)
 {
-  const int side = 20, nn = side * side;
-  const Eigen::SparseMatrix<double> M = grid_in_fill_reducing_order(side);
-  struct View
-  {
-    Simplicial_natural s;
-    const Simplicial_natural& solver() const { return s; }
-  } view;
-  view.s.compute(M);
-  ASSERT_EQ(view.s.info(), Eigen::Success);
-  std::vector<int> row_of_vertex(static_cast<std::size_t>(nn)), position(static_cast<std::size_t>(nn));
-  std::iota(row_of_vertex.begin(), row_of_vertex.end(), 0);
-  std::iota(position.begin(), position.end(), 0);
-  auto solve = [&](const Eigen::VectorXd& e) { return Eigen::VectorXd(view.s.solve(e)); };
-  TC::internal::Unit_lower_factor f;
-  ASSERT_TRUE(TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial_natural>>::read(view, f));
+  Factored_grid grid(20);
+  ASSERT_TRUE(grid.read);
+  const int nn = grid.nn;
+  auto solve = [&](const Eigen::VectorXd& e) { return grid.solve(e); };
   // a budget of four columns
-  TC::internal::Move_energy energy(row_of_vertex, position.data(), nn, std::move(f), {0}, solve,
+  TC::internal::Move_energy energy(grid.row_of_vertex, grid.position.data(), nn, std::move(grid.factor), {0}, solve,
                                    TC::internal::Move_energy::Entries::selected_inversion, 4.5 * nn * sizeof(double));
   std::vector<int> all(static_cast<std::size_t>(nn));
   std::iota(all.begin(), all.end(), 0);
@@ -710,28 +721,17 @@ TEST(Refinement, columns_asked_for_stay_past_the_budget)
 // would cost more than it (the automatic choice's own break-even); the entries stay those of M^-1.
 TEST(Refinement, paths_give_way_to_the_inversion_when_they_grow)
 {
-  const int side = 30, nn = side * side;
-  const Eigen::SparseMatrix<double> M = grid_in_fill_reducing_order(side);
-  struct View
-  {
-    Simplicial_natural s;
-    const Simplicial_natural& solver() const { return s; }
-  } view;
-  view.s.compute(M);
-  ASSERT_EQ(view.s.info(), Eigen::Success);
-  std::vector<int> row_of_vertex(static_cast<std::size_t>(nn)), position(static_cast<std::size_t>(nn));
-  std::iota(row_of_vertex.begin(), row_of_vertex.end(), 0);
-  std::iota(position.begin(), position.end(), 0);
-  auto solve = [&](const Eigen::VectorXd& e) { return Eigen::VectorXd(view.s.solve(e)); };
-  TC::internal::Unit_lower_factor f;
-  ASSERT_TRUE(TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial_natural>>::read(view, f));
-  TC::internal::Move_energy energy(row_of_vertex, position.data(), nn, std::move(f), {0, 1}, solve);
+  Factored_grid grid(30);
+  ASSERT_TRUE(grid.read);
+  const int nn = grid.nn;
+  auto solve = [&](const Eigen::VectorXd& e) { return grid.solve(e); };
+  TC::internal::Move_energy energy(grid.row_of_vertex, grid.position.data(), nn, std::move(grid.factor), {0, 1}, solve);
   ASSERT_TRUE(energy.paths());
   energy.prefetch_paths({0, 1, 2});
   EXPECT_TRUE(energy.paths()); // three paths: far below the inversion
   auto expect_entries = [&]() {
     for(int v = 0; v < nn; v += 37)
-      for(int w : {v, (std::min)(v + 1, nn - 1), (std::min)(v + side, nn - 1)}) {
+      for(int w : {v, (std::min)(v + 1, nn - 1), (std::min)(v + 30, nn - 1)}) { // itself, beside, a row away
         const double expected = solve(Eigen::VectorXd::Unit(nn, v))[w];
         EXPECT_NEAR(energy.entry(v, w), expected, 1e-10 * (1 + std::abs(expected))) << v << " " << w;
       }

@@ -24,6 +24,8 @@ py::dict quad_report_dict(const TC::Quad_mesh_report& r)
     histogram[py::int_(valence)] = count;
   d["valence_histogram"] = histogram;
   d["valence_errors"] = r.valence_errors;
+  d["border_corners"] = r.border_corners;
+  d["feature_edges"] = r.feature_edges;
   d["folded_triangles"] = r.folded_triangles;
   d["degenerate_triangles"] = r.degenerate_triangles;
   d["rejected_polygons"] = r.rejected_polygons;
@@ -41,12 +43,50 @@ py::dict quad_report_dict(const TC::Quad_mesh_report& r)
   return d;
 }
 
+// The feature edges given in Python, as pairs of vertices (i, j) in either order (a (m, 2) integer array or a
+// sequence of pairs, as feature_curves() gives them), marked per edge of `mesh`; a pair that is not an edge of the
+// mesh is the user's error. A pair listed twice marks its edge once.
+std::vector<char> feature_edges_of(const Mesh& mesh, const py::object& pairs)
+{
+  std::vector<char> marked(mesh.number_of_edges(), 0);
+  if(pairs.is_none())
+    return marked;
+  if(py::isinstance<py::array>(pairs)) {
+    const py::array a = py::reinterpret_borrow<py::array>(pairs);
+    if(a.size() == 0)
+      return marked;
+    if(a.ndim() != 2 || a.shape(1) != 2)
+      throw py::value_error("feature_edges as an array must have shape (m, 2): rows (i, j), the vertices of an edge");
+    if(a.dtype().kind() != 'i' && a.dtype().kind() != 'u')
+      throw py::type_error("feature_edges must hold integers (vertices), got dtype " + std::string(py::str(a.dtype())));
+  } else if(!py::isinstance<py::sequence>(pairs) || py::isinstance<py::str>(pairs) || py::isinstance<py::bytes>(pairs))
+    throw py::type_error("feature_edges must be a sequence of pairs (i, j) or an (m, 2) integer array, got " +
+                         std::string(py::str(py::type::of(pairs))));
+  for(const py::handle row : py::iter(pairs)) {
+    if(!py::isinstance<py::sequence>(row) && !py::isinstance<py::array>(row))
+      throw py::type_error("each feature edge must be a pair of vertices (i, j), got " + std::string(py::repr(row)));
+    const py::sequence pair = py::reinterpret_borrow<py::sequence>(row);
+    if(py::len(pair) != 2)
+      throw py::value_error("each feature edge must be a pair of vertices (i, j), got " + std::string(py::repr(row)));
+    const std::size_t i = vertex_number(pair[0]), j = vertex_number(pair[1]);
+    const vertex_descriptor vi = vertex_of(mesh, i), vj = vertex_of(mesh, j);
+    const auto [h, found] = CGAL::halfedge(vi, vj, mesh);
+    if(!found || i == j)
+      throw TC::Invalid_input(TC::Error_code::invalid_argument, "feature edge (" + std::to_string(i) + ", " +
+                                                                   std::to_string(j) + ") is not an edge of the mesh");
+    marked[std::size_t(mesh.edge(h))] = 1;
+  }
+  return marked;
+}
+
 // the quads of the cross field of `result` (with its singularities): (vertices (k, 3), quads (q, 4), report)
 py::tuple Python_solver::quad_mesh(const Result& result, const py::object& singularities, const py::object& quad_size,
-                                   const py::object& target_faces, const std::string& rounding, double max_quads)
+                                   const py::object& target_faces, const std::string& rounding, double max_quads,
+                                   const py::object& feature_edges)
 {
   const Singularities s = singularities_of(singularities);
   const auto singular = vertex_descriptors(*m_mesh, s);
+  const std::vector<char> features = feature_edges_of(*m_mesh, feature_edges);
   if(rounding != "greedy" && rounding != "naive")
     throw py::value_error("rounding must be \"greedy\" or \"naive\", got \"" + rounding + "\"");
   if(quad_size.is_none() == target_faces.is_none())
@@ -69,8 +109,12 @@ py::tuple Python_solver::quad_mesh(const Result& result, const py::object& singu
       [&x](halfedge_descriptor h) { return x[std::size_t(h)]; });
     auto field_map = boost::make_function_property_map<face_descriptor, Kernel::Vector_3>(
       [&field](face_descriptor f) { return field[std::size_t(f)]; });
+    // always given (all false without feature edges: the same as none), so that one instantiation serves both
+    auto feature_map = boost::make_function_property_map<edge_descriptor, bool>(
+      [&features](edge_descriptor e) { return features[std::size_t(e)] != 0; });
     namespace P = TC::parameters;
-    const auto common = P::max_quads(max_quads, P::quad_rounding(scheme, P::symmetry_order(n)));
+    const auto common =
+      P::max_quads(max_quads, P::quad_rounding(scheme, P::symmetry_order(n))).edge_is_constrained_map(feature_map);
     return N > 0 ? TC::compute_quad_mesh(*m_mesh, x_map, field_map, singular, quads,
                                          P::target_faces(std::size_t(N), common))
                  : TC::compute_quad_mesh(*m_mesh, x_map, field_map, singular, quads, P::quad_size(H, common));
@@ -94,12 +138,18 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
 {
   solver.def("quad_mesh", &Python_solver::quad_mesh, py::arg("result"), py::arg("singularities"),
              py::arg("quad_size") = py::none(), py::arg("target_faces") = py::none(), py::arg("rounding") = "greedy",
-             py::arg("max_quads") = 1e7,
+             py::arg("max_quads") = 1e7, py::arg("feature_edges") = py::none(),
              "The quad mesh of result's cross field (n = 4) with its singularities: quad_size H (the quads' edge "
              "length) or target_faces N (H = sqrt(area / N)), one of them; rounding \"greedy\" or \"naive\"; more "
-             "than max_quads quads is refused. Returns (vertices (k, 3), quads (q, 4) counter-clockwise, report dict: "
-             "quads, valence_histogram, valence_errors, folded_triangles, flipped_quads, hausdorff_distance, ...). "
-             "Closed meshes only; errors raise InvalidInput.");
+             "than max_quads quads is refused. feature_edges: edges put on integer iso-lines so that quad edges "
+             "follow them, as pairs of vertices (i, j) (an (m, 2) integer array or a sequence of pairs, e.g. "
+             "numpy.vstack(feature_curves(V, F)[0])); the field must follow them (Solver(..., align_features=...)). "
+             "Border edges are always put on iso-lines: the field must follow the border (align_boundary=True), "
+             "otherwise the call is refused. Returns (vertices (k, 3), quads (q, 4) counter-clockwise, report dict: "
+             "quad_size, quads, vertices, integer_points, valence_histogram, valence_errors, border_corners, "
+             "feature_edges, folded_triangles, degenerate_triangles, rejected_polygons, open_edges, dangling_edges, "
+             "flipped_quads, concave_quads, hausdorff_distance (and its two one-sided parts), split_vertices, "
+             "continuous_energy, rounded_energy, solves). Errors raise InvalidInput (a ValueError).");
 }
 
 }  // namespace

@@ -54,7 +54,8 @@ public:
   // defined in quad_mesh.h
   // the quads of the cross field of `result`: (vertices, quads, report)
   py::tuple quad_mesh(const Result& result, const py::object& singularities, const py::object& quad_size,
-                      const py::object& target_faces, const std::string& rounding, double max_quads);
+                      const py::object& target_faces, const std::string& rounding, double max_quads,
+                      const py::object& feature_edges);
 
   // defined in files.h
   // the field of `result` as a field file (.txt), or the mesh with it and the singularities as a VTK (.vtk) or PLY

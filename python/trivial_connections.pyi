@@ -156,6 +156,7 @@ class Solver:
         target_faces: Optional[int] = None,
         rounding: str = "greedy",
         max_quads: float = 1e7,
+        feature_edges: Optional[Union[npt.ArrayLike, Sequence[Tuple[int, int]]]] = None,
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Dict[str, Any]]: ...
     def write_field(self, path: _StrPath, result: Result, singularities: Optional[_Singularities]) -> None: ...
     @property

@@ -76,6 +76,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 using vertex_descriptor = Mesh::Vertex_index;
 using halfedge_descriptor = Mesh::Halfedge_index;
+using edge_descriptor = Mesh::Edge_index;
 using face_descriptor = Mesh::Face_index;
 using Loop_periods = std::vector<std::optional<std::int64_t>>;
 using Singularities = std::vector<std::pair<std::size_t, TC::Singularity_index>>;

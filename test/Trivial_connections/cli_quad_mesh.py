@@ -14,6 +14,9 @@
 import os, re, subprocess, sys
 from collections import Counter
 
+sys.path.append(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from cube_mesh import unit_cube as cube  # noqa: E402
+
 program, out = sys.argv[1:3]
 os.makedirs(out, exist_ok=True)
 failures = []
@@ -23,35 +26,6 @@ def check(cond, what):
     print(("ok: " if cond else "FAIL: ") + what)
     if not cond:
         failures.append(what)
-
-
-def cube(s, open_top=False):
-    """The unit cube's surface, each face s x s squares cut into two triangles, outward; and its corners."""
-    index, P, F = {}, [], []
-
-    def vertex(q):
-        if q not in index:
-            index[q] = len(P)
-            P.append(q)
-        return index[q]
-
-    for a in range(3):
-        for sign in (-1, 1):
-            if open_top and a == 2 and sign > 0:
-                continue
-            u, w = (a + 1) % 3, (a + 2) % 3
-            for p in range(s):
-                for q in range(s):
-                    def corner(dp, dq):
-                        L = [0, 0, 0]
-                        L[a], L[u], L[w] = (s if sign > 0 else 0), p + dp, q + dq
-                        return vertex(tuple(L))
-                    quad = [corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)]
-                    if sign < 0:
-                        quad[1], quad[3] = quad[3], quad[1]
-                    F += [(quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3])]
-    corners = [i for i, p in enumerate(P) if all(x in (0, s) for x in p)]
-    return [tuple(x / s for x in p) for p in P], F, corners
 
 
 def write_off(path, P, F):

@@ -9,7 +9,9 @@
 import fractions
 import math
 import os
+import re
 import subprocess
+import sys
 import tempfile
 import threading
 
@@ -17,6 +19,9 @@ import numpy as np
 import pytest
 
 import trivial_connections as tc
+
+sys.path.append(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import cube_mesh  # noqa: E402  (test/cube_mesh.py, shared with cli_quad_mesh.py)
 
 # ---- meshes the tests make ---------------------------------------------------------------------------------
 
@@ -1061,32 +1066,11 @@ def test_repair_mesh_as_the_program():
 # ---- quad meshes (Solver.quad_mesh) ---------------------------------------------------------------------------
 
 
-def unit_cube(s):
-    """The unit cube's surface, each face s x s squares cut into two triangles, outward; and its eight corners."""
-    index, V, F = {}, [], []
-
-    def vertex(q):
-        if q not in index:
-            index[q] = len(V)
-            V.append(q)
-        return index[q]
-
-    for a in range(3):
-        for sign in (-1, 1):
-            u, w = (a + 1) % 3, (a + 2) % 3
-            for p in range(s):
-                for q in range(s):
-                    def corner(dp, dq):
-                        L = [0, 0, 0]
-                        L[a], L[u], L[w] = (s if sign > 0 else 0), p + dp, q + dq
-                        return vertex(tuple(L))
-
-                    quad = [corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)]
-                    if sign < 0:
-                        quad[1], quad[3] = quad[3], quad[1]
-                    F += [(quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3])]
-    corners = [i for i, p in enumerate(V) if all(x in (0, s) for x in p)]
-    return np.array(V, float) / s, np.array(F, np.int64), corners
+def unit_cube(s, open_top=False):
+    """The unit cube's surface, each face s x s squares cut into two triangles, outward; and its eight corners
+    (test/cube_mesh.py, shared with the program's test cli_quad_mesh.py)."""
+    P, F, corners = cube_mesh.unit_cube(s, open_top)
+    return np.array(P, float), np.array(F, np.int64), corners
 
 
 def quad_topology(Q, nv):
@@ -1128,6 +1112,141 @@ def test_quad_mesh_cube():
         assert report["hausdorff_distance"] <= 0.5 / k
     P2, Q2, naive = solver.quad_mesh(result, s, quad_size=0.5, rounding="naive")
     assert len(Q2) == 24 and naive["valence_errors"] == 0
+
+
+def quad_report_fields():
+    """The fields of CGAL::Trivial_connections::Quad_mesh_report, read from its header, and its one accessor."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    with open(os.path.join(here, "..", "..", "include", "CGAL", "Trivial_connections", "quad_mesh.h")) as f:
+        text = f.read()
+    body = text[text.index("struct Quad_mesh_report"):]
+    body = body[body.index("{") + 1:body.index("\n};")]
+    fields = re.findall(r"^\s*[\w:<>, ]+?\s+(\w+)\s*(?:=[^;]*)?;", body, re.M)
+    accessors = re.findall(r"^\s*[\w:<>]+\s+(\w+)\(\)\s*const", body, re.M)
+    return fields, accessors
+
+
+def test_quad_report_dict_has_every_field_of_the_report():
+    # the dict's keys are the struct's fields (number_of_X said X) and its accessor: a field added to one and not
+    # the other fails here
+    fields, accessors = quad_report_fields()
+    assert "border_corners" in fields and "feature_edges" in fields and len(fields) >= 20  # the parse found them
+    said = {"number_of_quads": "quads", "number_of_vertices": "vertices"}
+    V, F, corners = unit_cube(4)
+    solver = tc.Solver(V, F, align_features=True)
+    s = {c: fractions.Fraction(1, 4) for c in corners}
+    _, _, report = solver.quad_mesh(solver.solve(s, n=4), s, quad_size=0.5)
+    assert sorted(report) == sorted([said.get(f, f) for f in fields] + accessors)
+
+
+def cube_edges_of(V, F):
+    """The mesh edges (i, j), i < j, along the cube's twelve edges: both ends on the same two of the cube's planes."""
+    on_planes = lambda p: {(a, round(p[a])) for a in range(3) if min(abs(p[a]), abs(p[a] - 1)) < 1e-12}
+    edges = {tuple(sorted((int(t[j]), int(t[(j + 1) % 3])))) for t in F for j in range(3)}
+    return sorted((i, j) for i, j in edges if len(on_planes(V[i]) & on_planes(V[j])) == 2)
+
+
+def test_quad_mesh_cube_with_feature_edges():
+    # the cube's twelve edges given as feature edges (s = 4: 48 mesh edges): with H = 1/k, 6 k^2 quads, the corners
+    # of valence 3 and every other vertex 4, each edge of the cube a chain of quad edges, and the report counts
+    # the 48 feature edges; the same from the pairs of feature_curves() and in any orientation or container
+    V, F, corners = unit_cube(4)
+    features = cube_edges_of(V, F)
+    assert len(features) == 12 * 4
+    solver = tc.Solver(V, F, align_features=True)
+    s = {c: fractions.Fraction(1, 4) for c in corners}
+    result = solver.solve(s, n=4)
+    curves, _ = tc.feature_curves(V, F)
+    from_curves = np.vstack(curves)
+    assert sorted(tuple(sorted(e)) for e in from_curves.tolist()) == features
+    for k, given in [(2, features), (3, from_curves), (4, np.array(features)[:, ::-1].astype(np.uint32))]:
+        P, Q, report = solver.quad_mesh(result, s, quad_size=1 / k, feature_edges=given)
+        assert Q.shape == (6 * k * k, 4)
+        paired, euler, valence = quad_topology(Q, len(P))
+        assert paired and euler == 2
+        assert valence.count(3) == 8 and valence.count(4) == len(P) - 8
+        assert report["feature_edges"] == 48 and report["border_corners"] == 0
+        assert report["valence_errors"] == 0 and report["folded_triangles"] == 0 and report["flipped_quads"] == 0
+        quad_edges = {tuple(sorted((int(q[j]), int(q[(j + 1) % 4])))) for q in Q for j in range(4)}
+        for axis in range(3):  # each of the cube's 12 edges: k quad edges of length 1/k along it
+            others = [a for a in range(3) if a != axis]
+            for c in [(0, 0), (0, 1), (1, 0), (1, 1)]:
+                on = lambda v: all(abs(P[v][others[t]] - c[t]) < 1e-9 for t in range(2))
+                along = [(a, b) for a, b in quad_edges if on(a) and on(b)]
+                assert len(along) == k and abs(sum(abs(P[a][axis] - P[b][axis]) for a, b in along) - 1) < 1e-9
+    _, _, none = solver.quad_mesh(result, s, quad_size=0.5, feature_edges=[])
+    assert none["feature_edges"] == 0
+
+
+def quad_euler(Q, nv):
+    """V - E + F of the quads, each undirected edge once (also with a border)"""
+    edges = {tuple(sorted((int(q[j]), int(q[(j + 1) % 4])))) for q in Q for j in range(4)}
+    return nv - len(edges) + len(Q)
+
+
+def test_quad_mesh_open_box():
+    # the cube without its top (s = 3), the field along the border (align_boundary) and the four bottom corners
+    # +1/4: with H = 1/2, 5 k^2 = 20 quads ending on the rim (the 8 edges in one quad are the rim's, at z = 1),
+    # valence 3 at the 4 bottom corners and the 8 rim vertices (the rim's corners are not corners of quads: each
+    # has its vertical edge), 4 elsewhere; V - E + F = 1 (a disk)
+    V, F, corners = unit_cube(3, open_top=True)
+    solver = tc.Solver(V, F, align_boundary=True)
+    s = {c: fractions.Fraction(1, 4) for c in corners if V[c][2] == 0}
+    result = solver.solve(s, n=4)
+    P, Q, report = solver.quad_mesh(result, s, quad_size=0.5)
+    assert Q.shape == (20, 4) and report["quads"] == 20
+    directed = {(int(q[j]), int(q[(j + 1) % 4])) for q in Q for j in range(4)}
+    border = [(a, b) for a, b in directed if (b, a) not in directed]
+    assert len(border) == 8 and all(abs(P[a][2] - 1) < 1e-9 and abs(P[b][2] - 1) < 1e-9 for a, b in border)
+    _, _, valence = quad_topology(Q, len(P))
+    assert quad_euler(Q, len(P)) == 1 and valence.count(3) == 12 and valence.count(4) == len(P) - 12
+    assert report["valence_errors"] == 0 and report["border_corners"] == 0 and report["feature_edges"] == 0
+    assert report["open_edges"] == 0 and report["folded_triangles"] == 0  # the rim's edges are not holes
+    # a field that does not follow the border (no singularity, the border free, as cli_quad_mesh.py's): refused
+    free = tc.Solver(V, F)
+    with pytest.raises(tc.InvalidInput) as error:
+        free.quad_mesh(free.solve({}, n=4), {}, quad_size=0.5)
+    assert "border" in str(error.value)
+
+
+def test_quad_mesh_flat_square_corners():
+    # a flat square of 4 x 4 squares, the field along its border: with H = 1/4 the 16 squares themselves, the four
+    # corners of the square are corners of quads (valence 2: border_corners 4), no singularity
+    V, F, _ = unit_cube(4)
+    bottom = [t for t in F.tolist() if all(V[v][2] == 0 for v in t)]
+    used = sorted({v for t in bottom for v in t})
+    renumber = {v: i for i, v in enumerate(used)}
+    V2, F2 = V[used], np.array([[renumber[v] for v in t] for t in bottom])
+    solver = tc.Solver(V2, F2, align_boundary=True)
+    result = solver.solve({}, n=4)
+    P, Q, report = solver.quad_mesh(result, {}, quad_size=0.25)
+    assert Q.shape == (16, 4) and report["border_corners"] == 4 and report["valence_errors"] == 0
+    _, _, valence = quad_topology(Q, len(P))
+    assert quad_euler(Q, len(P)) == 1 and valence.count(2) == 4
+
+
+def test_bad_feature_edges():
+    V, F, corners = unit_cube(4)
+    solver = tc.Solver(V, F, align_features=True)
+    s = {c: fractions.Fraction(1, 4) for c in corners}
+    result = solver.solve(s, n=4)
+    t = F[0]
+    for edges, code in [([(0, len(V))], "invalid_vertex"), ([(-1, 0)], "invalid_vertex"),
+                        ([(int(t[0]), int(t[0]))], "invalid_argument"),
+                        ([(corners[0], corners[-1])], "invalid_argument")]:  # two corners: not an edge
+        with pytest.raises(tc.InvalidInput) as error:
+            solver.quad_mesh(result, s, quad_size=0.5, feature_edges=edges)
+        assert error.value.code == code, edges
+    # a diagonal of a face's square: an edge, but the field (along the cube's edges) does not follow it
+    diagonal = next((int(a), int(b)) for a, b in [(t[0], t[2]), (t[0], t[1]), (t[1], t[2])]
+                    if np.count_nonzero(np.abs(V[a] - V[b]) > 1e-12) == 2)
+    with pytest.raises(tc.InvalidInput) as error:
+        solver.quad_mesh(result, s, quad_size=0.5, feature_edges=[diagonal])
+    for edges, kind in [(np.zeros((2, 3), np.int64), ValueError), ([(0, 1, 2)], ValueError),
+                        (np.zeros((2, 2)), TypeError), ("01", TypeError), ([(0.0, 1.0)], TypeError), (5, TypeError)]:
+        with pytest.raises(kind):
+            solver.quad_mesh(result, s, quad_size=0.5, feature_edges=edges)
+    assert np.array_equal(F, unit_cube(4)[1])  # the input untouched
 
 
 def test_quad_mesh_sphere_and_errors():

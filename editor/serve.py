@@ -46,6 +46,15 @@ bundle and the mesh, POST on the rest.
                          the number used. The rays are cut (to maximum_faces_per_ray faces, at least 8), then seeds
                          left out, so that all of them cross at most {RAY_STEPS} faces: about half a second at most
                          on 100k faces
+  POST /api/quads        {SOLVE, quad_size? | target_faces?} -> header {n, energy, report, timings}; arrays points <f4
+                         (k, 3), quads <u4 (q, 4) (vertex numbers into points, counter-clockwise): the quad mesh of
+                         the request's cross field (the module's Solver.quad_mesh()), n = 4 only (422
+                         invalid_symmetry_order otherwise). quad_size H (a number; not positive or finite: 422
+                         invalid_argument) or target_faces (an integer from 1 to {MAX_QUADS}), not both; neither:
+                         H = {QUAD_SIZE_EDGES} mean edge lengths. More than about {MAX_QUADS} quads is a 422
+                         invalid_argument (H too small). report: the module's dict (quads, valence_errors,
+                         folded_triangles, border_corners, hausdorff_distance, ...). On a mesh with boundary the
+                         field must follow it (align_boundary: true; otherwise a 422 that says so)
   POST /api/save         {kind, path, overwrite?, SOLVE, seeds?}: solves, then writes (completely or not at all)
                          `path` in the folder -> header {saved: the path relative to the folder, bytes}. kind:
                          "singularities", "constraints" (lines "f x y z"), "field" (the program's field file, path
@@ -92,7 +101,8 @@ if HERE not in sys.path:  # the package beside this file, also when loaded by pa
 # every name serve.py had before its parts moved (its tests read them here); BODY_TIMEOUT is read from here
 from editor_server.files import exists_refusal  # noqa: E402,F401
 from editor_server.limits import (BODY_PER_FACE, BODY_TIMEOUT, DEFAULT_SEEDS, MAX_BODY,  # noqa: E402,F401
-                                  MAX_DIGITS, MAX_LOAD, MAX_N, MAX_SEEDS, RAY_STEPS, SAVE_KINDS)
+                                  MAX_DIGITS, MAX_LOAD, MAX_N, MAX_QUADS, MAX_SEEDS, QUAD_SIZE_EDGES, RAY_STEPS,
+                                  SAVE_KINDS)
 from editor_server.session import Problem, Session, Solver_state  # noqa: E402,F401
 from editor_server.topology import angle_defects, components_of  # noqa: E402,F401
 from editor_server.wire import Refusal, frame, json_constant, json_integer, json_safe, shown  # noqa: E402,F401
@@ -107,7 +117,8 @@ def megabytes(size):
 DOCUMENTED = {"MAX_DIGITS": MAX_DIGITS, "BODY_TIMEOUT": BODY_TIMEOUT, "MAX_SEEDS": MAX_SEEDS,
               "DEFAULT_SEEDS": DEFAULT_SEEDS, "RAY_STEPS": RAY_STEPS, "MAX_N": MAX_N, "MAX_LOAD": megabytes(MAX_LOAD),
               "MAX_BODY": megabytes(MAX_BODY), "BODY_PER_FACE": f"{BODY_PER_FACE} bytes",
-              "DEFAULT_FEATURE_ANGLE": f"{tc.DEFAULT_FEATURE_ANGLE:g}"}
+              "DEFAULT_FEATURE_ANGLE": f"{tc.DEFAULT_FEATURE_ANGLE:g}", "MAX_QUADS": MAX_QUADS,
+              "QUAD_SIZE_EDGES": QUAD_SIZE_EDGES}
 for _name, _value in DOCUMENTED.items():
     __doc__ = __doc__.replace("{" + _name + "}", str(_value))
 
@@ -126,7 +137,8 @@ class Handler(http.server.BaseHTTPRequestHandler):
              "/editor.js": ("bundle", "editor.js", "text/javascript"),
              "/editor.js.map": ("bundle", "editor.js.map", "application/json")}
     POSTS = {"/api/solve": "solve_frame", "/api/place": "place_frame", "/api/streamlines": "streamlines_frame",
-             "/api/save": "save_frame", "/api/load": "load_frame", "/api/features": "features_frame"}
+             "/api/save": "save_frame", "/api/load": "load_frame", "/api/features": "features_frame",
+             "/api/quads": "quads_frame"}
 
     def log_message(self, *args):
         pass

@@ -12,3 +12,5 @@ BODY_TIMEOUT = 30  # seconds for a request body to arrive once its headers have 
 # save kinds: the ending their path must have ("" for any)
 SAVE_KINDS = {"singularities": "", "constraints": "", "field": ".txt", "vtk": ".vtk", "ply": ".ply",
               "streamlines": ""}
+MAX_QUADS = 500_000  # quads of a quad-mesh request, at most (the library refuses a smaller H: about 14 MB of frame)
+QUAD_SIZE_EDGES = 4  # a quad-mesh request's default quad size, in mean edge lengths of the mesh

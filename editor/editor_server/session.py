@@ -10,6 +10,7 @@ import trivial_connections as tc
 
 from .files import Folder_files
 from .limits import BODY_PER_FACE, MAX_BODY, MAX_N
+from .quads import Quads
 from .streamlines import Streamlines
 from .topology import angle_defects, components_of
 from .wire import Refusal, frame, json_safe, shown
@@ -30,9 +31,9 @@ class Solver_state:
         self.lock = threading.Lock()
 
 
-class Session(Streamlines, Folder_files):
+class Session(Streamlines, Quads, Folder_files):
     """one mesh, its solver factored once (and the aligned one, made on first use), the requests checked and
-    solved; the streamlines and the files of the folder in the parts it is made of"""
+    solved; the streamlines, the quad meshes and the files of the folder in the parts it is made of"""
 
     def __init__(self, path, n, folder=None):
         self.path = os.path.abspath(path)

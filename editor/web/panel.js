@@ -2,7 +2,7 @@
 import { EXTENSIONS, loadFile, saveFile } from "./files.js";
 import { balancingMove, edit, redoStack, travel, undoStack } from "./history.js";
 import { alignFeatures, placeFor } from "./server_edits.js";
-import { showAs } from "./solve.js";
+import { showAs, showQuadMesh } from "./solve.js";
 import { controlsShow, state } from "./state.js";
 import { $ } from "./status.js";
 
@@ -36,6 +36,8 @@ $("align").onchange = e => state.features ? alignFeatures(true, e.target.checked
 $("features").onchange = e => alignFeatures(e.target.checked);
 $("feature-angle").onchange = () => { if (state.features) alignFeatures(true); };
 $("display").onchange = e => showAs(e.target.value);
+$("quads").onchange = e => showQuadMesh(e.target.checked);
+$("quad-size").onchange = () => { if ($("quads").checked) showQuadMesh(true); };
 // the name's extension follows the kind of file
 $("kind").onchange = e => {
   const path = $("path").value, old = Object.values(EXTENSIONS).sort((a, b) => b.length - a.length)

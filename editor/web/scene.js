@@ -22,7 +22,7 @@ export const camera = new THREE.PerspectiveCamera(40, view.clientWidth / view.cl
 export const controls = new OrbitControls(camera, renderer.domElement);
 
 export let fieldView = null, bvh = null;
-let streamlines = null;
+let streamlines = null, quadLines = null;
 
 export function draw() {
   if (fieldView.stale) drawMarkers(); // the camera moved: other vertices are in sight
@@ -102,6 +102,28 @@ export function drawStreamlines(points, offsets) {
   streamlines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0x1f3a93, depthWrite: false }));
   scene.add(streamlines);
   fieldView.stale = true; // the 3D lines are in the view frame
+}
+
+// the quad mesh's edges (points (k, 3), quads (q, 4) into them), green lines over the mesh; null: none
+export function drawQuads(points, quads) {
+  if (quadLines) { scene.remove(quadLines); quadLines.geometry.dispose(); quadLines = null; fieldView.stale = true; }
+  if (!points) return 0;
+  // each edge once: the quads of a closed mesh share every edge
+  const segments = [], taken = new Set(), k = points.length / 3;
+  for (let q = 0; q < quads.length; q += 4)
+    for (let j = 0; j < 4; ++j) {
+      const a = quads[q + j], b = quads[q + (j + 1) % 4], key = Math.min(a, b) * k + Math.max(a, b);
+      if (taken.has(key)) continue;
+      taken.add(key);
+      segments.push(a, b);
+    }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(points, 3));
+  geometry.setIndex(segments);
+  quadLines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0x0b7a3e, depthWrite: false }));
+  scene.add(quadLines);
+  fieldView.stale = true; // the 3D lines are in the view frame
+  return segments.length / 2;
 }
 
 // whether the camera sees vertex v: nothing of the mesh is hit before it (within a fifth of an edge)

@@ -1,11 +1,14 @@
 // Solve requests: the state's field and streamlines from the server; a state shown, solved or unbalanced.
 import { balance, proposal, showBalance } from "./balance.js";
 import { post } from "./protocol.js";
-import { draw, drawMarkers, drawPins, drawStreamlines, fieldView, renderer } from "./scene.js";
+import { draw, drawMarkers, drawPins, drawQuads, drawStreamlines, fieldView, renderer } from "./scene.js";
 import { request } from "./state.js";
-import { explain, say } from "./status.js";
+import { $, explain, say } from "./status.js";
 
 let display = "glyphs";
+let solvedText = "";
+// the quad mesh is shown while its box is checked (state.js unchecks and disables it for n other than 4)
+const quadsOn = () => $("quads").checked && !$("quads").disabled;
 // the request of the field on the screen (the last solve that succeeded: an unbalanced state keeps it)
 let solvedRequest = null;
 
@@ -41,10 +44,56 @@ export async function solve() {
   }
   e.solves += 1;
   e.lastError = null;
-  say(`energy ${h.energy.toPrecision(6)}, residual ${h.max_residual.toExponential(1)}, ` +
-      `${(performance.now() - started).toFixed(1)} ms (solve ${(1e3 * h.timings.solve).toFixed(1)} ms)`);
+  solvedText = `energy ${h.energy.toPrecision(6)}, residual ${h.max_residual.toExponential(1)}, ` +
+               `${(performance.now() - started).toFixed(1)} ms (solve ${(1e3 * h.timings.solve).toFixed(1)} ms)`;
+  say(solvedText);
   if (display === "streamlines") traceStreamlines();
+  if (quadsOn()) quadMesh(); else if (window.__editor.quadSegments) showQuadMesh(false);
   return true;
+}
+
+// the quad mesh of the field on the screen (n = 4 only: the control is disabled otherwise), its edges drawn and its
+// report's counts added to the status line; a refusal (e.g. a quad size too small, a boundary the field does not
+// follow) said in words, the overlay taken away. One request at a time (a quad mesh can take seconds with many
+// singularities): edits meanwhile ask for one more, of the latest field, when it is done
+let quadRequests = 0, quadBusy = false, quadAgain = false;
+async function quadMesh() {
+  if (quadBusy) { quadAgain = true; return; }
+  if (!solvedRequest || solvedRequest.n !== 4) { drawQuads(null); draw(); return; }
+  const body = { ...solvedRequest }, size = Number($("quad-size").value), asked = ++quadRequests;
+  if ($("quad-size").value.trim() !== "" && Number.isFinite(size)) body.quad_size = size;
+  const e = window.__editor;
+  quadBusy = true;
+  try {
+    const { header: h, arrays } = await post("/api/quads", body);
+    if (quadsOn() && asked === quadRequests) { // not taken away meanwhile
+      const r = h.report;
+      e.quadSegments = drawQuads(arrays.points, arrays.quads);
+      e.quadReport = r;
+      draw();
+      say(`${solvedText} · quad mesh (H = ${r.quad_size.toPrecision(3)}): ${r.quads} quads, ` +
+          `${r.folded_triangles} folded triangles, ${r.valence_errors} valence errors`);
+    }
+  } catch (error) {
+    if (asked === quadRequests) {
+      drawQuads(null);
+      draw();
+      e.quadSegments = 0;
+      say(explain(error, "quads"), true);
+    }
+  } finally {
+    quadBusy = false;
+  }
+  if (quadAgain) {
+    quadAgain = false;
+    if (quadsOn()) quadMesh();
+  }
+}
+
+// the quad mesh overlay on or off
+export function showQuadMesh(on) {
+  if (on && quadsOn()) quadMesh();
+  else { ++quadRequests; drawQuads(null); draw(); window.__editor.quadSegments = 0; }
 }
 
 // the streamlines of the field on the screen (the last solved, also while the state is unbalanced)

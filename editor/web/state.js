@@ -32,4 +32,7 @@ export function controlsShow() {
   $("align").checked = state.alignBoundary;
   $("features").checked = state.features !== null;
   if (state.features) $("feature-angle").value = String(state.features.threshold);
+  // the quad mesh needs a cross field: off (and its overlay taken away by the next solve) for another n
+  $("quads").disabled = state.n !== 4;
+  if (state.n !== 4) $("quads").checked = false;
 }

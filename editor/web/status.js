@@ -29,7 +29,7 @@ const REASONS = {
   solver_failure: "the solver failed on this mesh and these pins",
 };
 const NOT_DONE = { solve: "Not solved", place: "No automatic placement", features: "No sharp features",
-                   streamlines: "No streamlines", save: "Not saved", load: "Not loaded" };
+                   streamlines: "No streamlines", save: "Not saved", load: "Not loaded", quads: "No quad mesh" };
 export function explain(error, doing, path = "") {
   console.warn(`editor: ${doing}${path ? " " + path : ""}: ${error.status ? "HTTP " + error.status + ": " : ""}` +
                error.message);
@@ -38,6 +38,12 @@ export function explain(error, doing, path = "") {
   if (error.status === undefined) why = "the server does not answer (is it still running?)";
   else if (error.status === 422 && doing === "features" && error.code === "invalid_argument")
     why = "the angle of the sharp features must be from 0° to 180°";
+  else if (error.status === 422 && doing === "quads" && /border/.test(raw))
+    why = "on a mesh with boundary the field must follow it (check “align with the boundary”)";
+  else if (error.status === 422 && doing === "quads" && error.code === "invalid_argument")
+    why = "the quad size must be a positive number, and not so small that the quads would be too many";
+  else if (error.status === 422 && doing === "quads" && error.code === "invalid_symmetry_order")
+    why = "a quad mesh needs a cross field (n = 4)";
   else if (error.status === 422) why = REASONS[error.code] ?? "the library refused it (the browser's console says why)";
   else if (error.status === 403 && files)
     why = /mesh being edited/.test(raw) ? `${file} is the mesh being edited, which the editor never replaces`

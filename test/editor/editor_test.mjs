@@ -10,13 +10,15 @@
 // stroke, an undo, an unbalancing click (the page shows the component and by how much, keeps the field drawn, glyphs
 // or streamlines, and shows no error) completed by the balancing move (one click: the singularity its button names),
 // save and load of singularities and constraints, a save over an existing file (the page asks: declined, the file
-// is kept; accepted, replaced), n = 6, streamlines, a PNG. After each step
+// is kept; accepted, replaced), n = 6 (the quad mesh control disabled), streamlines, a PNG. After each step
 // the field the page holds is checked against the library's answer for the same request (check_field.py, beside
 // this file; PYTHONPATH: the module), not pixels. The screenshot of the last step goes to OUTDIR/editor.png; its
 // structure is checked: the mesh at the centre, and each visible singularity's marker, in its colour, at the pixel
 // where the camera projects its vertex. On BORDERED_MESH, copied to OUTDIR/held/held.off and served from that folder
 // as `cd DIR; trivial_connections-serve held.off` does (issue 36): boundary alignment on, a pin, align with sharp
-// features on and off (issue 37), then saves under the mesh's own name and a hard link's, refused with the reason
+// features on and off (issue 37), the quad mesh overlay (issue 43: its edges drawn, its counts in the status line,
+// half the size about four times the quads, unchecked gone), then saves under the mesh's own name and a hard
+// link's, refused with the reason
 // shown and the mesh untouched.
 import { execFileSync } from "node:child_process";
 import { copyFileSync, existsSync, linkSync, mkdirSync, readdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
@@ -55,6 +57,15 @@ async function checkField(page, meshPath, what) {
 }
 
 const solves = page => page.evaluate(() => window.__editor.solves);
+// the pixels of the view in the quad mesh's green (0x0b7a3e, a colour nothing else of the page uses)
+const greenPixels = page => page.evaluate(() => {
+  const c = window.__editor.internals.fieldView.composite();
+  const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+  let count = 0;
+  for (let i = 0; i < d.length; i += 4)
+    count += Math.abs(d[i] - 0x0b) < 20 && Math.abs(d[i + 1] - 0x7a) < 20 && Math.abs(d[i + 2] - 0x3e) < 20;
+  return count;
+});
 async function solved(page, before) {
   await page.waitForFunction(n => window.__editor.solves > n || window.__editor.lastError, before, { timeout: 30000 });
   const error = await page.evaluate(() => window.__editor.lastError);
@@ -359,12 +370,16 @@ async function closedMesh(browser) {
       fail(`loaded ${JSON.stringify(loaded)}, saved ${JSON.stringify(saved)}`);
     await checkField(page, mesh, "saved and loaded back");
 
-    // another n: the automatic placement for it, the pin kept
+    if (await page.evaluate(() => document.getElementById("quads").disabled)) fail("n = 4: the quad mesh disabled");
+
+    // another n: the automatic placement for it, the pin kept; the quad mesh control disabled
     before = await solves(page);
     await page.selectOption("#n", "6");
     await solved(page, before);
     if (await page.evaluate(() => window.__editor.state.n) !== 6) fail("n did not become 6");
     await checkField(page, mesh, "n = 6 (automatic placement)");
+    if (!await page.evaluate(() => document.getElementById("quads").disabled))
+      fail("n = 6: the quad mesh control is not disabled");
 
     await page.selectOption("#display", "streamlines");
     await page.waitForFunction(() => window.__editor.streamlineCount > 0, null, { timeout: 30000 });
@@ -468,6 +483,39 @@ async function borderedMesh(browser) {
                                                             window.__editor.state.features]);
     if (pinsLeft !== 1 || features !== null) fail(`features unchecked: ${pinsLeft} pins left, features ${features}`);
     await checkField(page, heldMesh, "bordered mesh: the feature pins taken away");
+
+    // the quad mesh overlay (issue 43; n = 4, the field along the boundary and a pin): its edges drawn over the
+    // surface (green pixels in the view, none before), the report's counts in the status line; half the default
+    // size gives about four times the quads; unchecked, the edges go
+    if (await greenPixels(page) !== 0) fail("green pixels before the quad mesh is shown");
+    const quadsShown = async (what, size) => {
+      await page.waitForFunction(H => (window.__editor.quadReport && (!H || window.__editor.quadReport.quad_size === H)) ||
+                                 window.__editor.lastError, size, { timeout: 60000 });
+      const [segments, report, error] = await page.evaluate(() => [window.__editor.quadSegments,
+        window.__editor.quadReport, window.__editor.lastError]);
+      if (error) fail(`${what}: ${error}`);
+      const text = await page.textContent("#status"), green = await greenPixels(page);
+      const said = /quad mesh \(H = [^)]*\): (\d+) quads, (\d+) folded triangles, (\d+) valence errors/.exec(text);
+      if (!said || Number(said[1]) !== report.quads || Number(said[2]) !== report.folded_triangles ||
+          Number(said[3]) !== report.valence_errors) fail(`${what}: the status line says "${text}"`);
+      // every quad has 4 edges, each in one or two quads
+      if (!(report.quads > 0 && segments >= 2 * report.quads && segments <= 4 * report.quads))
+        fail(`${what}: ${segments} segments for ${report.quads} quads`);
+      if (!(green > 100)) fail(`${what}: ${green} green pixels`);
+      console.log(`${what}: ${text} (${segments} segments, ${green} green pixels)`);
+      return report;
+    };
+    await page.check("#quads");
+    const first = await quadsShown("quad mesh", null);
+    const half = Number((first.quad_size / 2).toPrecision(6));
+    await page.fill("#quad-size", String(half));
+    await page.dispatchEvent("#quad-size", "change");
+    const finer = await quadsShown("quad mesh, half the size", half);
+    if (!(finer.quads > 2.5 * first.quads && finer.quads < 6 * first.quads))
+      fail(`half the quad size: ${finer.quads} quads against ${first.quads}`);
+    await page.uncheck("#quads");
+    await page.waitForFunction(() => window.__editor.quadSegments === 0);
+    if (await greenPixels(page) !== 0) fail("the quad mesh unchecked: green pixels left");
 
     // the mesh's own name, and another name of its file: refused with the reason shown, never asked, never written
     const asked = [];

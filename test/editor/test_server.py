@@ -714,7 +714,7 @@ def test_save_on_a_file_system_without_hard_links(held, monkeypatch, refusal):
 # ---- malformed bodies, framings and methods: a reply, never a dropped connection (issue 36) ----------------------
 
 
-POSTS = ["/api/solve", "/api/place", "/api/streamlines", "/api/save", "/api/load", "/api/features"]
+POSTS = ["/api/solve", "/api/place", "/api/streamlines", "/api/save", "/api/load", "/api/features", "/api/quads"]
 
 
 @pytest.mark.parametrize("body, part", [
@@ -763,6 +763,18 @@ def test_malformed_bodies_get_a_400_line(server, capfd, endpoint, body, part):
     ("/api/features", {"threshold": 10**400}, 422, b"invalid_argument:"),  # too large for a float
     ("/api/features", {"align_boundary": 1}, 400, b"align_boundary must be"),
     ("/api/place", {"constraints": [[99, [1, 0, 0]]]}, 422, b"invalid_constraint:"),
+    ("/api/quads", {"quad_size": "1"}, 400, b"quad_size must be a number"),
+    ("/api/quads", {"quad_size": [1]}, 400, b"quad_size must be a number"),
+    ("/api/quads", {"quad_size": True}, 400, b"quad_size must be a number"),
+    ("/api/quads", {"target_faces": 1.5}, 400, b"target_faces must be an integer"),
+    ("/api/quads", {"target_faces": 0}, 400, b"target_faces must be an integer"),
+    ("/api/quads", {"quad_size": 1, "target_faces": 8}, 400, b"not both"),
+    ("/api/quads", {"singularities": [[0, 1], [1, 1]], "quad_size": 0}, 422, b"invalid_argument:"),
+    ("/api/quads", {"singularities": [[0, 1], [1, 1]], "quad_size": -1}, 422, b"invalid_argument:"),
+    ("/api/quads", {"singularities": [[0, 1], [1, 1]], "quad_size": 10**400}, 422, b"invalid_argument:"),
+    # far more than MAX_QUADS quads
+    ("/api/quads", {"singularities": [[0, 1], [1, 1]], "quad_size": 1e-9}, 422, b"invalid_argument:"),
+    ("/api/quads", {"n": 6}, 422, b"invalid_symmetry_order:"),
     ("/api/save", {"kind": "singularities", "path": "x\ud800.sing"}, 400, b""),
     ("/api/load", {"kind": "singularities", "path": "x\udcff.sing"}, 404, b""),
 ])
@@ -1083,3 +1095,65 @@ def test_thousands_of_pins_in_one_request(tmp_path):
         assert len(loaded["constraints"]) == len(F)
     finally:
         httpd.shutdown()
+
+
+# ---- issue 43: the quad mesh of the request's cross field ----------------------------------------------------------
+
+
+def quad_valences(points, quads):
+    """per point: the number of other points it shares a quad edge with; and the edges in one quad only"""
+    directed = {(int(q[j]), int(q[(j + 1) % 4])) for q in quads for j in range(4)}
+    neighbours = [set() for _ in range(len(points))]
+    for a, b in directed:
+        neighbours[a].add(b)
+        neighbours[b].add(a)
+    return [len(n) for n in neighbours], [(a, b) for a, b in directed if (b, a) not in directed]
+
+
+def test_quads_of_the_cube_are_its_squares(box):
+    # the cube of 5 x 5 squares per face, the field along the sharp edges (the features' pins), its corners +1/4:
+    # with H = 1/k, 6 k^2 quads, closed, valence 3 at the 8 corners and 4 elsewhere, on the cube; target_faces 54
+    # gives H = sqrt(6 / 54) = 1/3; no size: H = 4 mean edge lengths (from the mesh's own edges)
+    port, folder = box
+    V, F = mesh_of(port)
+    before = tree(str(folder))
+    pins, _ = answer(port, "/api/features", {"n": 4})
+    body = {"n": 4, "singularities": [[v, "1/4"] for v in corners_of(V)], "constraints": pins["constraints"]}
+    for k, size in [(5, {"quad_size": 0.2}), (3, {"target_faces": 54}), (1, {"quad_size": 1})]:
+        header, arrays = answer(port, "/api/quads", dict(body, **size))
+        points, quads, report = arrays["points"], arrays["quads"], header["report"]
+        assert quads.shape == (6 * k * k, 4) and report["quads"] == len(quads) and report["vertices"] == len(points)
+        assert abs(report["quad_size"] - 1 / k) < 1e-9 and header["n"] == 4
+        valence, border = quad_valences(points, quads)
+        assert border == [] and sorted(valence) == [3] * 8 + [4] * (len(points) - 8)
+        assert len(points) - len(quads) * 2 + len(quads) == 2  # V - E + F, E = 4 q / 2
+        assert np.all(np.min(np.minimum(np.abs(points), np.abs(points - 1)), axis=1) < 1e-6)  # on the cube
+        assert report["valence_errors"] == 0 and report["folded_triangles"] == 0 and report["flipped_quads"] == 0
+    edges = np.unique(np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1), axis=0)
+    mean = np.linalg.norm(V[edges[:, 0]].astype(float) - V[edges[:, 1]], axis=1).mean()
+    header, arrays = answer(port, "/api/quads", body)
+    assert abs(header["report"]["quad_size"] - serve.QUAD_SIZE_EDGES * mean) < 1e-6 * mean
+    assert header["report"]["quads"] == len(arrays["quads"]) > 0
+    assert tree(str(folder)) == before  # nothing written
+
+
+def test_quads_on_a_bordered_mesh_need_the_field_along_the_boundary(disk):
+    port, mesh, folder, _ = disk
+    with open(mesh, "rb") as f:
+        original = f.read()
+    before = tree(str(folder))
+    # a pin at 45 degrees to the square's sides (no singularity: the field turns with it): not along the boundary
+    status, data = post(port, "/api/quads", {"n": 4, "quad_size": 0.5, "constraints": [[40, [1, 1, 0]]]})
+    assert status == 422 and one_line(data) and b"border" in data, data
+    header, arrays = answer(port, "/api/quads", {"n": 4, "quad_size": 0.5, "align_boundary": True})
+    points, quads, report = arrays["points"], arrays["quads"], header["report"]
+    assert report["quads"] == len(quads) > 0 and quads.max() < len(points)
+    _, border = quad_valences(points, quads)
+    # the quads end on the boundary: edges in one quad, on the square's sides, which are not open edges (holes)
+    assert len(border) > 0 and report["open_edges"] == 0
+    on_side = lambda p: np.isclose(np.abs(p[:2]), 1, atol=1e-6).any()
+    assert all(on_side(points[a]) and on_side(points[b]) for a, b in border)
+    assert solve(port, [])[0] == 200  # the session keeps working
+    with open(mesh, "rb") as f:
+        assert f.read() == original
+    assert tree(str(folder)) == before

@@ -4,19 +4,21 @@ import math
 import time
 
 import numpy as np
+import trivial_connections as tc
 
 from .limits import MAX_QUADS, QUAD_SIZE_EDGES
+from .topology import face_edges
 from .wire import Refusal, frame, json_safe, shown
 
 
 class Quads:
-    """the quad-mesh requests of a Session (a part of it: self.V, self.F, self.problem(), self.solve())"""
+    """the quad-mesh requests of a Session (a part of it: self.V, self.F, self.problem(), self.solve(),
+    self.feature_angle())"""
 
     def mean_edge(self):
         """the mean length of the mesh's edges (each edge once), computed once"""
         if getattr(self, "_mean_edge", None) is None:
-            edges = np.unique(np.sort(np.concatenate([self.F[:, [0, 1]], self.F[:, [1, 2]], self.F[:, [2, 0]]]),
-                                      axis=1), axis=0)
+            edges = np.unique(face_edges(self.F), axis=0)
             self._mean_edge = float(np.linalg.norm(self.V[edges[:, 0]] - self.V[edges[:, 1]], axis=1).mean())
         return self._mean_edge
 
@@ -40,14 +42,24 @@ class Quads:
             size = math.inf
         return {"quad_size": size}  # not positive or finite: the library's invalid_argument (422)
 
+    def feature_edges(self, request):
+        """the sharp edges (the module's feature_curves() at the request's feature_threshold, in degrees) as vertex
+        pairs, put on iso-lines; None without feature_threshold"""
+        if "feature_threshold" not in request:
+            return None
+        curves, _ = tc.feature_curves(self.V, self.F, self.feature_angle(request, "feature_threshold"))
+        return np.vstack(curves) if curves else np.zeros((0, 2), np.int64)
+
     def quads_frame(self, request):
         p = self.problem(request)
         if p.n != 4:  # before the solve: the library would refuse it after
             raise Refusal(422, f"invalid_symmetry_order: a quad mesh needs a cross field (n = 4), not n = {p.n}")
         sizes = self.quad_sizes(request)
+        features = self.feature_edges(request)
         result, solver = self.solve(p)
         start = time.perf_counter()
-        points, quads, report = solver.quad_mesh(result, p.singularities, max_quads=MAX_QUADS, **sizes)
+        points, quads, report = solver.quad_mesh(result, p.singularities, max_quads=MAX_QUADS,
+                                                 feature_edges=features, **sizes)
         header = {"n": p.n, "energy": result.energy, "report": json_safe(report),
                   "timings": dict(result.timings, quads=time.perf_counter() - start)}
         return frame(header, [("points", points, "<f4"), ("quads", quads, "<u4")])

@@ -12,7 +12,7 @@ from .files import Folder_files
 from .limits import BODY_PER_FACE, MAX_BODY, MAX_N
 from .quads import Quads
 from .streamlines import Streamlines
-from .topology import angle_defects, components_of
+from .topology import angle_defects, components_of, face_edges
 from .wire import Refusal, frame, json_safe, shown
 
 
@@ -65,7 +65,7 @@ class Session(Streamlines, Quads, Folder_files):
         self.mesh_bytes = None
         self.max_body = MAX_BODY + BODY_PER_FACE * len(self.F)
         # the faces with an edge on the boundary (feature pins are left off them when the field follows it)
-        edges = np.sort(np.concatenate([self.F[:, [0, 1]], self.F[:, [1, 2]], self.F[:, [2, 0]]]), axis=1)
+        edges = face_edges(self.F)
         _, inverse, count = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
         self.boundary_face = (count[inverse.ravel()] == 1).reshape(3, -1).any(axis=0)
         self.features = {}  # (threshold, n) -> (faces, directions, report) of feature_aligned_faces()
@@ -190,17 +190,23 @@ class Session(Streamlines, Quads, Folder_files):
             placed, _ = state.solver.place_singularities(n=n, align_boundary=align, directions=targets)
         return frame({"n": n, "singularities": [[int(v), str(k)] for v, k in sorted(placed.items())]}, [])
 
+    @staticmethod
+    def feature_angle(request, name):
+        """the angle of the sharp features a request gives as `name` (degrees, default the library's), as a float;
+        out of [0, 180] is the library's refusal (422)"""
+        threshold = request.get(name, tc.DEFAULT_FEATURE_ANGLE)
+        if type(threshold) not in (int, float):
+            raise ValueError(f"{name} must be a number of degrees, got {shown(threshold)}")
+        try:
+            return float(threshold)
+        except OverflowError:  # an integer of hundreds of digits: out of range, as the library says
+            return math.inf if threshold > 0 else -math.inf
+
     def features_frame(self, request):
         """the pins of the sharp features (feature_aligned_faces() of the module), cached per threshold and n"""
         n = self.symmetry_order(request)
         align = self.align_boundary(request)
-        threshold = request.get("threshold", tc.DEFAULT_FEATURE_ANGLE)
-        if type(threshold) not in (int, float):
-            raise ValueError(f"threshold must be a number of degrees, got {shown(threshold)}")
-        try:
-            threshold = float(threshold)
-        except OverflowError:  # an integer of hundreds of digits: out of range, as the library says
-            threshold = math.inf if threshold > 0 else -math.inf
+        threshold = self.feature_angle(request, "threshold")
         with self.features_lock:
             if (threshold, n) not in self.features:
                 if len(self.features) >= 8:
@@ -221,7 +227,7 @@ class Session(Streamlines, Quads, Folder_files):
         header = {"vertices": len(self.V), "faces": len(self.F), "n": self.n, "chi": self.chi.tolist(),
                   "closed": self.closed,
                   "singularities": [[int(v), str(k)] for v, k in sorted(self.initial.items())]}
-        edges = np.sort(np.concatenate([self.F[:, [0, 1]], self.F[:, [1, 2]], self.F[:, [2, 0]]]), axis=1)
+        edges = face_edges(self.F)
         unique, count = np.unique(edges, axis=0, return_counts=True)
         self.mesh_bytes = bytes(frame(header, [("V", self.V, "<f4"), ("F", self.F, "<u4"),
                                                ("component", self.component, "<i4"),

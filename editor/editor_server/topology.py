@@ -1,6 +1,13 @@
-"""Per vertex of the mesh: its angle defect, its component; per component its Euler characteristic."""
+"""Per vertex of the mesh: its angle defect, its component; per component its Euler characteristic; the faces'
+edges."""
 
 import numpy as np
+
+
+def face_edges(F):
+    """the edges of the faces as rows (i, j), i < j: every face's first edges, then its second, then its third
+    ((3 m, 2): an interior edge twice)"""
+    return np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
 
 
 def angle_defects(V, F):
@@ -32,8 +39,7 @@ def components_of(V, F):
     used[F.ravel()] = True
     labels = {r: k for k, r in enumerate(sorted(set(roots[used].tolist())))}
     component = np.array([labels.get(r, -1) if u else -1 for r, u in zip(roots, used)])
-    edges = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
-    edges = np.unique(edges, axis=0)
+    edges = np.unique(face_edges(F), axis=0)
     chi = np.zeros(len(labels), int)
     np.add.at(chi, component[used], 1)
     np.add.at(chi, component[edges[:, 0]], -1)

@@ -90,23 +90,39 @@ export function drawBoundary(edges) {
   scene.add(new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0xd4740a, depthWrite: false })));
 }
 
+// indexed line segments over `points` ((k, 3) flat) in `color`, added to the 3D lines of the view frame
+function addLines(points, segments, color) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(points, 3));
+  geometry.setIndex(segments);
+  const lines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color, depthWrite: false }));
+  scene.add(lines);
+  fieldView.stale = true; // the 3D lines are in the view frame
+  return lines;
+}
+
+// takes lines of addLines() away (null: nothing); returns null
+function removeLines(lines) {
+  if (!lines) return null;
+  scene.remove(lines);
+  lines.geometry.dispose();
+  fieldView.stale = true;
+  return null;
+}
+
 export function drawStreamlines(points, offsets) {
-  if (streamlines) { scene.remove(streamlines); streamlines = null; fieldView.stale = true; }
+  streamlines = removeLines(streamlines);
   if (!points) return;
   const segments = [];
   for (let i = 0; i + 1 < offsets.length; ++i)
     for (let k = offsets[i]; k + 1 < offsets[i + 1]; ++k) segments.push(k, k + 1);
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.BufferAttribute(points, 3));
-  geometry.setIndex(segments);
-  streamlines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0x1f3a93, depthWrite: false }));
-  scene.add(streamlines);
-  fieldView.stale = true; // the 3D lines are in the view frame
+  streamlines = addLines(points, segments, 0x1f3a93);
 }
 
-// the quad mesh's edges (points (k, 3), quads (q, 4) into them), green lines over the mesh; null: none
+// the quad mesh's edges (points (k, 3), quads (q, 4) into them), green lines over the mesh; null: none. Returns
+// the number of segments drawn
 export function drawQuads(points, quads) {
-  if (quadLines) { scene.remove(quadLines); quadLines.geometry.dispose(); quadLines = null; fieldView.stale = true; }
+  quadLines = removeLines(quadLines);
   if (!points) return 0;
   // each edge once: the quads of a closed mesh share every edge
   const segments = [], taken = new Set(), k = points.length / 3;
@@ -117,12 +133,7 @@ export function drawQuads(points, quads) {
       taken.add(key);
       segments.push(a, b);
     }
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.BufferAttribute(points, 3));
-  geometry.setIndex(segments);
-  quadLines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0x0b7a3e, depthWrite: false }));
-  scene.add(quadLines);
-  fieldView.stale = true; // the 3D lines are in the view frame
+  quadLines = addLines(points, segments, 0x0b7a3e);
   return segments.length / 2;
 }
 

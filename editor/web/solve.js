@@ -2,7 +2,7 @@
 import { balance, proposal, showBalance } from "./balance.js";
 import { post } from "./protocol.js";
 import { draw, drawMarkers, drawPins, drawQuads, drawStreamlines, fieldView, renderer } from "./scene.js";
-import { request } from "./state.js";
+import { request, state } from "./state.js";
 import { $, explain, say } from "./status.js";
 
 let display = "glyphs";
@@ -62,6 +62,7 @@ async function quadMesh() {
   if (!solvedRequest || solvedRequest.n !== 4) { drawQuads(null); draw(); return; }
   const body = { ...solvedRequest }, size = Number($("quad-size").value), asked = ++quadRequests;
   if ($("quad-size").value.trim() !== "" && Number.isFinite(size)) body.quad_size = size;
+  if (state.features) body.feature_threshold = state.features.threshold; // the sharp edges on iso-lines too
   const e = window.__editor;
   quadBusy = true;
   try {

@@ -40,6 +40,8 @@ export function explain(error, doing, path = "") {
     why = "the angle of the sharp features must be from 0° to 180°";
   else if (error.status === 422 && doing === "quads" && /border/.test(raw))
     why = "on a mesh with boundary the field must follow it (check “align with the boundary”)";
+  else if (error.status === 422 && doing === "quads" && /feature edge/.test(raw))
+    why = "the field does not follow a sharp edge (a pin of yours across it?): the quads cannot follow it";
   else if (error.status === 422 && doing === "quads" && error.code === "invalid_argument")
     why = "the quad size must be a positive number, and not so small that the quads would be too many";
   else if (error.status === 422 && doing === "quads" && error.code === "invalid_symmetry_order")

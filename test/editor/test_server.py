@@ -775,6 +775,8 @@ def test_malformed_bodies_get_a_400_line(server, capfd, endpoint, body, part):
     # far more than MAX_QUADS quads
     ("/api/quads", {"singularities": [[0, 1], [1, 1]], "quad_size": 1e-9}, 422, b"invalid_argument:"),
     ("/api/quads", {"n": 6}, 422, b"invalid_symmetry_order:"),
+    ("/api/quads", {"feature_threshold": "30"}, 400, b"feature_threshold must be a number"),
+    ("/api/quads", {"singularities": [[0, 1], [1, 1]], "feature_threshold": 200}, 422, b"invalid_argument:"),
     ("/api/save", {"kind": "singularities", "path": "x\ud800.sing"}, 400, b""),
     ("/api/load", {"kind": "singularities", "path": "x\udcff.sing"}, 404, b""),
 ])
@@ -1135,6 +1137,29 @@ def test_quads_of_the_cube_are_its_squares(box):
     assert abs(header["report"]["quad_size"] - serve.QUAD_SIZE_EDGES * mean) < 1e-6 * mean
     assert header["report"]["quads"] == len(arrays["quads"]) > 0
     assert tree(str(folder)) == before  # nothing written
+
+
+def test_quads_follow_the_sharp_edges_with_a_feature_threshold(box):
+    # the cube of 5 x 5 squares per face with H = 0.4 (the side is not a multiple of H: no iso-line runs along the
+    # cube's edges by itself): with feature_threshold every edge of the cube is a chain of quad edges and the
+    # report counts its 60 mesh edges; a threshold over the cube's 90 degrees puts none on iso-lines
+    port, _ = box
+    V, F = mesh_of(port)
+    pins, _ = answer(port, "/api/features", {"n": 4})
+    body = {"n": 4, "singularities": [[v, "1/4"] for v in corners_of(V)], "constraints": pins["constraints"],
+            "quad_size": 0.4}
+    header, arrays = answer(port, "/api/quads", dict(body, feature_threshold=30))
+    points, quads, report = arrays["points"], arrays["quads"], header["report"]
+    assert report["feature_edges"] == 60 and report["valence_errors"] == 0 and report["folded_triangles"] == 0
+    edges = {tuple(sorted((int(q[j]), int(q[(j + 1) % 4])))) for q in quads for j in range(4)}
+    for axis in range(3):
+        others = [a for a in range(3) if a != axis]
+        for c in [(0, 0), (0, 1), (1, 0), (1, 1)]:
+            on = lambda v: all(abs(points[v][others[t]] - c[t]) < 1e-6 for t in range(2))
+            along = sum(abs(points[a][axis] - points[b][axis]) for a, b in edges if on(a) and on(b))
+            assert abs(along - 1) < 1e-5, (axis, c, along)  # the whole edge of the cube
+    header, _ = answer(port, "/api/quads", dict(body, feature_threshold=95))
+    assert header["report"]["feature_edges"] == 0
 
 
 def test_quads_on_a_bordered_mesh_need_the_field_along_the_boundary(disk):

@@ -18,7 +18,8 @@ missing file, 405 a method the URL does not take (with an Allow header), 408 the
 (a chunked body is not read), 413 a body longer than max_body (see Size below), 422 refused by the library
 ("code: message", e.g. "poincare_hopf_violated: ..."). GET and HEAD (the headers of the GET) on the page, its
 bundle and the mesh, POST on the rest.
-  GET  /api/mesh         header {vertices, faces, n, chi, closed (per component), singularities (placed at start)};
+  GET  /api/mesh         header {vertices, faces, n, chi, closed (per component), singularities (placed at start),
+                         quad_size (the quad mesh's default: {QUAD_SIZE_EDGES} mean edge lengths)};
                          arrays V <f4 (V, 3), F <u4 (F, 3), component <i4 (V,) (-1: no face), boundary <u4 (b, 2)
                          (boundary edges), angle_defect <f4 (V,) (2 pi minus the corner angles at the vertex)
   POST /api/place        {n?, align_boundary?, constraints?}: automatic placement -> header {n, singularities}: the

@@ -226,7 +226,8 @@ class Session(Streamlines, Quads, Folder_files):
             return self.mesh_bytes
         header = {"vertices": len(self.V), "faces": len(self.F), "n": self.n, "chi": self.chi.tolist(),
                   "closed": self.closed,
-                  "singularities": [[int(v), str(k)] for v, k in sorted(self.initial.items())]}
+                  "singularities": [[int(v), str(k)] for v, k in sorted(self.initial.items())],
+                  "quad_size": self.quad_sizes({})["quad_size"]}
         edges = face_edges(self.F)
         unique, count = np.unique(edges, axis=0, return_counts=True)
         self.mesh_bytes = bytes(frame(header, [("V", self.V, "<f4"), ("F", self.F, "<u4"),

@@ -39,7 +39,7 @@ async function start() {
   controlsShow();
   $("align").disabled = header.closed.every(c => c);
   buildScene();
-  $("quad-size").value = (4 * fieldView.meanEdge).toPrecision(3); // the quad mesh's default size: 4 mean edges
+  $("quad-size").value = String(header.quad_size); // the quad mesh's default size (the server's: 4 mean edges)
   drawBoundary(frame.arrays.boundary);
   showBalance();
   await solve();

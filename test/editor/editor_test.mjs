@@ -507,6 +507,8 @@ async function borderedMesh(browser) {
     };
     await page.check("#quads");
     const first = await quadsShown("quad mesh", null);
+    const shownSize = Number(await page.inputValue("#quad-size"));
+    if (first.quad_size !== shownSize) fail(`the quad size shown ${shownSize}, used ${first.quad_size}`);
     const half = Number((first.quad_size / 2).toPrecision(6));
     await page.fill("#quad-size", String(half));
     await page.dispatchEvent("#quad-size", "change");

@@ -1135,6 +1135,8 @@ def test_quads_of_the_cube_are_its_squares(box):
     mean = np.linalg.norm(V[edges[:, 0]].astype(float) - V[edges[:, 1]], axis=1).mean()
     header, arrays = answer(port, "/api/quads", body)
     assert abs(header["report"]["quad_size"] - serve.QUAD_SIZE_EDGES * mean) < 1e-6 * mean
+    mesh_header, _ = parse(request(port, "GET", "/api/mesh")[1])  # the page's default: the same size
+    assert mesh_header["quad_size"] == header["report"]["quad_size"]
     assert header["report"]["quads"] == len(arrays["quads"]) > 0
     assert tree(str(folder)) == before  # nothing written
 

@@ -5,8 +5,8 @@ import numpy as np
 
 
 def face_edges(F):
-    """the edges of the faces as rows (i, j), i < j: every face's first edges, then its second, then its third
-    ((3 m, 2): an interior edge twice)"""
+    """the edges of the faces as rows (i, j), i < j: every face's first edge (F[f, 0] to F[f, 1]), then every
+    face's second, then every face's third ((3 m, 2): an interior edge twice)"""
     return np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
 
 

@@ -104,6 +104,7 @@ int run(const Options& o, Progress_printer& progress)
   Solver solver = build_solver(o, in, solver_progress, time);
   Design design;
   design_singularities(o, in, solver, design, progress, time);
+  design.moved_off_features = move_singularities_off_features(o, in);
   const Solution solution = solve(o, in, solver, solver_progress, time);
   const Quads quads = make_quad_mesh(o, in, solution, progress, time);
   write_outputs(o, in, solver, solution, quads, progress, time);

@@ -200,6 +200,9 @@ inline void print_design(std::ostream& out, const Options& o, const Design& d)
         << " moves (" << r.cancellations << " cancellations) in " << r.trials << " trial solves ("
         << refinement_stop(r.stop) << ")\n";
   }
+  if(o.automatic && o.align_features && !o.quad_mesh.empty())
+    out << "singularities moved off feature lines: " << d.moved_off_features
+        << " (closer than H to a sharp edge, now at least H from every one, before the final solve)\n";
 }
 
 // The backend that factored the constraint system: the program's traits choose it by predicted cost

@@ -90,6 +90,7 @@ struct Design
   std::optional<TC::Placement_report> placement;
   std::optional<TC::Refinement_report<vertex_descriptor>> refinement;
   std::size_t curvature_guides = 0;
+  std::size_t moved_off_features = 0; // --auto --align-features --quad-mesh: see move_singularities_off_features()
 };
 
 struct Solution

@@ -510,13 +510,25 @@ private:
         std::copy(sum, sum + w, zj);
       }
     });
-    for(std::size_t c = 0; c < b; ++c) {
-      double* column = out[begin + c];
+    // out by rows, all columns at once: the b values of a position share a cache line (by columns, each row was a
+    // miss per column)
+    with_width([&](auto width) {
+      const std::size_t w = std::size_t(width);
+      double* column[block];
+      for(std::size_t c = 0; c < w; ++c)
+        column[c] = out[begin + c];
+      const double unwatched = std::numeric_limits<double>::quiet_NaN();
       for(Eigen::Index r = 0; r < m_rows; ++r) {
         const std::size_t j = std::size_t(m_position[r]);
-        column[r] = m_covered[j] ? z[j * b + c] : std::numeric_limits<double>::quiet_NaN();
+        const double* zj = &z[j * b];
+        if(m_covered[j])
+          for(std::size_t c = 0; c < w; ++c)
+            column[c][r] = zj[c];
+        else
+          for(std::size_t c = 0; c < w; ++c)
+            column[c][r] = unwatched;
       }
-    }
+    });
   }
 
   // (made here, the store may grow past its budget: columns in use stay valid until the next prefetch())

@@ -369,11 +369,7 @@ private:
     ws.z = ws.Rd;
     ws.difference = ws.z - ws.w;
     ws.h_difference.noalias() = R.transpose().triangularView<Eigen::Lower>() * ws.r;
-    const double babai_descent = greedy_descent(b.lattice.gram, ws.z, ws.difference, ws.h_difference);
-    if(babai_descent >= kept_descent)
-      return kept_descent - before;
-    ws.reduced_change = ws.z;
-    return babai_descent - before;
+    return descend_from_babai(b, kept_descent, before, ws);
   }
 
   // the same from nearest_plane_point() of ws.w (near a tie of local_from_corrected_babai()'s roundings)
@@ -385,6 +381,13 @@ private:
     if(nearest_plane_point(R, ws.w, ws.z, ws.difference, ws.Rd) >= kept_descent)
       return kept_descent - before;
     ws.h_difference.noalias() = R.transpose().triangularView<Eigen::Lower>() * ws.Rd;
+    return descend_from_babai(b, kept_descent, before, ws);
+  }
+
+  // the greedy descent from Babai's point (ws.z, with ws.difference = z - w and ws.h_difference = H_red (z - w)):
+  // its change kept in ws.reduced_change when it ends below the descent from 0 (value kept_descent)
+  double descend_from_babai(const Block& b, double kept_descent, double before, Workspace& ws) const
+  {
     const double babai_descent = greedy_descent(b.lattice.gram, ws.z, ws.difference, ws.h_difference);
     if(babai_descent >= kept_descent)
       return kept_descent - before;

@@ -321,9 +321,9 @@ def parse_program_report(stdout: str) -> Dict[str, Any]:
 def _read_singularities(path: Path) -> List[List[Any]]:
     out: List[List[Any]] = []
     for line in path.read_text().splitlines():
-        line = line.split("#", 1)[0].split()
-        if len(line) == 2:
-            out.append([int(line[0]), line[1]])
+        words = line.split("#", 1)[0].split()
+        if len(words) == 2:
+            out.append([int(words[0]), words[1]])
     return out
 
 
@@ -519,7 +519,7 @@ def run_batch(inputs: Sequence[str], out: str, options: Sequence[str] = (), *, w
     `scheduler`/`client` unless given, and never for workers that are not a local cluster's). Raises BatchError for a bad
     command, KeyboardInterrupt after a clean stop (finished meshes stay, no partial file)."""
     from distributed import Client, LocalCluster, as_completed
-    import cloudpickle
+    import cloudpickle  # type: ignore[import]  # (Debian ships no stubs for it)
 
     program = program or os.environ.get("TC_PROGRAM") or shutil.which("trivial_connections")
     if not program or not os.access(program, os.X_OK):
@@ -558,7 +558,7 @@ def run_batch(inputs: Sequence[str], out: str, options: Sequence[str] = (), *, w
     jobs: List[Dict[str, Any]] = []
     for path, relative in meshes:
         sing = _singularities_for(singularities_from, path)
-        job = {"path": str(path), "relative": relative, "target": str(out_dir / relative),
+        job: Dict[str, Any] = {"path": str(path), "relative": relative, "target": str(out_dir / relative),
                "sha256": _sha256([str(path), sing]), "singularities": sing, "options": options,
                "program": program, "write_mesh": write_mesh, "timeout": timeout, "memory_limit": memory,
                "attempt": 1, "cores_per_mesh": cores_per_mesh or 0}

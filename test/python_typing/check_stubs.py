@@ -5,7 +5,8 @@
 # python/trivial_connections.pyi) checked by Debian's mypy:
 #   1. the typed example of the README (examples/python/readme_example.py) passes mypy --strict, then runs;
 #   2. wrong uses of the module are errors (so the stubs are read, not Any);
-#   3. stubtest: the stubs against the module itself (every name of one in the other, and the same kinds).
+#   3. stubtest: the stubs against the module itself (every name of one in the other, and the same kinds);
+#   4. the batch module (python/trivial_connections_batch.py) passes mypy.
 # Usage: python3 check_stubs.py MYPY MODULE_DIR SOURCE_DIR   (PYTHONPATH=MODULE_DIR)
 
 import os
@@ -50,6 +51,9 @@ with tempfile.TemporaryDirectory() as d:
                "--allowlist", allowlist])
     if out.returncode != 0:
         failures.append("stubtest")
+    batch = os.path.join(source, "python", "trivial_connections_batch.py")
+    if run([mypy, "--no-incremental", "--cache-dir", os.path.join(d, "cache"), batch]).returncode != 0:
+        failures.append("mypy on trivial_connections_batch.py")
 
 if failures:
     print("FAILED:", "; ".join(failures))

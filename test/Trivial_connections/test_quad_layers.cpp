@@ -526,14 +526,12 @@ TEST(QuadLayers, TwoComponents)
   check_all(q, 0.15);
 }
 
-// A flat square with a constant field: the map is exactly affine, its gradient the field and its quarter turn
-// divided by H, at zero energy (the cut is the border only).
-TEST(QuadLayers, FlatSquareIsAffine)
+// the unit square, n x n squares of two triangles, interior vertices jittered by up to `amplitude` / n
+Soup unit_square(int n, double amplitude = 0.25, unsigned seed = 3)
 {
-  const int n = 8;
   Soup s;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> jitter(-0.3 / n, 0.3 / n);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-amplitude / n, amplitude / n);
   for(int i = 0; i <= n; ++i)
     for(int j = 0; j <= n; ++j) {
       const bool border = i == 0 || j == 0 || i == n || j == n;
@@ -545,7 +543,14 @@ TEST(QuadLayers, FlatSquareIsAffine)
       s.faces.push_back({{a, b, b + 1}});
       s.faces.push_back({{a, b + 1, a + 1}});
     }
-  const Surface_mesh mesh = to_surface_mesh(s);
+  return s;
+}
+
+// A flat square with a constant field: the map is exactly affine, its gradient the field and its quarter turn
+// divided by H, at zero energy (the cut is the border only).
+TEST(QuadLayers, FlatSquareIsAffine)
+{
+  const Surface_mesh mesh = to_surface_mesh(unit_square(8, 0.3, 7));
   TCI::Mesh_arrays<Surface_mesh> arrays(mesh, get(CGAL::vertex_point, mesh), K());
   TCI::Mesh_geometry geometry(arrays, TC::Weighting::hodge_star);
   geometry.compute_angles(arrays);
@@ -1258,26 +1263,6 @@ Quad_case::Designer constant_field(const V3& d)
     x.assign(view.nh(), 0.);
     field.assign(view.nf(), Vector(d[0], d[1], d[2]));
   };
-}
-
-// the unit square, n x n squares of two triangles, interior vertices jittered
-Soup unit_square(int n)
-{
-  Soup s;
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> jitter(-0.25 / n, 0.25 / n);
-  for(int i = 0; i <= n; ++i)
-    for(int j = 0; j <= n; ++j) {
-      const bool border = i == 0 || j == 0 || i == n || j == n;
-      s.points.emplace_back(double(i) / n + (border ? 0 : jitter(rng)), double(j) / n + (border ? 0 : jitter(rng)), 0.);
-    }
-  for(int i = 0; i < n; ++i)
-    for(int j = 0; j < n; ++j) {
-      const int a = i * (n + 1) + j, b = (i + 1) * (n + 1) + j;
-      s.faces.push_back({{a, b, b + 1}});
-      s.faces.push_back({{a, b + 1, a + 1}});
-    }
-  return s;
 }
 
 // A flat unit square, field along x, its border flagged, H = 1/k: exactly k^2 quads; on the border the corners

@@ -94,6 +94,12 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
   return q;
 }
 
+// what the program counts against a quad mesh: folded and degenerate triangles of the map, valence errors
+inline std::size_t quad_flaws(const Quads& q)
+{
+  return q.report ? q.report->folded_triangles + q.report->degenerate_triangles + q.report->valence_errors : 0;
+}
+
 // The quads as an OBJ file: 'v x y z' per vertex, 'f a b c d' (1-based) per quad, counter-clockwise seen from outside
 inline void write_quads_obj(std::ostream& os, const Mesh& quads)
 {

@@ -200,9 +200,15 @@ inline void print_design(std::ostream& out, const Options& o, const Design& d)
         << " moves (" << r.cancellations << " cancellations) in " << r.trials << " trial solves ("
         << refinement_stop(r.stop) << ")\n";
   }
-  if(o.automatic && o.align_features && !o.quad_mesh.empty())
-    out << "singularities moved off feature lines: " << d.moved_off_features
-        << " (closer than H to a sharp edge, now at least H from every one, before the final solve)\n";
+  if(o.automatic && o.align_features && !o.quad_mesh.empty()) {
+    out << "singularities moved off feature lines: " << d.moved_off_features;
+    if(d.moves_not_kept > 0)
+      out << " (the " << d.moves_not_kept << " closer than H to a sharp edge stay where they were placed: with them "
+          << "moved the quads had more flaws, " << d.flaws_moved << " folded or degenerate triangles and valence "
+          << "errors against " << d.flaws_kept << ")\n";
+    else
+      out << " (closer than H to a sharp edge, now at least H from every one, before the final solve)\n";
+  }
 }
 
 // The backend that factored the constraint system: the program's traits choose it by predicted cost

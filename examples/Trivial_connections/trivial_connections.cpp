@@ -49,6 +49,7 @@
 #include <exception>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 
 namespace {
@@ -109,18 +110,23 @@ int run(const Options& o, Progress_printer& progress)
   Solution solution = solve(o, in, solver, solver_progress, time);
   Quads quads = make_quad_mesh(o, in, solution, progress, time);
   if(design.moved_off_features > 0 && quad_flaws(quads) > 0) {
-    // the move folds less at most sizes, not all (fandisk at the diagonal / 49: 54 folded triangles moved, 34 +
-    // 8 degenerate not): the quads without it, kept when they have fewer flaws (the solves reuse the factor)
+    // the move folds less at most sizes, not all (fandisk at the diagonal / 54: 54 folded triangles moved, 29 + 2
+    // degenerate not): the quads without it, kept when they have fewer flaws (the solves reuse the factor)
     const Singularities moved = in.singularities;
     in.singularities = placed;
     solution = solve(o, in, solver, solver_progress, time);
-    Quads unmoved = make_quad_mesh(o, in, solution, progress, time);
-    if(quad_flaws(unmoved) < quad_flaws(quads)) {
+    std::optional<Quads> unmoved;
+    try {
+      unmoved = make_quad_mesh(o, in, solution, progress, time);
+    } catch(const TC::Invalid_input&) {
+      // without the move the rounding can be infeasible (fandisk at the diagonal / 25): the moved quads stay
+    }
+    if(unmoved && quad_flaws(*unmoved) < quad_flaws(quads)) {
       design.moves_not_kept = design.moved_off_features;
       design.flaws_moved = quad_flaws(quads);
-      design.flaws_kept = quad_flaws(unmoved);
+      design.flaws_kept = quad_flaws(*unmoved);
       design.moved_off_features = 0;
-      quads = std::move(unmoved);
+      quads = std::move(*unmoved);
     } else {
       in.singularities = moved; // the connection and field of the moved set again (x and field are shared maps)
       solution = solve(o, in, solver, solver_progress, time);

@@ -11,7 +11,6 @@
 #define CGAL_TRIVIAL_CONNECTIONS_PROGRAM_DESIGN_H
 
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
-#include <CGAL/Trivial_connections/feature_alignment.h>
 #include <CGAL/Trivial_connections/singularity_placement.h>
 #include <CGAL/Trivial_connections/singularity_refinement.h>
 
@@ -158,9 +157,9 @@ inline std::size_t move_singularities_off_features(const Options& o, Inputs& in)
   }
   const std::size_t nv = mesh.number_of_vertices() + mesh.number_of_removed_vertices();
   std::vector<char> on_line(nv, 0);
-  for(const auto& curve : TC::feature_curves(mesh, o.feature_angle).curves)
-    for(auto h : curve.halfedges)
-      on_line[std::size_t(source(h, mesh))] = on_line[std::size_t(target(h, mesh))] = 1;
+  for(auto e : edges(mesh))
+    if(in.features.sharp_edges[std::size_t(e)])
+      on_line[std::size_t(source(e, mesh))] = on_line[std::size_t(target(e, mesh))] = 1;
   using Item = std::pair<double, vertex_descriptor>;
   auto length = [&](halfedge_descriptor h) {
     return std::sqrt(CGAL::to_double(CGAL::squared_distance(mesh.point(source(h, mesh)), mesh.point(target(h, mesh)))));

@@ -39,6 +39,7 @@ struct Feature_pins
   std::size_t on_guided_faces = 0;  // left to the guidance file
   std::size_t on_aligned_boundary = 0; // left out: the field follows the boundary there
   std::vector<std::array<std::size_t, 2>> lines; // the sharp edges of the kept curves (vertices in file order)
+  std::vector<char> sharp_edges; // by edge: on a kept curve (--quad-mesh puts them on iso-lines)
 };
 
 /*
@@ -80,11 +81,17 @@ Feature_pins add_feature_pins(const Options& o, Inputs& in)
     ++out.pinned;
   }
   in.mesh.remove_property_map(map);
+  // the curves once, for --feature-lines, the quads' iso-lines and the singularities kept off them
+  const auto curves = TC::feature_curves(in.mesh, o.feature_angle).curves;
+  out.sharp_edges.assign(num_edges(in.mesh), 0);
+  for(const auto& curve : curves)
+    for(auto h : curve.halfedges)
+      out.sharp_edges[std::size_t(edge(h, in.mesh))] = 1;
   if(!o.feature_lines.empty()) {
     std::vector<std::size_t> file_index(num_vertices(in.mesh));
     for(std::size_t v = 0; v < in.order.vertices.size(); ++v)
       file_index[std::size_t(in.order.vertices[v])] = v;
-    for(const auto& curve : TC::feature_curves(in.mesh, o.feature_angle).curves)
+    for(const auto& curve : curves)
       for(auto h : curve.halfedges)
         out.lines.push_back({{file_index[std::size_t(source(h, in.mesh))], file_index[std::size_t(target(h, in.mesh))]}});
   }

@@ -79,11 +79,8 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
   progress.begin("quad mesh");
   namespace P = TC::parameters;
   // with --align-features, the sharp edges the field was pinned along: on iso-lines
-  std::vector<char> sharp(num_edges(in.mesh), 0);
-  if(o.align_features)
-    for(const auto& curve : TC::feature_curves(in.mesh, o.feature_angle).curves)
-      for(auto h : curve.halfedges)
-        sharp[std::size_t(edge(h, in.mesh))] = 1;
+  std::vector<char> sharp = in.features.sharp_edges;
+  sharp.resize(num_edges(in.mesh), 0); // none without --align-features
   const auto features = boost::make_iterator_property_map(sharp.begin(), get(boost::edge_index, in.mesh));
   q.report = o.quad_size > 0
                ? TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,

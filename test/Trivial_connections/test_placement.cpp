@@ -551,6 +551,13 @@ TEST(Refinement, selected_inverse_is_the_inverse_on_the_pattern_of_the_factor)
   TC::internal::Unit_lower_factor f;
   ASSERT_TRUE(TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial>>::read(view, f));
   const std::vector<int> start = f.start, row = f.row;
+  // the supernodes go in dense blocks, the other columns one by one: both are compared below
+  const std::vector<int> first = TC::internal::supernode_firsts(start, row);
+  const auto in_blocks = std::count_if(first.begin(), first.end(), [&](int j0) {
+    return j0 + 1 < int(first.size()) && first[std::size_t(j0) + 1] == j0;
+  });
+  EXPECT_GT(in_blocks, nn / 20);
+  EXPECT_LT(in_blocks, nn);
   const TC::internal::Selected_inverse z(std::move(f));
   std::size_t checked = 0;
   double scale = 0;
@@ -574,6 +581,34 @@ TEST(Refinement, selected_inverse_is_the_inverse_on_the_pattern_of_the_factor)
   ASSERT_GE(off_j, 0);
   EXPECT_TRUE(std::isnan(z.entry(off_i, off_j)));
 }
+
+#ifdef CGAL_TRIVIAL_CONNECTIONS_USE_CHOLMOD
+// Through CHOLMOD's supernodal factor, read with the zeros of its dense blocks: the inversion by blocks meets entries
+// of Z_RR off the pattern (padded rows) and goes column by column there; every entry still that of the inverse.
+TEST(Refinement, selected_inverse_of_a_supernodal_factor_is_the_inverse_on_its_pattern)
+{
+  const int side = 36, nn = side * side;
+  const Eigen::SparseMatrix<double> M = grid_in_fill_reducing_order(side);
+  TC::Cholmod_solver_traits traits;
+  traits.solver().compute(M);
+  ASSERT_EQ(traits.solver().info(), Eigen::Success);
+  TC::internal::Unit_lower_factor f;
+  ASSERT_TRUE(TC::internal::Factor_reading<TC::Cholmod_solver_traits>::read(traits, f));
+  const std::vector<int> start = f.start, row = f.row;
+  const std::vector<double> value = f.value;
+  const TC::internal::Selected_inverse z(std::move(f));
+  std::size_t padded = 0;
+  for(int j = 0; j < nn; ++j) {
+    const Eigen::VectorXd column = traits.solver().solve(Eigen::VectorXd::Unit(nn, j));
+    EXPECT_NEAR(z.entry(j, j), column[j], 1e-10 * column[j]);
+    for(int p = start[std::size_t(j)]; p < start[std::size_t(j) + 1]; ++p) {
+      padded += value[std::size_t(p)] == 0 ? 1 : 0;
+      EXPECT_NEAR(z.entry(row[std::size_t(p)], j), column[row[std::size_t(p)]], 1e-10 * column[j]);
+    }
+  }
+  EXPECT_GT(padded, std::size_t(0)); // the case of the fallback is there
+}
+#endif
 
 // The refinement's entries of M^-1, wherever they come from: the selected inversion, the elimination tree paths (few
 // singularities) or columns (no readable factor), near a vertex and far from it, against solves of M.

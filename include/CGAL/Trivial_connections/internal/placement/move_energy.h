@@ -36,7 +36,7 @@ namespace internal {
   the first term the energy gradient of the current solve. A free integer m_l of a loop or link changed by s
   adds 2 pi s / n on its row, and the same expansion, with the multiplier of that row, prices it.
   The entries of G between a vertex and its neighbours are on the pattern of the factor, so one selected inversion
-  gives them all, at several times the factorization's cost; with few singularities their paths in the
+  gives them all, at about the factorization's cost; with few singularities their paths in the
   elimination tree (see Path) give those wanted for far less. A pair of distant vertices costs the
   back-substitution of a column (kept). Without a readable factor every entry comes from columns. A vertex without
   a row (boundary vertices, one pinned vertex per closed component) has G = 0.
@@ -63,14 +63,10 @@ public:
     m_row_at.resize(std::size_t(m_rows));
     for(Eigen::Index r = 0; r < m_rows; ++r)
       m_row_at[std::size_t(m_position[r])] = int(r);
-    // The work of each: a selected inversion about sum (column length)^2, and several times that in lookups; a
-    // path that of the columns along it, for each vertex wanted, and more as singularities move.
+    // The work of each: a selected inversion's from its supernodes (see selected_inversion_work()); a path that of
+    // the columns along it, for each vertex wanted, and more as singularities move.
     const int n = m_factor.n;
-    double inversion = 0;
-    for(int j = 0; j < n; ++j) {
-      const double length = double(m_factor.start[std::size_t(j) + 1] - m_factor.start[std::size_t(j)] + 1);
-      inversion += length * length;
-    }
+    const double inversion = selected_inversion_work(m_factor.start, m_factor.row);
     // The elimination tree of the factor as read: its rows of a column are ancestors of it, which the paths and
     // the columns rely on. A supernodal factor brings the zeros of its dense blocks along, and pins' fixed edges
     // put zeros in any factor: the inversion needs them (its pattern must stay chordal), the substitutions of

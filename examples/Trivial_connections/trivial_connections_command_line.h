@@ -52,8 +52,8 @@ inline const char* const usage_text =
   "                           [--singularity-points OUT] [--streamlines OUT] [--streamline-seeds K]\n"
   "                           [--auto] [--no-refine] [--align-curvature] [--alignment-strength S]\n"
   "                           [--refine] [--cancel-pairs] [--write-singularities OUT]\n"
-  "                           [--quad-mesh OUT.obj (--quad-size H | --target-faces N)] [--progress]\n"
-  "                           [--error-codes] [--help] [--version]\n"
+  "                           [--quad-mesh OUT.obj (--quad-size H | --target-faces N)\n"
+  "                            [--quad-scale-smoothness S]] [--progress] [--error-codes] [--help] [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
@@ -141,6 +141,9 @@ inline const char* const usage_text =
   "                        have fewer flaws without the move (both made then; reported).\n"
   "  --quad-size H         the quads' edge length, in the mesh's unit (with --quad-mesh)\n"
   "  --target-faces N      instead of --quad-size: about N quads (H = sqrt(area / N))\n"
+  "  --quad-scale-smoothness S  (with --quad-mesh) scale the field per face first, so that it is closer\n"
+  "                        to a gradient; its log varies over about sqrt(S) H (0.1: fewer folds near\n"
+  "                        singularities on fine organic meshes). Default 0: off\n"
   "  --error-codes         the error line names the error code: 'trivial_connections: error [CODE]: ...'\n"
   "                        (CODE: an error code of the library, usage_error, out_of_memory or internal_error)\n"
   "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
@@ -207,6 +210,7 @@ struct Options
   std::string quad_mesh;     // --quad-mesh OUT
   double quad_size = 0;      // --quad-size H (0: not given)
   std::size_t target_faces = 0; // --target-faces N (0: not given)
+  double quad_scale_smoothness = -1; // --quad-scale-smoothness S (-1: not given)
 };
 
 using String_field = std::string Options::*;
@@ -243,6 +247,15 @@ inline void parse_quad_size(Options& o, const std::string& text)
   o.quad_size = std::strtod(text.c_str(), &end);
   if(text.empty() || end != text.c_str() + text.size() || !(o.quad_size > 0) || !std::isfinite(o.quad_size))
     throw Usage_error("--quad-size expects a positive finite number, got '" + text + "'");
+}
+
+inline void parse_quad_scale_smoothness(Options& o, const std::string& text)
+{
+  char* end = nullptr;
+  o.quad_scale_smoothness = std::strtod(text.c_str(), &end);
+  if(text.empty() || end != text.c_str() + text.size() || !(o.quad_scale_smoothness >= 0) ||
+     !std::isfinite(o.quad_scale_smoothness))
+    throw Usage_error("--quad-scale-smoothness expects a non-negative finite number, got '" + text + "'");
 }
 
 inline void parse_target_faces(Options& o, const std::string& text)
@@ -305,7 +318,7 @@ struct Valued_option
 };
 
 // The options that take a value. Each may be given once, as `--name value` or `--name=value`.
-inline const std::array<Valued_option, 22> valued_options = {{
+inline const std::array<Valued_option, 23> valued_options = {{
   {"--write-mesh", &Options::write_mesh, nullptr},
   {"--write-singularities", &Options::write_singularities, nullptr},
   {"--write-constraints", &Options::write_constraints, nullptr},
@@ -328,6 +341,7 @@ inline const std::array<Valued_option, 22> valued_options = {{
   {"--quad-mesh", &Options::quad_mesh, nullptr},
   {"--quad-size", nullptr, parse_quad_size},
   {"--target-faces", nullptr, parse_target_faces},
+  {"--quad-scale-smoothness", nullptr, parse_quad_scale_smoothness},
 }};
 
 inline bool same_file(const std::string& a, const std::string& b)
@@ -476,6 +490,8 @@ inline Options parse_arguments(int argc, char** argv)
     throw Usage_error("--feature-lines is an option of --align-features");
   if(o.quad_mesh.empty() && (o.quad_size > 0 || o.target_faces > 0))
     throw Usage_error(std::string(o.quad_size > 0 ? "--quad-size" : "--target-faces") + " is an option of --quad-mesh");
+  if(o.quad_mesh.empty() && o.quad_scale_smoothness >= 0)
+    throw Usage_error("--quad-scale-smoothness is an option of --quad-mesh");
   if(!o.quad_mesh.empty() && o.n != 4)
     throw Usage_error("--quad-mesh needs a cross field: --n 4 (got --n " + std::to_string(o.n) + ")");
   if(!o.quad_mesh.empty() && (o.quad_size > 0) == (o.target_faces > 0))

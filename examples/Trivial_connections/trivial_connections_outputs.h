@@ -82,11 +82,12 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
   std::vector<char> sharp = in.features.sharp_edges;
   sharp.resize(num_edges(in.mesh), 0); // none without --align-features
   const auto features = boost::make_iterator_property_map(sharp.begin(), get(boost::edge_index, in.mesh));
+  const double scaling = (std::max)(o.quad_scale_smoothness, 0.); // not given: off
   q.report = o.quad_size > 0
                ? TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
-                                       P::quad_size(o.quad_size).edge_is_constrained_map(features))
+                                       P::quad_scale_smoothness(scaling, P::quad_size(o.quad_size).edge_is_constrained_map(features)))
                : TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
-                                       P::target_faces(o.target_faces).edge_is_constrained_map(features));
+                                       P::quad_scale_smoothness(scaling, P::target_faces(o.target_faces).edge_is_constrained_map(features)));
   progress.end("quad mesh");
   return q;
 }

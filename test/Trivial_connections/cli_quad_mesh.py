@@ -4,9 +4,10 @@
 #    (the field along the cube's edges): with --quad-size 1/k the OBJ holds 6 k^2 quads, every edge in two quads
 #    with opposite directions, V - E + F = 2, the eight corners of valence 3 and every other vertex 4, every quad
 #    on one face of the cube facing out; the report line says the same (0 valence errors, 0 folds, 0 flipped,
-#    Hausdorff distance <= H/2); --target-faces 54 gives H = 1/3 and 54 quads;
+#    Hausdorff distance <= H/2); --target-faces 54 gives H = 1/3 and 54 quads; with --quad-scale-smoothness the
+#    same (the cube's field is a gradient already: the scale stays 1);
 #  - the usage errors (status 2): --quad-mesh without --n 4, without or with both of --quad-size and
-#    --target-faces, a bad H; the input errors (status 1): H so small that the mesh would exceed the bound, a
+#    --target-faces, a bad H, --quad-scale-smoothness without --quad-mesh or negative; the input errors (status 1): H so small that the mesh would exceed the bound, a
 #    surface with border the field does not follow; no file written on any error;
 #  - the open box with --align-boundary: 5 k^2 quads ending on its rim; the cube of 5 x 5 squares per face with
 #    H = 0.4 and --align-features: its 12 edges are chains of quad edges.
@@ -119,6 +120,8 @@ check_cube(1, ["--quad-size", "1"])
 check_cube(2, ["--quad-size", "0.5"])
 check_cube(4, ["--quad-size", "0.25"])
 check_cube(3, ["--target-faces", "54"])
+# the cube's field is a gradient already (flat faces, unit length): scaling it towards one leaves it alone
+check_cube(2, ["--quad-size", "0.5", "--quad-scale-smoothness", "0.1"])
 
 # errors: nothing written
 obj = os.path.join(out, "refused.obj")
@@ -136,6 +139,9 @@ for args, status, what in [
     (["--n", "4", "--quad-mesh", obj, "--quad-size", "-1"], 2, "a negative H"),
     (["--n", "4", "--quad-mesh", obj, "--quad-size", "nan"], 2, "H = nan"),
     (["--n", "4", "--quad-mesh", obj, "--target-faces", "0"], 2, "0 target faces"),
+    (["--n", "4", "--quad-scale-smoothness", "0.1"], 2, "--quad-scale-smoothness without --quad-mesh"),
+    (["--n", "4", "--quad-mesh", obj, "--quad-size", "0.5", "--quad-scale-smoothness", "-1"], 2,
+     "a negative scale smoothness"),
     (["--n", "4", "--quad-mesh", obj, "--quad-size", "1e-5"], 1, "H too small"),
 ]:
     p = run(err + args, status)

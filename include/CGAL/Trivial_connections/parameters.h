@@ -46,6 +46,7 @@ enum quad_size_t { quad_size };
 enum target_faces_t { target_faces };
 enum quad_rounding_t { quad_rounding };
 enum max_quads_t { max_quads };
+enum quad_scale_smoothness_t { quad_scale_smoothness };
 } // namespace tc_np
 
 /*!
@@ -200,6 +201,12 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(quad_rounding)
 /// \param value the bound, positive
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(max_quads)
+/// `double` S >= 0, default 0 (off): `compute_quad_mesh()` first scales the field per face, with a scale whose
+/// logarithm varies over about sqrt(S) H, so that it is closer to a gradient (fewer folds near singularities on
+/// fine meshes; 0.1 is a good value there)
+/// \param value S, non-negative and finite
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(quad_scale_smoothness)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
 } // namespace parameters

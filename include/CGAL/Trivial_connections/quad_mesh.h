@@ -137,6 +137,11 @@ the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided d
     about that many quads, H = sqrt(area / N)} \cgalParamNEnd
   \cgalParamNBegin{quad_rounding} \cgalParamType{`Quad_rounding`} \cgalParamDefault{`Quad_rounding::greedy`} \cgalParamNEnd
   \cgalParamNBegin{max_quads} \cgalParamType{`double`} \cgalParamDefault{1e7} \cgalParamNEnd
+  \cgalParamNBegin{quad_scale_smoothness} \cgalParamType{`double`} \cgalParamDescription{S > 0: the field's
+    length is first scaled per face to make it closer to a gradient (the least squares of the map and of a smooth
+    log-scale together, whose variation costs S times its Dirichlet energy: it varies over about sqrt(S) H), the
+    mean quad size staying H; 0.1 removes the folds near singularities on bunny00 (see the manual)}
+    \cgalParamDefault{0: off} \cgalParamNEnd
   \cgalParamNBegin{edge_is_constrained_map} \cgalParamType{a readable property map `edge_descriptor -> bool`}
     \cgalParamDescription{the feature edges (e.g. the sharp edges of `feature_curves()`): each is put on an integer
     iso-line, so that quad edges follow it. The field must be aligned with them (as `feature_aligned_faces()`
@@ -168,6 +173,9 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
     throw Invalid_input(Error_code::invalid_argument, has_size ? "give the quad size or the target number of faces, not both"
                                                                : "give the quad size or the target number of faces");
   const double max_quads = double(choose_parameter(get_parameter(np, tc_np::max_quads), 1e7));
+  const double scale_smoothness = double(choose_parameter(get_parameter(np, tc_np::quad_scale_smoothness), 0.));
+  if(!(scale_smoothness >= 0) || !std::isfinite(scale_smoothness))
+    throw Invalid_input(Error_code::invalid_argument, "quad_scale_smoothness must be a non-negative finite number");
   if(!(max_quads >= 1) || !std::isfinite(max_quads))
     throw Invalid_input(Error_code::invalid_argument, "max_quads must be a finite number of at least 1");
 
@@ -242,7 +250,7 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
       }
   }
   const internal::Quad_pipeline_result made =
-    internal::quad_mesh_pipeline(m, g, q, singular, H, scheme, max_quads, feature_corners);
+    internal::quad_mesh_pipeline(m, g, q, singular, H, scheme, max_quads, feature_corners, scale_smoothness);
   const internal::Quad_mesh& quads = made.mesh;
   const internal::Quad_measures measures = internal::measure_quad_mesh(m, quads, H / 4);
 

@@ -76,12 +76,13 @@ struct Quad_pipeline_result
 
 // singular: the singular vertices (array numbering), each once; H > 0 the quad size; max_quads the bound of
 // the extraction; feature_corners: empty, or per corner halfedge whether its edge is a feature edge, put on an
-// integer iso-line like every border edge. Throws Invalid_input as the layers do.
+// integer iso-line like every border edge; scale_smoothness > 0: the target scaled per face first
+// (Seamless_parametrization::reduce_curl()). Throws Invalid_input as the layers do.
 template <class TriangleMesh>
 Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
                                         const Quad_field& field, const std::vector<int>& singular, double H,
                                         Rounding_scheme scheme, double max_quads,
-                                        const std::vector<char>& feature_corners = {})
+                                        const std::vector<char>& feature_corners = {}, double scale_smoothness = 0)
 {
   const std::vector<int> matching = cross_field_matching(m, g, field.angle, field.connection);
   const Cut_graph cut = build_cut_graph(m, g, matching, singular);
@@ -94,6 +95,8 @@ Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, cons
     any = any || on_iso_line[e];
   }
   Seamless_parametrization parametrization(m, cut, field.angle, H, any ? on_iso_line : std::vector<char>());
+  if(scale_smoothness > 0)
+    parametrization.reduce_curl(scale_smoothness);
   Integer_rounding rounding(parametrization, cut);
   const Integer_rounding_result rounded = rounding.round(scheme);
   Quad_pipeline_result result;

@@ -178,6 +178,85 @@ public:
     return map;
   }
 
+  /*
+    Curl reduction (optional, before the rounding): the target d_f / H is a gradient only where the combed field
+    is integrable; where it is not (curl), the map must distort and may fold. A per-face scale e^{s_f} can make it
+    closer to a gradient: s and the map are fitted together, linearised (e^{s + ds} ~ e^s (1 + ds)),
+        min  sum_f area_f |grad w - e^{s_f} (d_f, J d_f) / H|^2 + smoothness sum_{f|g} |e| / |c_f c_g| (s_f - s_g)^2
+                                                            + anchor sum_f area_f / H^2 s_f^2 ,
+    a sparse linear least squares per round (`rounds` Gauss-Newton rounds), with the constraints and the fixed
+    values of the next solve() (normally none: the continuous map). smoothness is dimensionless: s varies over
+    about sqrt(smoothness) H. The scales are then normalised to a mean (area-weighted) of e^{2 s} of 1, so that H
+    stays the mean quad size, and applied to the target of every later solve() (a second call scales the scaled
+    target). Returns the scales e^{s_f}. The anchor only excludes the zero map (s = -infinity); it is small so
+    that s can follow what a singularity of index k needs, a cone map z -> z^(1 - k) of gradient length r^(-k):
+    the folds of a unit target on fine meshes are around the singular vertices (manual, Quad Meshes).
+  */
+  std::vector<double> reduce_curl(double smoothness, int rounds = 3, double anchor = 1e-3)
+  {
+    CGAL_precondition(smoothness > 0 && rounds >= 1);
+    std::vector<double> s(m_nf, 0.);
+    const Eigen::VectorXd unscaled = m_target;
+    for(int round = 0; round < rounds; ++round) {
+      reduce();
+      const Sparse M = m_gradients * m_corner_basis;
+      const Eigen::VectorXd r = m_target - m_gradients * m_corner_offset;
+      const int ny = int(M.cols());
+      // rows: the fit [M, -B] (B: the current target per face), the smoothness and the small anchor of s
+      std::vector<Eigen::Triplet<double>> t;
+      for(int k = 0; k < M.outerSize(); ++k)
+        for(Sparse::InnerIterator it(M, k); it; ++it)
+          t.emplace_back(int(it.row()), int(it.col()), it.value());
+      for(int f = 0; f < m_nf; ++f)
+        for(int i = 0; i < 4; ++i)
+          t.emplace_back(4 * f + i, ny + f, -m_target[4 * f + i]);
+      int row = 4 * m_nf;
+      std::vector<double> rhs(r.data(), r.data() + r.size());
+      for(const auto& p : m_face_pairs) {
+        const double w = std::sqrt(smoothness * p.weight);
+        t.emplace_back(row, ny + p.f, w);
+        t.emplace_back(row, ny + p.g, -w);
+        rhs.push_back(-w * (s[p.f] - s[p.g]));
+        ++row;
+      }
+      for(int f = 0; f < m_nf; ++f) {
+        const double w = std::sqrt(anchor * m_face_area[f]) / m_H;
+        t.emplace_back(row, ny + f, w);
+        rhs.push_back(-w * s[f]);
+        ++row;
+      }
+      Sparse A(row, ny + m_nf);
+      A.setFromTriplets(t.begin(), t.end());
+      const Eigen::VectorXd b = Eigen::Map<Eigen::VectorXd>(rhs.data(), row);
+      const Sparse normal = Sparse(A.transpose() * A);
+      Eigen::SimplicialLDLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt(normal);
+      if(ldlt.info() != Eigen::Success)
+        throw Invalid_input(Error_code::solver_failure, "the curl reduction's normal equations could not be factored");
+      const Eigen::VectorXd x = ldlt.solve(A.transpose() * b);
+      if(ldlt.info() != Eigen::Success || !x.allFinite())
+        throw Invalid_input(Error_code::solver_failure, "the curl reduction's solve failed");
+      for(int f = 0; f < m_nf; ++f) {
+        s[f] += x[ny + f];
+        for(int i = 0; i < 4; ++i)
+          m_target[4 * f + i] = unscaled[4 * f + i] * std::exp(s[f]);
+      }
+    }
+    // the mean quad size stays H
+    double area = 0, scaled = 0;
+    for(int f = 0; f < m_nf; ++f) {
+      area += m_face_area[f];
+      scaled += m_face_area[f] * std::exp(2 * s[f]);
+    }
+    const double norm = std::sqrt(area / scaled);
+    std::vector<double> scale(m_nf);
+    for(int f = 0; f < m_nf; ++f) {
+      scale[f] = std::exp(s[f]) * norm;
+      for(int i = 0; i < 4; ++i)
+        m_target[4 * f + i] = unscaled[4 * f + i] * scale[f];
+    }
+    return scale;
+  }
+
   // After solve(), for checks: corner values = corner_basis() y + corner_offset() (2 per corner, u then v) over
   // the reduced unknowns y (every feasible map is of this form), the normal equations and their solution.
   const Sparse& corner_basis() const { return m_corner_basis; }
@@ -613,6 +692,26 @@ private:
     }
     m_gradients.resize(4 * m.nf, 6 * m.nf);
     m_gradients.setFromTriplets(rows.begin(), rows.end());
+    // for reduce_curl(): the faces' areas, and the dual edges with the weight |e| / |c_f c_g| of a Dirichlet energy
+    m_H = H;
+    m_face_area.resize(m.nf);
+    std::vector<Vec3> centroid(m.nf);
+    for(int f = 0; f < m.nf; ++f) {
+      const Vec3 &a = m.points[m.corner_vertex[3 * f]], &b = m.points[m.corner_vertex[3 * f + 1]],
+                 &c = m.points[m.corner_vertex[3 * f + 2]];
+      m_face_area[f] = norm(cross(sub(b, a), sub(c, a))) / 2;
+      for(int k = 0; k < 3; ++k)
+        centroid[f][k] = (a[k] + b[k] + c[k]) / 3;
+    }
+    for(int i = 0; i < 3 * m.nf; ++i) {
+      const int o = m.opposite_corner[i];
+      if(o < i)
+        continue;
+      const int f = i / 3, g = o / 3;
+      const double dual = norm(sub(centroid[f], centroid[g]));
+      if(dual > 0)
+        m_face_pairs.push_back({f, g, norm(sub(m.points[m.target_of(i)], m.points[m.source_of(i)])) / dual});
+    }
   }
 
   // z_kept = variable_basis y + variable_offset: the fixed unknowns substituted (a fixed eliminated coordinate
@@ -715,6 +814,10 @@ private:
   std::vector<char> m_eliminated;
   std::vector<Feature_line> m_feature_lines;
   std::vector<int> m_feature_coordinate;
+  struct Face_pair { int f, g; double weight; };
+  std::vector<Face_pair> m_face_pairs; // interior edges, for reduce_curl()
+  std::vector<double> m_face_area;
+  double m_H = 1;
   Sparse m_gradients;            // 4 rows per face over the corners' (u, v)
   Eigen::VectorXd m_target;
   Sparse m_variable_basis, m_corner_basis, m_normal_matrix;

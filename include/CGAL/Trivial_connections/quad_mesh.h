@@ -188,12 +188,7 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   std::vector<char> listed(m.nv, 0);
   std::vector<int> singular;
   for(const auto& s : singularities) {
-    const std::size_t v = std::size_t(get(m.vertex_index, s.first));
-    if(v >= std::size_t(m.nv) || m.faces_at_vertex[v] == 0)
-      throw Invalid_input(Error_code::invalid_vertex, "singular vertex " + std::to_string(v) + " is in no face", v);
-    if(listed[v])
-      throw Invalid_input(Error_code::duplicate_singularity, "vertex " + std::to_string(v) + " is listed twice", v);
-    listed[v] = 1;
+    const std::size_t v = internal::checked_singular_vertex(m, s.first, listed);
     const Singularity_index k(s.second);
     if((4 * k.numerator()) % k.denominator() != 0)
       throw Invalid_input(Error_code::index_not_multiple, "the index of vertex " + std::to_string(v) +

@@ -141,12 +141,7 @@ move_singularities_off_features(const TriangleMesh& tm, const SingularityRange& 
     if(m.opposite_corner[i] < 0)
       on_border[m.source_of(i)] = on_border[m.target_of(i)] = 1;
   for(const auto& s : singularities) {
-    const std::size_t v = std::size_t(get(m.vertex_index, s.first));
-    if(v >= std::size_t(m.nv) || m.faces_at_vertex[v] == 0)
-      throw Invalid_input(Error_code::invalid_vertex, "singular vertex " + std::to_string(v) + " is in no face", v);
-    if(listed[v])
-      throw Invalid_input(Error_code::duplicate_singularity, "vertex " + std::to_string(v) + " is listed twice", v);
-    listed[v] = 1;
+    const std::size_t v = internal::checked_singular_vertex(m, s.first, listed);
     const Singularity_index k(s.second);
     if(k.numerator() != 0 && on_border[v])
       throw Invalid_input(Error_code::singularity_on_boundary, "singular vertex " + std::to_string(v) + " is on the boundary", v);

@@ -48,6 +48,7 @@ What `move_singularities_off_features()` did.
 template <class TriangleMesh>
 struct Off_features_report
 {
+  /// the vertex type of `TriangleMesh`
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
   double quad_size = 0; ///< H, the distance kept from the feature edges (given, or from `target_faces`)
   /// the singularities after the move: the input's, in its order and with its indices, each vertex replaced by

@@ -667,4 +667,70 @@ TEST(SingularitiesOffFeatures, QuadSizeRuleAndBadInputs)
   }
 }
 
+
+// Exact ties: a flat grid (squares of side 1/4 split at their centres, symmetric under x -> -x), the row y = 1/4
+// as feature line, a singularity at (0, 1/2) and the vertex straight above at H = 3/4 taken: mirror vertices are
+// equally near, to the last bit. The smallest point wins, whatever the numbering.
+TEST(SingularitiesOffFeatures, ExactTiesDecidedByThePoints)
+{
+  Soup soup;
+  std::map<std::pair<int, int>, int> at; // (16 x, 16 y): the grid's corners at multiples of 4, the centres between
+  auto vertex = [&](int x, int y) {
+    const auto it = at.find({x, y});
+    if(it != at.end())
+      return it->second;
+    soup.points.emplace_back(x / 16., y / 16., 0);
+    return at[{x, y}] = int(soup.points.size()) - 1;
+  };
+  for(int i = -4; i < 4; ++i)
+    for(int j = 0; j < 8; ++j) {
+      const int c = vertex(4 * i + 2, 4 * j + 2), a = vertex(4 * i, 4 * j), b = vertex(4 * i + 4, 4 * j),
+                d = vertex(4 * i + 4, 4 * j + 4), e = vertex(4 * i, 4 * j + 4);
+      soup.faces.push_back({{a, b, c}});
+      soup.faces.push_back({{b, d, c}});
+      soup.faces.push_back({{d, e, c}});
+      soup.faces.push_back({{e, a, c}});
+    }
+  const double H = 0.75;
+  auto run = [&](const Soup& mesh_soup, const std::vector<int>& number) {
+    const Surface_mesh mesh = to_surface_mesh(mesh_soup);
+    std::vector<char> feature(mesh.number_of_edges(), 0);
+    for(auto e : edges(mesh))
+      feature[std::size_t(e)] = mesh.point(source(e, mesh)).y() == 0.25 && mesh.point(target(e, mesh)).y() == 0.25;
+    const std::vector<std::pair<vertex_descriptor, Index>> s = {
+      {vertex_descriptor(number[at.at({0, 8})]), Index(1, 4)}, {vertex_descriptor(number[at.at({0, 16})]), Index(-1, 4)}};
+    const auto r = TC::move_singularities_off_features(
+      mesh, s, boost::make_iterator_property_map(feature.begin(), get(boost::edge_index, mesh)), TC::parameters::quad_size(H));
+    EXPECT_EQ(r.moves.size(), 1u);
+    return mesh.point(r.singularities[0].first);
+  };
+  std::vector<int> identity(soup.points.size());
+  std::iota(identity.begin(), identity.end(), 0);
+  const Point chosen = run(soup, identity);
+  // the test's own distances: the free vertices at the least path length, at least two of them
+  Feature_view view(soup); // flat: no sharp edge; the line marked here
+  std::vector<int> line;
+  for(int x = -16; x <= 16; x += 4)
+    line.push_back(at.at({x, 4}));
+  for(int v : line)
+    view.on_sharp[v] = 1;
+  const std::vector<double> to_line = view.dijkstra(line, false);
+  const std::vector<double> path = view.dijkstra({at.at({0, 8})}, true);
+  double least = std::numeric_limits<double>::infinity();
+  for(int w = 0; w < int(soup.points.size()); ++w)
+    if(to_line[w] >= H && !view.on_border[w] && w != at.at({0, 16}))
+      least = std::min(least, path[w]);
+  std::vector<Point> tied;
+  for(int w = 0; w < int(soup.points.size()); ++w)
+    if(to_line[w] >= H && !view.on_border[w] && w != at.at({0, 16}) && path[w] == least)
+      tied.push_back(soup.points[w]);
+  ASSERT_GE(tied.size(), 2u) << "no exact tie: the test does not test what it says";
+  EXPECT_EQ(chosen, *std::min_element(tied.begin(), tied.end()));
+  for(unsigned seed : {2u, 5u, 9u}) {
+    std::vector<int> perm;
+    const Soup r = renumbered(soup, seed, &perm, true);
+    EXPECT_EQ(run(r, perm), chosen) << "renumbered, seed " << seed;
+  }
+}
+
 } // namespace

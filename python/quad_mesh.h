@@ -3,7 +3,8 @@
 //
 // Author(s) : CGAL Trivial Connections developers
 //
-// Quad meshes: Solver.quad_mesh(), the quads of a cross field (CGAL::Trivial_connections::compute_quad_mesh()).
+// Quad meshes: Solver.quad_mesh(), the quads of a cross field (CGAL::Trivial_connections::compute_quad_mesh()), and
+// Solver.move_singularities_off_features(), the step before it (move_singularities_off_features()).
 // A part of the one translation unit python/trivial_connections_module.cpp (which includes the headers and defines
 // the types they use, in its order): not a header to include elsewhere.
 
@@ -134,6 +135,63 @@ py::tuple Python_solver::quad_mesh(const Result& result, const py::object& singu
                         quad_report_dict(report));
 }
 
+// the singularities closer than H to a feature edge moved H away: (singularities dict, report dict)
+py::tuple Python_solver::move_singularities_off_features(const py::object& singularities,
+                                                         const py::object& feature_edges, const py::object& quad_size,
+                                                         const py::object& target_faces,
+                                                         const py::object& fixed_vertices)
+{
+  const Singularities s = singularities_of(singularities);
+  const auto singular = vertex_descriptors(*m_mesh, s);
+  if(feature_edges.is_none())
+    throw py::type_error("feature_edges must be given: the pairs of vertices (i, j) of the feature edges");
+  const std::vector<char> features = feature_edges_of(*m_mesh, feature_edges);
+  if(quad_size.is_none() == target_faces.is_none())
+    throw py::value_error(quad_size.is_none() ? "give quad_size or target_faces"
+                                               : "give quad_size or target_faces, not both");
+  std::vector<vertex_descriptor> fixed;
+  if(!fixed_vertices.is_none())
+    for(const py::handle v : py::iter(fixed_vertices))
+      fixed.push_back(vertex_of(*m_mesh, vertex_number(v)));
+  double H = 0;
+  if(quad_size.is_none()) {
+    const long long N = target_faces.cast<long long>();
+    if(N < 1)
+      throw py::value_error("target_faces must be a positive integer, got " + std::to_string(N));
+    H = reading([&] { return TC::quad_size_for_target_faces(*m_mesh, std::size_t(N)); });
+  } else
+    H = quad_size.cast<double>(); // checked by the library: positive and finite
+  const auto r = reading([&] {
+    auto feature_map = boost::make_function_property_map<edge_descriptor, bool>(
+      [&features](edge_descriptor e) { return features[std::size_t(e)] != 0; });
+    return TC::move_singularities_off_features(*m_mesh, singular, feature_map,
+                                               TC::parameters::quad_size(H, TC::parameters::fixed_vertices(fixed)));
+  });
+  Singularities moved;
+  for(const auto& [v, k] : r.singularities)
+    moved.emplace_back(std::size_t(v), k);
+  py::list moves;
+  for(const auto& m : r.moves) {
+    py::dict d;
+    d["from"] = std::size_t(m.from);
+    d["to"] = std::size_t(m.to);
+    d["distance_before"] = m.distance_before;
+    d["distance_after"] = m.distance_after;
+    d["path_length"] = m.path_length;
+    moves.append(d);
+  }
+  py::list stuck;
+  for(const auto v : r.stuck)
+    stuck.append(std::size_t(v));
+  py::dict d;
+  d["quad_size"] = r.quad_size;
+  d["moves"] = moves;
+  d["stuck"] = stuck;
+  d["on_features"] = r.on_features;
+  d["fixed"] = r.fixed;
+  return py::make_tuple(singularity_dict(moved), d);
+}
+
 void bind_quad_mesh(py::class_<Python_solver>& solver)
 {
   solver.def("quad_mesh", &Python_solver::quad_mesh, py::arg("result"), py::arg("singularities"),
@@ -150,6 +208,19 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
              "feature_edges, folded_triangles, degenerate_triangles, rejected_polygons, open_edges, dangling_edges, "
              "flipped_quads, concave_quads, hausdorff_distance (and its two one-sided parts), split_vertices, "
              "continuous_energy, rounded_energy, solves). Errors raise InvalidInput (a ValueError).");
+  solver.def("move_singularities_off_features", &Python_solver::move_singularities_off_features,
+             py::arg("singularities"), py::arg("feature_edges"), py::arg("quad_size") = py::none(),
+             py::arg("target_faces") = py::none(), py::arg("fixed_vertices") = py::none(),
+             "The step before quad_mesh(..., feature_edges=) (C++ move_singularities_off_features()): every "
+             "singularity closer than H to a feature edge (graph distance along mesh edges to a vertex of one), but "
+             "not on one, moves to the nearest vertex at least H from every feature edge (along paths through "
+             "vertices of no feature edge; not on the border, not already singular; equal lengths: the smallest "
+             "point). Indices are kept, so are the sums per component. It stays when no such vertex is reachable "
+             "(listed in 'stuck'), and so do index 0 and fixed_vertices. quad_size H or target_faces N (H = "
+             "sqrt(area / N), as quad_mesh reads it), one of them; feature_edges as for quad_mesh. The field must "
+             "then be solved again with the new singularities (solve(moved, n=4)) before quad_mesh. Returns "
+             "(singularities {vertex: Fraction} in the input's order, report dict: quad_size, moves (dicts from, to, "
+             "distance_before, distance_after, path_length), stuck, on_features, fixed). Errors raise InvalidInput.");
 }
 
 }  // namespace

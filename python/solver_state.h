@@ -56,6 +56,10 @@ public:
   py::tuple quad_mesh(const Result& result, const py::object& singularities, const py::object& quad_size,
                       const py::object& target_faces, const std::string& rounding, double max_quads,
                       const py::object& feature_edges);
+  // the singularities closer than H to a feature edge moved H away: (singularities, report)
+  py::tuple move_singularities_off_features(const py::object& singularities, const py::object& feature_edges,
+                                            const py::object& quad_size, const py::object& target_faces,
+                                            const py::object& fixed_vertices);
 
   // defined in files.h
   // the field of `result` as a field file (.txt), or the mesh with it and the singularities as a VTK (.vtk) or PLY

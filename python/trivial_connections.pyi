@@ -158,6 +158,14 @@ class Solver:
         max_quads: float = 1e7,
         feature_edges: Optional[Union[npt.ArrayLike, Sequence[Tuple[int, int]]]] = None,
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Dict[str, Any]]: ...
+    def move_singularities_off_features(
+        self,
+        singularities: Optional[_Singularities],
+        feature_edges: Union[npt.ArrayLike, Sequence[Tuple[int, int]]],
+        quad_size: Optional[float] = None,
+        target_faces: Optional[int] = None,
+        fixed_vertices: Optional[Sequence[int]] = None,
+    ) -> Tuple[Dict[int, Fraction], Dict[str, Any]]: ...
     def write_field(self, path: _StrPath, result: Result, singularities: Optional[_Singularities]) -> None: ...
     @property
     def feature_pins(self) -> Optional[Tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]]: ...

@@ -38,6 +38,8 @@
 #include <CGAL/Trivial_connections/singularity_refinement.h>
 #include <CGAL/Trivial_connections/streamlines.h>
 #include <CGAL/Trivial_connections/quad_mesh.h>
+#include <CGAL/Trivial_connections/quad_size.h>
+#include <CGAL/Trivial_connections/singularities_off_features.h>
 #include <CGAL/Trivial_connections/solver_traits.h>
 
 #include <pybind11/numpy.h>

@@ -13,16 +13,13 @@
 #include <CGAL/Trivial_connections/Trivial_connection_solver.h>
 #include <CGAL/Trivial_connections/singularity_placement.h>
 #include <CGAL/Trivial_connections/singularity_refinement.h>
+#include <CGAL/Trivial_connections/singularities_off_features.h>
 
 #include "trivial_connections_command_line.h"
 #include "trivial_connections_inputs.h"
 #include "trivial_connections_state.h"
 
-#include <cmath>
-#include <functional>
 #include <iterator>
-#include <limits>
-#include <queue>
 #include <string>
 #include <utility>
 #include <vector>
@@ -129,106 +126,29 @@ inline void design_singularities(const Options& o, Inputs& in, Solver& solver, D
 }
 
 /*
-  --auto --align-features --quad-mesh: the singular vertices placed closer than H to a sharp edge (but not on
-  one) are moved to the nearest vertex at least H from every sharp edge, before the final solve. Such a vertex
-  is an integer point of the map and the sharp edge an integer iso-line: a distance below H rounds to 0 (the
-  quads between them collapse) or to 1 (they stretch), and the map folds there (issue 43, fandisk: 6 moved,
-  folded triangles 55 + 8 degenerate -> 40 + 1, valence errors 22 -> 12). Moving them onto the sharp edges
-  instead costs the field a quarter turn between its pins (fandisk: energy 18 -> 119, a thousand folds).
-  This is the program's design step, not compute_quad_mesh()'s: that call takes a solved field, and moving a
-  singularity needs the trivial connection solved again (here, the final solve). Distances along mesh edges;
-  the nearest vertex by that distance from the singularity, away from the sharp edges, not singular, not on
-  the border; none: the singularity stays. Returns how many moved.
+  --auto --align-features --quad-mesh: the placed singularities closer than H to a sharp edge (but not on one) are
+  moved to the nearest vertex at least H from every sharp edge, before the final solve
+  (TC::move_singularities_off_features(), with the same H as the quad step: --quad-size, or --target-faces read by
+  the same rule). Fandisk at H = diagonal / 40: 6 moved, folded triangles 55 + 8 degenerate -> 40 + 1, valence
+  errors 22 -> 12. The singularities of --singularities stay (fixed_vertices). Returns how many moved.
 */
 inline std::size_t move_singularities_off_features(const Options& o, Inputs& in)
 {
   if(!o.automatic || !o.align_features || o.quad_mesh.empty())
     return 0;
-  const Mesh& mesh = in.mesh;
-  double H = o.quad_size;
-  if(!(H > 0)) { // --target-faces, as compute_quad_mesh() reads it
-    double area = 0;
-    for(face_descriptor f : faces(mesh)) {
-      const auto h = halfedge(f, mesh);
-      area += std::sqrt(CGAL::to_double(CGAL::squared_area(mesh.point(source(h, mesh)), mesh.point(target(h, mesh)),
-                                                           mesh.point(target(next(h, mesh), mesh)))));
-    }
-    H = std::sqrt(area / double(o.target_faces));
-  }
-  const std::size_t nv = mesh.number_of_vertices() + mesh.number_of_removed_vertices();
-  std::vector<char> on_line(nv, 0);
-  for(auto e : edges(mesh))
-    if(in.features.sharp_edges[std::size_t(e)])
-      on_line[std::size_t(source(e, mesh))] = on_line[std::size_t(target(e, mesh))] = 1;
-  using Item = std::pair<double, vertex_descriptor>;
-  auto length = [&](halfedge_descriptor h) {
-    return std::sqrt(CGAL::to_double(CGAL::squared_distance(mesh.point(source(h, mesh)), mesh.point(target(h, mesh)))));
-  };
-  // distance to the sharp edges' vertices (Dijkstra from all of them)
-  std::vector<double> to_line(nv, std::numeric_limits<double>::infinity());
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  for(vertex_descriptor v : vertices(mesh))
-    if(on_line[std::size_t(v)]) {
-      to_line[std::size_t(v)] = 0;
-      queue.push({0., v});
-    }
-  while(!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if(d > to_line[std::size_t(v)])
-      continue;
-    for(halfedge_descriptor h : CGAL::halfedges_around_source(v, mesh))
-      if(d + length(h) < to_line[std::size_t(target(h, mesh))]) {
-        to_line[std::size_t(target(h, mesh))] = d + length(h);
-        queue.push({d + length(h), target(h, mesh)});
-      }
-  }
-  std::vector<char> singular(nv, 0), kept(nv, 0);
-  for(const auto& s : in.singularities)
-    singular[std::size_t(s.first)] = 1;
+  namespace P = TC::parameters;
+  std::vector<char> sharp = in.features.sharp_edges;
+  sharp.resize(num_edges(in.mesh), 0);
+  const auto features = boost::make_iterator_property_map(sharp.begin(), get(boost::edge_index, in.mesh));
+  std::vector<vertex_descriptor> fixed;
   for(const auto& s : in.fixed) // --singularities with --auto: the file's stay where they are
-    kept[std::size_t(s.first)] = 1;
-  std::size_t moved = 0;
-  std::vector<double> from(nv, std::numeric_limits<double>::infinity());
-  std::vector<vertex_descriptor> touched;
-  for(auto& s : in.singularities) {
-    const vertex_descriptor v = s.first;
-    if(on_line[std::size_t(v)] || kept[std::size_t(v)] || !(to_line[std::size_t(v)] < H))
-      continue;
-    // the nearest vertex at least H from the lines, through vertices off them
-    for(vertex_descriptor w : touched)
-      from[std::size_t(w)] = std::numeric_limits<double>::infinity();
-    touched.assign(1, v);
-    from[std::size_t(v)] = 0;
-    queue.push({0., v});
-    vertex_descriptor found = Mesh::null_vertex();
-    while(!queue.empty()) {
-      const auto [d, u] = queue.top();
-      queue.pop();
-      if(d > from[std::size_t(u)])
-        continue;
-      if(to_line[std::size_t(u)] >= H && !singular[std::size_t(u)] && !mesh.is_border(u)) {
-        found = u;
-        break;
-      }
-      for(halfedge_descriptor h : CGAL::halfedges_around_source(u, mesh)) {
-        const vertex_descriptor w = target(h, mesh);
-        if(!on_line[std::size_t(w)] && d + length(h) < from[std::size_t(w)]) {
-          from[std::size_t(w)] = d + length(h);
-          touched.push_back(w);
-          queue.push({d + length(h), w});
-        }
-      }
-    }
-    queue = decltype(queue)();
-    if(found == Mesh::null_vertex())
-      continue;
-    singular[std::size_t(v)] = 0;
-    singular[std::size_t(found)] = 1;
-    s.first = found;
-    ++moved;
-  }
-  return moved;
+    fixed.push_back(s.first);
+  // the quad step's H: --quad-size, or --target-faces by compute_quad_mesh()'s rule
+  const double H = o.quad_size > 0 ? o.quad_size : TC::quad_size_for_target_faces(in.mesh, o.target_faces);
+  const auto report =
+    TC::move_singularities_off_features(in.mesh, in.singularities, features, P::quad_size(H, P::fixed_vertices(fixed)));
+  in.singularities.assign(report.singularities.begin(), report.singularities.end());
+  return report.moves.size();
 }
 
 } // namespace trivial_connections_program

@@ -1281,3 +1281,115 @@ def test_quad_mesh_sphere_and_errors():
                    {"quad_size": 0.3, "rounding": "best"}]:
         with pytest.raises(ValueError):
             solver.quad_mesh(result, placed, **kwargs)
+
+
+# ---- move_singularities_off_features() (issue 43): checked from its definition ----------------------------------
+
+
+def sharp_edges_and_distances(V, F):
+    """The edges whose faces' normals differ by more than 30 degrees, and per vertex the graph distance (along mesh
+    edges, Dijkstra) to the nearest vertex of one; also the edge lengths by vertex, to search again."""
+    V, F = np.asarray(V, float), np.asarray(F)
+    N = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    N /= np.linalg.norm(N, axis=1)[:, None]
+    faces_of = {}
+    for f, t in enumerate(F):
+        for j in range(3):
+            faces_of.setdefault(tuple(sorted((int(t[j]), int(t[(j + 1) % 3])))), []).append(f)
+    sharp = sorted(e for e, fs in faces_of.items() if len(fs) == 2 and N[fs[0]] @ N[fs[1]] < math.cos(math.radians(30)))
+    neighbours = [[] for _ in V]
+    for a, b in faces_of:
+        length = float(np.linalg.norm(V[a] - V[b]))
+        neighbours[a].append((b, length))
+        neighbours[b].append((a, length))
+    on_sharp = {v for e in sharp for v in e}
+    return sharp, on_sharp, graph_distances(neighbours, on_sharp), neighbours
+
+
+def graph_distances(neighbours, sources, avoid=()):
+    import heapq
+    d = np.full(len(neighbours), np.inf)
+    queue = [(0.0, v) for v in sources]
+    for v in sources:
+        d[v] = 0.0
+    heapq.heapify(queue)
+    while queue:
+        dv, v = heapq.heappop(queue)
+        if dv > d[v]:
+            continue
+        for w, length in neighbours[v]:
+            if w not in avoid and dv + length < d[w]:
+                d[w] = dv + length
+                heapq.heappush(queue, (d[w], w))
+    return d
+
+
+def test_move_singularities_off_features():
+    # a 10 x 10 cube (its 12 edges sharp) and H = 1/4: the singularities 0.1 and 0.2 from an edge end at least H
+    # from every sharp edge, at the nearest such free vertex (through vertices of no sharp edge), with their
+    # indices; the corners (on the edges), the one 0.4 away, index 0 and the fixed one stay; the sum is kept
+    V, F, corners = unit_cube(10)
+    at = {tuple(round(x * 10) for x in p): i for i, p in enumerate(V)}
+    sharp, on_sharp, d, neighbours = sharp_edges_and_distances(V, F)
+    assert len(sharp) == 120
+    H = 0.25
+    q = fractions.Fraction(1, 4)
+    s = {c: q for c in corners[:6]}
+    s.update({at[(5, 1, 0)]: q, at[(2, 5, 10)]: -q, at[(5, 6, 0)]: -q, at[(1, 5, 0)]: 0, at[(5, 9, 10)]: 2 * q,
+              at[(0, 3, 8)]: q})
+    given = dict(s)
+    solver = tc.Solver(V, F, align_features=True)
+    moved, report = solver.move_singularities_off_features(s, sharp, quad_size=H, fixed_vertices=[at[(5, 9, 10)]])
+    assert s == given, "the input was modified"
+    assert report["quad_size"] == H and report["on_features"] == 6 and report["fixed"] == 1
+    assert report["stuck"] == []
+    assert list(moved.values()) == list(s.values()), "indices kept, in the input's order"
+    assert sum(moved.values()) == sum(s.values())
+    assert len(moved) == len(s)
+    pairs = list(zip(s, moved))
+    should_move = {at[(5, 1, 0)], at[(2, 5, 10)], at[(0, 3, 8)]}
+    assert {m["from"] for m in report["moves"]} == should_move
+    taken = set()
+    for i, (a, b) in enumerate(pairs):
+        if a not in should_move:
+            assert a == b
+            continue
+        assert d[b] >= H and a != b
+        # the nearest vertex at least H away, not singular at that point of the moves, through vertices off the edges
+        path = graph_distances(neighbours, [a], avoid=on_sharp)
+        listed = {x for x, _ in pairs[i + 1:]} | {y for _, y in pairs[:i]}
+        free = [w for w in range(len(V)) if d[w] >= H and w not in listed]
+        assert path[b] == min(path[w] for w in free)
+        move = next(m for m in report["moves"] if m["from"] == a)
+        assert move["to"] == b and move["distance_after"] == pytest.approx(d[b], abs=1e-12)
+        assert move["distance_before"] == pytest.approx(d[a], abs=1e-12) and 0 < d[a] < H
+        assert move["path_length"] == pytest.approx(path[b], abs=1e-12)
+        taken.add(b)
+    assert len(taken) == 3
+    # target_faces: H = sqrt(area / N), the rule of quad_mesh (area 6, N = 96: H = 1/4): the same move
+    again, r2 = solver.move_singularities_off_features(s, np.array(sharp), target_faces=96, fixed_vertices=[at[(5, 9, 10)]])
+    area = np.linalg.norm(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]), axis=1).sum() / 2
+    assert abs(area - 6) < 1e-9 and r2["quad_size"] == pytest.approx(math.sqrt(area / 96), rel=1e-12) and again == moved
+    # the whole flow of the program's --auto --align-features --quad-mesh: move, solve again, quads
+    flow = {c: q for c in corners}
+    flow.update({at[(5, 1, 0)]: q, at[(5, 6, 0)]: -q})
+    flow_moved, _ = solver.move_singularities_off_features(flow, sharp, quad_size=H)
+    assert at[(5, 1, 0)] not in flow_moved and sum(flow_moved.values()) == 2
+    result = solver.solve(flow_moved, n=4)
+    _, Q, quads = solver.quad_mesh(result, flow_moved, quad_size=H, feature_edges=sharp)
+    assert len(Q) > 0 and quads["feature_edges"] == 120
+    # bad input: H not positive, an edge pair that is not an edge, neither or both sizes, a vertex out of range
+    for bad in [dict(quad_size=0.0), dict(quad_size=-1.0), dict(quad_size=float("nan"))]:
+        with pytest.raises(tc.InvalidInput) as error:
+            solver.move_singularities_off_features(s, sharp, **bad)
+        assert error.value.code == "invalid_argument"
+    with pytest.raises(tc.InvalidInput) as error:
+        solver.move_singularities_off_features(s, [(at[(0, 0, 0)], at[(5, 5, 0)])], quad_size=H)
+    assert error.value.code == "invalid_argument" and "not an edge" in str(error.value)
+    with pytest.raises(ValueError):
+        solver.move_singularities_off_features(s, sharp)
+    with pytest.raises(ValueError):
+        solver.move_singularities_off_features(s, sharp, quad_size=H, target_faces=10)
+    with pytest.raises(tc.InvalidInput) as error:
+        solver.move_singularities_off_features({len(V): q}, sharp, quad_size=H)
+    assert error.value.code == "invalid_vertex"

@@ -166,7 +166,7 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(alignment_strength)
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(fixed_singularities)
 /// a range of `vertex_descriptor` whose singularities `refine_singularities()` does not move (and onto which it
-/// moves none)
+/// moves none); `move_singularities_off_features()` leaves them where they are too
 /// \param value the range
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(fixed_vertices)
@@ -182,12 +182,13 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(cancel_pairs)
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(maximum_trials)
 
 /// `double` H > 0: the edge length of the quads of `compute_quad_mesh()`, in the mesh's length unit (one unit
-/// of the parametrisation is H long)
+/// of the parametrisation is H long); the distance `move_singularities_off_features()` keeps from feature edges
 /// \param value H, positive and finite
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(quad_size)
 /// `std::size_t` N > 0: the number of quads `compute_quad_mesh()` aims at, instead of `quad_size`: H is then
-/// sqrt(area / N), the area of the mesh
+/// sqrt(area / N), the area of the mesh (`quad_size_for_target_faces()`; `move_singularities_off_features()`
+/// reads it the same way)
 /// \param value N, positive
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(target_faces)

@@ -9,6 +9,7 @@
 #include <CGAL/Trivial_connections/Singularity_index.h>
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/parameters.h>
+#include <CGAL/Trivial_connections/quad_size.h>
 #include <CGAL/Trivial_connections/internal/mesh/geometry.h>
 #include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
 #include <CGAL/Trivial_connections/internal/quad/quad_mesh_measures.h>
@@ -134,7 +135,7 @@ the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided d
   \cgalParamNBegin{quad_size} \cgalParamType{`double`} \cgalParamDescription{H, the quads' edge length, in the
     mesh's unit} \cgalParamNEnd
   \cgalParamNBegin{target_faces} \cgalParamType{`std::size_t`} \cgalParamDescription{instead of `quad_size`:
-    about that many quads, H = sqrt(area / N)} \cgalParamNEnd
+    about that many quads, H = sqrt(area / N) (`quad_size_for_target_faces()`)} \cgalParamNEnd
   \cgalParamNBegin{quad_rounding} \cgalParamType{`Quad_rounding`} \cgalParamDefault{`Quad_rounding::greedy`} \cgalParamNEnd
   \cgalParamNBegin{max_quads} \cgalParamType{`double`} \cgalParamDefault{1e7} \cgalParamNEnd
   \cgalParamNBegin{quad_scale_smoothness} \cgalParamType{`double`} \cgalParamDescription{S > 0: the field's
@@ -167,11 +168,6 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   if(n != 4)
     throw Invalid_input(Error_code::invalid_symmetry_order,
                         "a quad mesh needs a cross field (n = 4), not an n-direction field with n = " + std::to_string(n));
-  constexpr bool has_size = !CGAL::parameters::is_default_parameter<NamedParameters, tc_np::quad_size_t>::value;
-  constexpr bool has_target = !CGAL::parameters::is_default_parameter<NamedParameters, tc_np::target_faces_t>::value;
-  if(has_size == has_target)
-    throw Invalid_input(Error_code::invalid_argument, has_size ? "give the quad size or the target number of faces, not both"
-                                                               : "give the quad size or the target number of faces");
   const double max_quads = double(choose_parameter(get_parameter(np, tc_np::max_quads), 1e7));
   const double scale_smoothness = double(choose_parameter(get_parameter(np, tc_np::quad_scale_smoothness), 0.));
   if(!(scale_smoothness >= 0) || !std::isfinite(scale_smoothness))
@@ -185,24 +181,9 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   internal::Mesh_geometry g(m, Weighting::hodge_star);
   g.compute_angles(m);
 
-  double area = 0;
-  for(int f = 0; f < m.nf; ++f)
-    area += internal::norm(internal::cross(internal::sub(m.points[m.corner_vertex[3 * f + 1]], m.points[m.corner_vertex[3 * f]]),
-                                           internal::sub(m.points[m.corner_vertex[3 * f + 2]], m.points[m.corner_vertex[3 * f]]))) / 2;
-  double H = 0;
-  if constexpr(has_size) {
-    H = double(get_parameter(np, tc_np::quad_size));
-  } else if constexpr(has_target) {
-    const double target = double(get_parameter(np, tc_np::target_faces));
-    if(!(target >= 1) || !std::isfinite(target))
-      throw Invalid_input(Error_code::invalid_argument, "the target number of faces must be at least 1");
-    H = std::sqrt(area / target);
-  }
-  if(!(H > 0) || !std::isfinite(H)) {
-    std::ostringstream s;
-    s << "the quad size H must be positive and finite (got " << H << ")";
-    throw Invalid_input(Error_code::invalid_argument, s.str());
-  }
+  // the one rule for H (quad_size.h), shared with move_singularities_off_features()
+  const double area = internal::surface_area(m);
+  const double H = internal::quad_size_from_parameters(area, np);
   if(!(area / (H * H) <= max_quads)) {
     std::ostringstream s;
     s << "the quad size is too small: H = " << H << " would give about " << area / (H * H)
@@ -215,12 +196,7 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   std::vector<char> listed(m.nv, 0);
   std::vector<int> singular;
   for(const auto& s : singularities) {
-    const std::size_t v = std::size_t(get(m.vertex_index, s.first));
-    if(v >= std::size_t(m.nv) || m.faces_at_vertex[v] == 0)
-      throw Invalid_input(Error_code::invalid_vertex, "singular vertex " + std::to_string(v) + " is in no face", v);
-    if(listed[v])
-      throw Invalid_input(Error_code::duplicate_singularity, "vertex " + std::to_string(v) + " is listed twice", v);
-    listed[v] = 1;
+    const std::size_t v = internal::checked_singular_vertex(m, s.first, listed);
     const Singularity_index k(s.second);
     if((4 * k.numerator()) % k.denominator() != 0)
       throw Invalid_input(Error_code::index_not_multiple, "the index of vertex " + std::to_string(v) +

@@ -305,6 +305,20 @@ private:
   }
 };
 
+// The array number of a singular vertex, checked as compute_quad_mesh() and move_singularities_off_features() check
+// it: a vertex of some face, listed once (`listed`, per vertex, marks those seen).
+template <class TriangleMesh, class VertexDescriptor>
+std::size_t checked_singular_vertex(const Mesh_arrays<TriangleMesh>& m, VertexDescriptor vertex, std::vector<char>& listed)
+{
+  const std::size_t v = std::size_t(get(m.vertex_index, vertex));
+  if(v >= std::size_t(m.nv) || m.faces_at_vertex[v] == 0)
+    throw Invalid_input(Error_code::invalid_vertex, "singular vertex " + std::to_string(v) + " is in no face", v);
+  if(listed[v])
+    throw Invalid_input(Error_code::duplicate_singularity, "vertex " + std::to_string(v) + " is listed twice", v);
+  listed[v] = 1;
+  return v;
+}
+
 } // namespace internal
 } // namespace Trivial_connections
 } // namespace CGAL

@@ -248,7 +248,13 @@ inline void print_quads(std::ostream& out, const Options& o, const Quads& quads)
       << ", flipped quads " << r.flipped_quads << " (concave " << r.concave_quads << "); Hausdorff distance " << fixed(r.hausdorff_distance() / r.quad_size, 3)
       << " H (quads to input " << fixed(r.hausdorff_quads_to_input / r.quad_size, 3) << " H, input to quads "
       << fixed(r.hausdorff_input_to_quads / r.quad_size, 3) << " H); on iso-lines: " << r.feature_edges
-      << " feature edges, border corners " << r.border_corners << "\n";
+      << " feature edges, border corners " << r.border_corners;
+  if(quads.flaws_unscaled > 0)
+    out << "; the field scaled per face (quad scale smoothness " << quads.scale_smoothness << "): without it "
+        << quads.flaws_unscaled << " folded and degenerate triangles and valence errors";
+  else if(quads.scale_smoothness > 0)
+    out << "; the field scaled per face (quad scale smoothness " << quads.scale_smoothness << ")";
+  out << "\n";
 }
 
 inline void print_report(std::ostream& out, const Options& o, const Inputs& in, const Solution& s, const Design& design,

@@ -108,6 +108,8 @@ struct Quads
 {
   std::optional<TC::Quad_mesh_report> report;
   Mesh mesh;
+  double scale_smoothness = 0;     // the quad_scale_smoothness they were made with
+  std::size_t flaws_unscaled = 0;  // when tried automatically: the flaws of the quads without the scale
 };
 
 struct Timings

@@ -1662,7 +1662,8 @@ TEST(QuadFeatures, Fandisk)
               << param.constraint_count()
               << " constraint rows, " << param.feature_lines().size() << " lines; built " << built << " s, solved "
               << solved - built << " s, greedy rounding (" << r.integer_unknowns << " unknowns, " << r.solves
-              << " solves on " << r.factorizations << " factorizations, " << r.shifted_unknowns << " shifted) " << rounded - solved << " s, energy "
+              << " solves on " << r.factorizations << " factorizations, " << r.shifted_unknowns << " shifted) "
+              << rounded - solved << " s, energy "
               << r.continuous_energy << " -> " << r.map.energy << "\n";
   }
   EXPECT_GT(flagged, 100);

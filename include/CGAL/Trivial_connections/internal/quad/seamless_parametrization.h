@@ -215,8 +215,8 @@ public:
   const Sparse& variable_basis() const { return m_variable_basis; }
   const Eigen::VectorXd& variable_offset() const { return m_variable_offset; }
 
-  // After solve() or factor(), for checks: corner values = corner_basis() y + corner_offset() (2 per corner, u then v) over
-  // the reduced unknowns y (every feasible map is of this form), the normal equations and their solution.
+  // After solve() or factor(), for checks: corner values = corner_basis() y + corner_offset() (2 per corner, u then
+  // v) over the reduced unknowns y (every feasible map is of this form), the normal equations and their solution.
   const Sparse& corner_basis() const { return m_corner_basis; }
   const Eigen::VectorXd& corner_offset() const { return m_corner_offset; }
   const Sparse& normal_matrix() const { return m_normal_matrix; }

@@ -41,6 +41,8 @@ py::dict quad_report_dict(const TC::Quad_mesh_report& r)
   d["continuous_energy"] = r.continuous_energy;
   d["rounded_energy"] = r.rounded_energy;
   d["solves"] = r.solves;
+  d["factorizations"] = r.factorizations;
+  d["rounding_seconds"] = r.rounding_seconds;
   return d;
 }
 
@@ -207,7 +209,8 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
              "quad_size, quads, vertices, integer_points, valence_histogram, valence_errors, border_corners, "
              "feature_edges, folded_triangles, degenerate_triangles, rejected_polygons, open_edges, dangling_edges, "
              "flipped_quads, concave_quads, hausdorff_distance (and its two one-sided parts), split_vertices, "
-             "continuous_energy, rounded_energy, solves). Errors raise InvalidInput (a ValueError).");
+             "continuous_energy, rounded_energy, solves, factorizations, rounding_seconds). Errors raise InvalidInput "
+             "(a ValueError).");
   solver.def("move_singularities_off_features", &Python_solver::move_singularities_off_features,
              py::arg("singularities"), py::arg("feature_edges"), py::arg("quad_size") = py::none(),
              py::arg("target_faces") = py::none(), py::arg("fixed_vertices") = py::none(),

@@ -26,6 +26,7 @@
 #include <cstddef>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -90,7 +91,12 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
                                        P::quad_scale_smoothness(scaling, P::quad_size(o.quad_size).edge_is_constrained_map(features)))
                : TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
                                        P::quad_scale_smoothness(scaling, P::target_faces(o.target_faces).edge_is_constrained_map(features)));
-  progress.end("quad mesh");
+  {
+    std::ostringstream rounding;
+    rounding << std::fixed << std::setprecision(2) << "rounding " << q.report->rounding_seconds << " s, "
+             << q.report->solves << " solves on " << q.report->factorizations << " factorizations";
+    progress.end("quad mesh", rounding.str());
+  }
   return q;
 }
 

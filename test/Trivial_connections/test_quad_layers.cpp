@@ -14,6 +14,7 @@
 
 #include <CGAL/Trivial_connections/internal/quad/cut_graph.h>
 #include <CGAL/Trivial_connections/internal/quad/integer_rounding.h>
+#include <CGAL/Trivial_connections/internal/quad/kept_factor_fixing.h>
 #include <CGAL/Trivial_connections/internal/quad/quad_extraction.h>
 #include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
 #include <CGAL/Trivial_connections/feature_alignment.h>
@@ -752,6 +753,30 @@ double integer_grid_error(const Quad_case& q, const TCI::Seamless_parametrizatio
   return worst;
 }
 
+// The greedy rounding on the kept factor against the same greedy rounding with a factorization per solve
+// (max_block 0, the scheme before the kept factor): the same integers, the same energy (the integers are chosen
+// from minimisers that agree to rounding: a tie within it could differ, none is expected on these meshes)
+void expect_kept_factor_rounding_is_from_scratch_one(TCI::Integer_rounding& rounding,
+                                                     const TCI::Integer_rounding_result& kept, const std::string& name,
+                                                     double batch_distance = 0)
+{
+  const TCI::Integer_rounding_result scratch =
+    rounding.round(TCI::Rounding_scheme::greedy, TCI::Rounding_order::roots_first, batch_distance, 5, 0);
+  EXPECT_EQ(scratch.solves, kept.solves) << name;
+  EXPECT_EQ(scratch.factorizations, scratch.solves) << name << ": a factorization per solve";
+  EXPECT_LE(kept.factorizations, scratch.factorizations) << name;
+  EXPECT_EQ(scratch.shifted_unknowns, kept.shifted_unknowns) << name;
+  EXPECT_NEAR(kept.map.energy, scratch.map.energy, 1e-8 * (1 + scratch.map.energy)) << name;
+  int different = 0;
+  for(std::size_t v = 0; v < kept.map.root_uv.size(); ++v)
+    for(int k = 0; k < 2; ++k)
+      different += std::abs(kept.map.root_uv[v][k] - scratch.map.root_uv[v][k]) > 1e-6;
+  for(std::size_t a = 0; a < kept.map.translation.size(); ++a)
+    for(int k = 0; k < 2; ++k)
+      different += std::abs(kept.map.translation[a][k] - scratch.map.translation[a][k]) > 1e-6;
+  EXPECT_EQ(different, 0) << name << ": roots or translations differ";
+}
+
 struct Rounding_energies
 {
   double continuous = 0, greedy = 0, naive = 0;
@@ -776,6 +801,7 @@ Rounding_energies check_rounding(const Quad_case& q, double H, const std::string
   EXPECT_LT(transition_error(q, greedy.map), 1e-9) << name << ": greedy";
   EXPECT_NEAR(independent_energy(q, H, greedy.map.corner_uv), e.greedy, 1e-9 * (1 + e.greedy));
   EXPECT_GE(e.greedy, e.continuous * (1 - 1e-12) - 1e-12) << name << ": below the relaxation";
+  expect_kept_factor_rounding_is_from_scratch_one(rounding, greedy, name);
   try {
     const TCI::Integer_rounding_result naive = rounding.round(TCI::Rounding_scheme::naive);
     e.naive = naive.map.energy;
@@ -924,6 +950,73 @@ TEST(QuadRounding, InfeasibleRoundingIsRefused)
   EXPECT_LT(integer_grid_error(q, fine.map), 1e-9);
 }
 
+// the value of kept unknown j (a root coordinate or a translation) in a map
+double integer_of_map(const TCI::Seamless_parametrization& param, const TCI::Seamless_parametrization::Map& map, int j)
+{
+  const int t = param.translation_variable(0);
+  return j < t ? map.root_uv[std::size_t(j / 2)][j % 2] : map.translation[std::size_t((j - t) / 2)][j % 2];
+}
+
+// The kept factor (Kept_factor_fixing) against from-scratch solves with the same unknowns fixed, on a genus-2
+// surface with eight singularities: the integers of a greedy rounding fixed one by one (consistent values: a
+// feasible integer-grid map has them), after each fix the watched values equal those of a new parametrisation
+// solved with the same values fixed, and the kept minimiser is optimal for it: our energy's gradient is orthogonal
+// to every feasible direction of the fixed problem (its corner basis), and its energy is the fixed problem's.
+// With a block of 5 (refactored along the way) and one never refactored.
+TEST(QuadRounding, KeptFactorMinimisersAreTheFromScratchOnes)
+{
+  const Soup soup = genus2_soup(3);
+  const Quad_case q(soup, genus_two_singularities(soup));
+  const double H = 0.2;
+  TCI::Seamless_parametrization reference(q.arrays, q.cut, q.angle, H);
+  TCI::Integer_rounding rounding(reference, q.cut);
+  const TCI::Integer_rounding_result rounded = rounding.round(TCI::Rounding_scheme::greedy);
+  const std::vector<int> z = rounding.integer_variables();
+  ASSERT_GT(z.size(), 20u);
+  auto integer_of = [&](int j) { return integer_of_map(reference, rounded.map, j); };
+  for(int block : {5, 100000}) {
+    TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H);
+    param.solve();
+    TCI::Kept_factor_fixing kept(param, z, block, true);
+    TCI::Seamless_parametrization scratch(q.arrays, q.cut, q.angle, H);
+    double moved = 0;
+    for(std::size_t i = 0; i < z.size(); ++i) {
+      const double value = std::round(integer_of(z[i]));
+      moved = std::max(moved, std::abs(value - kept.values()[Eigen::Index(i)]));
+      kept.fix(int(i), value);
+      scratch.fix(z[i], value);
+      if(i % 3 != 2 && i + 1 != z.size())
+        continue; // checked every third fix: several fixes between two reads, as the batches do
+      const Eigen::VectorXd& values = kept.values();
+      const TCI::Seamless_parametrization::Map expected = scratch.solve();
+      for(std::size_t j = 0; j < z.size(); ++j)
+        EXPECT_NEAR(values[Eigen::Index(j)], integer_of_map(reference, expected, z[j]), 1e-9)
+          << "block " << block << ", " << i + 1 << " fixed, unknown " << z[j];
+      // the whole kept minimiser: feasible for the fixed problem and optimal there
+      const TCI::Seamless_parametrization::Map map = kept.map();
+      for(std::size_t j = 0; j <= i; ++j)
+        EXPECT_NEAR(integer_of_map(reference, map, z[j]), std::round(integer_of(z[j])), 1e-9);
+      EXPECT_LT(transition_error(q, map), 1e-9);
+      Eigen::VectorXd gradient, gradient_at_zero;
+      const double E = independent_energy(q, H, map.corner_uv, &gradient);
+      independent_energy(q, H, std::vector<std::array<double, 2>>(map.corner_uv.size(), {{0., 0.}}), &gradient_at_zero);
+      EXPECT_NEAR(E, expected.energy, 1e-9 * (1 + E));
+      EXPECT_LT((scratch.corner_basis().transpose() * gradient).norm(),
+                1e-9 * (scratch.corner_basis().transpose() * gradient_at_zero).norm())
+        << "block " << block << ", " << i + 1 << " fixed";
+    }
+    EXPECT_GT(moved, 0.1) << "the fixes move the minimiser";
+    // unbounded, every fix is tried on the factor (those the fixed ones determine, which the rounding itself never
+    // fixes, are then refactored: the parametrisation checks them); the block of 5 is kept to 5
+    if(block == 5)
+      EXPECT_EQ(kept.largest_block(), 5);
+    else
+      EXPECT_EQ(kept.back_substitutions(), int(z.size()));
+    std::cout << "block " << block << ": " << z.size() << " fixes, " << kept.factorizations() << " factorizations, "
+              << kept.back_substitutions() << " back-substitutions, largest block " << kept.largest_block() << "\n";
+  }
+}
+
 // Several unknowns fixed per solve (batch_distance): fewer solves, still an integer-grid map above the bound.
 TEST(QuadRounding, BatchedGreedy)
 {
@@ -941,6 +1034,7 @@ TEST(QuadRounding, BatchedGreedy)
   const TCI::Integer_rounding_result batched =
     rounding.round(TCI::Rounding_scheme::greedy, TCI::Rounding_order::roots_first, 0.25);
   EXPECT_LT(batched.solves, one.solves);
+  expect_kept_factor_rounding_is_from_scratch_one(rounding, batched, "genus 2, batched", 0.25);
   EXPECT_LT(integer_grid_error(q, batched.map), 1e-9);
   EXPECT_GE(batched.map.energy, batched.continuous_energy * (1 - 1e-12));
   std::cout << "genus 2: greedy " << one.map.energy << " in " << one.solves << " solves, batched (0.25) "
@@ -1630,6 +1724,7 @@ TEST(QuadFeatures, Fandisk)
     TCI::Integer_rounding rounding(param, q.cut);
     const TCI::Integer_rounding_result r = rounding.round(TCI::Rounding_scheme::greedy);
     const double rounded = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    expect_kept_factor_rounding_is_from_scratch_one(rounding, r, with ? "fandisk, feature lines" : "fandisk");
     const TCI::Quad_mesh quad = TCI::extract_quad_mesh(q.arrays, q.cut, r.map);
     int followed = 0;
     for(const auto& a : quad.edge_along)
@@ -1641,7 +1736,8 @@ TEST(QuadFeatures, Fandisk)
               << param.constraint_count()
               << " constraint rows, " << param.feature_lines().size() << " lines; built " << built << " s, solved "
               << solved - built << " s, greedy rounding (" << r.integer_unknowns << " unknowns, " << r.solves
-              << " solves, " << r.shifted_unknowns << " shifted) " << rounded - solved << " s, energy "
+              << " solves on " << r.factorizations << " factorizations, " << r.shifted_unknowns << " shifted) "
+              << rounded - solved << " s, energy "
               << r.continuous_energy << " -> " << r.map.energy << "\n";
   }
   EXPECT_GT(flagged, 100);

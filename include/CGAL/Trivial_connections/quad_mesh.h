@@ -36,7 +36,9 @@ How `compute_quad_mesh()` rounds the integer unknowns of its parametrisation (th
 vertices and the translations across the cut).
 */
 enum class Quad_rounding {
-  greedy, ///< the unknown closest to an integer first, fixed, then a new solve, and so on (one sparse solve each)
+  /// the unknown closest to an integer first, fixed, then a new solve, and so on (each solve an update of a kept
+  /// factorization: a back-substitution per fixed unknown, a new factorization every few hundred)
+  greedy,
   naive   ///< all rounded at once from the continuous solution, then one more solve (fast, more distortion)
 };
 
@@ -76,7 +78,11 @@ struct Quad_mesh_report
   std::size_t split_vertices = 0;          ///< vertices duplicated to make the output a manifold (around holes)
   double continuous_energy = 0;            ///< the parametrisation's energy before rounding
   double rounded_energy = 0;               ///< and after
-  std::size_t solves = 0;                  ///< the sparse least-squares solves of the rounding
+  std::size_t solves = 0;                  ///< the least-squares minimisers of the rounding (one per greedy step)
+  /// the sparse factorizations behind them: the greedy steps update a kept factor and factor again only every
+  /// few hundred fixed integers
+  std::size_t factorizations = 0;
+  double rounding_seconds = 0;             ///< the rounding's wall time (seconds)
 
   /// the Hausdorff distance: the larger of the two one-sided distances
   /// \returns `max(hausdorff_quads_to_input, hausdorff_input_to_quads)`
@@ -256,6 +262,8 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   report.continuous_energy = made.continuous_energy;
   report.rounded_energy = made.rounded_energy;
   report.solves = std::size_t(made.solves);
+  report.factorizations = std::size_t(made.factorizations);
+  report.rounding_seconds = made.rounding_seconds;
   report.feature_edges = feature_edges;
 
   // the soup: the integer points in some quad, in the extraction's order

@@ -8,6 +8,7 @@
 
 #include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/internal/quad/cut_graph.h>
+#include <CGAL/Trivial_connections/internal/quad/kept_factor_fixing.h>
 #include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
 
 #include <CGAL/assertions.h>
@@ -16,7 +17,9 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,8 +54,11 @@ namespace internal {
   Two schemes:
   - greedy (the scheme of Bommes, Zimmer and Kobbelt, "Mixed-integer quadrangulation", 2009, in our words): solve
     the least squares, fix the free integer unknown closest to an integer (roots first, then translations; ties
-    to the first in the order vertices then arcs) to that integer, solve again with it fixed, and so on. Each fix
-    costs a new factorization of the normal equations: the honest price is one sparse solve per fixed unknown.
+    to the first in the order vertices then arcs) to that integer, solve again with it fixed, and so on. The
+    solves after a fix do not factor the normal equations again: Kept_factor_fixing borders the kept factor with
+    the fixed unknowns (a back-substitution and a dense update per fix) and factors again, with every fixed
+    unknown eliminated, only every `max_block` fixes (default_rounding_block below; 0: a factorization per solve,
+    the scheme before the kept factor, for comparisons). The same minimisers up to floating point rounding.
     `batch_distance` > 0 trades quality for time: with the closest one, every other free unknown of the same
     kind within that distance of an integer is fixed before the next solve (those within 1e-9 always are).
   - naive: one solve, every free integer unknown rounded from it at once (in the same order, the determined ones
@@ -71,6 +77,12 @@ namespace internal {
 */
 
 enum class Rounding_scheme { greedy, naive };
+
+// The fixes between two factorizations of the greedy rounding. A fix costs a back-substitution plus (integer
+// unknowns) x (fixes on the factor) of dense work: with a few hundred integer unknowns and 256 fixes that is
+// ~1e5 flops, below a back-substitution; refactoring only bounds the dense block and its rounding. On elephant,
+// bunny00 and fandisk (manual, quad-mesh section) no rounding reached 256 fixes: 2 factorizations in all.
+inline constexpr int default_rounding_block = 256;
 // roots_first: the roots of the singular vertices before the translations (the default, see above);
 // closest_first: the plain literature order, by distance to an integer only, which can fix translations that
 // put a singular root on a half-integer point (then the rounding throws): kept to measure that choice
@@ -85,7 +97,10 @@ struct Integer_rounding_result
   int fixed_unknowns = 0;            // rounded and fixed by the scheme
   int implied_unknowns = 0;          // made integers by the fixed ones through the transitions
   int shifted_unknowns = 0;          // fixed to an integer other than the nearest, to keep the implied ones integers
-  int solves = 0;                    // least-squares solves, the continuous one included
+  int solves = 0;                    // least-squares minimisers, the continuous one included
+  int factorizations = 0;            // sparse factorizations of the normal equations behind them (and the map's)
+  int back_substitutions = 0;        // with the kept factor, one per fix
+  double seconds = 0;                // the rounding's wall time
 };
 
 class Integer_rounding
@@ -131,10 +146,13 @@ public:
   // when a solve fails.
   // integer_candidates: how many integers, nearest first, may be tried for an unknown (see fix below; 1: the
   // nearest only, the plain schemes)
+  // max_block: the greedy scheme's fixes between two factorizations (see Kept_factor_fixing; 0: one per solve)
   Integer_rounding_result round(Rounding_scheme scheme, Rounding_order order = Rounding_order::roots_first,
-                                double batch_distance = 0, int integer_candidates = 5)
+                                double batch_distance = 0, int integer_candidates = 5,
+                                int max_block = default_rounding_block)
   {
-    CGAL_precondition(batch_distance >= 0 && integer_candidates >= 1);
+    CGAL_precondition(batch_distance >= 0 && integer_candidates >= 1 && max_block >= 0);
+    const auto start = std::chrono::steady_clock::now();
     m_order = order;
     Integer_rounding_result result;
     result.integer_unknowns = int(m_unknowns.size());
@@ -142,7 +160,12 @@ public:
     m_param.clear_fixed();
     Seamless_parametrization::Map map = m_param.solve();
     result.solves = 1;
+    result.factorizations = 1;
     result.continuous_energy = map.energy;
+    // greedy: the minimisers after each fix on the factor of the continuous one
+    std::unique_ptr<Kept_factor_fixing> kept;
+    if(scheme == Rounding_scheme::greedy)
+      kept = std::make_unique<Kept_factor_fixing>(m_param, integer_variables(), max_block);
     Affine_set set = constrained_unknowns();
     std::vector<char> done(m_unknowns.size(), 0);
     // the unknowns the fixed ones determine: checked, not rounded
@@ -162,11 +185,14 @@ public:
     // the nearest integer that leaves every unknown it determines an integer: the closures and the lines' loops
     // divide by 2 or 4 at most, so among the 5 nearest integers one does whenever the earlier integers allow it
     // (tried in order of distance; none: the nearest, and settle_implied() reports the contradiction)
+    // Distances are compared to tie_tolerance: the minimisers of the kept factor and of a new factorization
+    // differ by rounding, and an exact tie (a symmetric mesh) must not be broken by it; a half goes up.
     auto fix = [&](std::size_t k, double value) {
-      const double nearest = std::round(value);
-      std::vector<double> candidates = {nearest - 2, nearest - 1, nearest, nearest + 1, nearest + 2};
+      const double nearest = std::floor(value + 0.5 + tie_tolerance);
+      std::vector<double> candidates = {nearest, nearest - 1, nearest + 1, nearest - 2, nearest + 2};
+      auto quantised = [&](double a) { return std::round(std::abs(a - value) / tie_tolerance); };
       std::stable_sort(candidates.begin(), candidates.end(),
-                       [&](double a, double b) { return std::abs(a - value) < std::abs(b - value); });
+                       [&](double a, double b) { return quantised(a) < quantised(b); });
       double integer = nearest;
       if(integer_candidates > 1) {
         // the unknowns it determines do not depend on the integer, their values do, linearly (step)
@@ -190,7 +216,10 @@ public:
       }
       if(integer != nearest)
         ++result.shifted_unknowns;
-      m_param.fix(m_unknowns[k].z, integer);
+      if(kept)
+        kept->fix(int(k), integer);
+      else
+        m_param.fix(m_unknowns[k].z, integer);
       set.fix(m_special[k], integer);
       done[k] = 1;
       ++result.fixed_unknowns;
@@ -216,9 +245,11 @@ public:
       if(result.fixed_unknowns > 0) {
         map = m_param.solve();
         ++result.solves;
+        ++result.factorizations;
       }
     } else {
       for(;;) {
+        const Eigen::VectorXd& values = kept->values();
         settle_implied();
         // the closest to an integer among the free unknowns of the first kind left
         std::size_t best = m_unknowns.size();
@@ -227,9 +258,9 @@ public:
         for(std::size_t k = 0; k < m_unknowns.size(); ++k) {
           if(done[k])
             continue;
-          const double d = distance_to_integer(value_of(map, m_unknowns[k]));
+          const double d = distance_to_integer(values[Eigen::Index(k)]);
           const int kind = kind_of(m_unknowns[k]);
-          if(kind < best_kind || (kind == best_kind && d < best_distance)) {
+          if(kind < best_kind || (kind == best_kind && d < best_distance - tie_tolerance)) {
             best = k;
             best_kind = kind;
             best_distance = d;
@@ -237,17 +268,27 @@ public:
         }
         if(best == m_unknowns.size())
           break;
-        fix(best, value_of(map, m_unknowns[best]));
+        // the values of this minimiser: fix() moves `values` to the next one
+        const Eigen::VectorXd current = values;
+        fix(best, current[Eigen::Index(best)]);
         // with it, those of its kind within batch_distance of an integer, and always those already integers
         // (to 1e-9: fixing them moves the minimiser by no more), which need no solve of their own
         const double batch = std::max(batch_distance, 1e-9);
         for(std::size_t k = 0; k < m_unknowns.size(); ++k)
           if(!done[k] && kind_of(m_unknowns[k]) == best_kind && !set.determined(m_special[k]) &&
-             distance_to_integer(value_of(map, m_unknowns[k])) <= batch)
-            fix(k, value_of(map, m_unknowns[k]));
-        map = m_param.solve();
+             distance_to_integer(current[Eigen::Index(k)]) <= batch)
+            fix(k, current[Eigen::Index(k)]);
         ++result.solves;
       }
+      // the map itself from scratch, every integer eliminated
+      if(kept->fixes_since_factorization() == 0) {
+        map = m_param.map_of(m_param.reduced_solution()); // the last factorization has every fix (max_block 0)
+      } else {
+        map = m_param.solve();
+        ++result.factorizations;
+      }
+      result.factorizations += kept->factorizations();
+      result.back_substitutions = kept->back_substitutions();
     }
     // the map itself, not only the bookkeeping: every integer unknown an integer
     std::vector<Unknown> checked(m_unknowns);
@@ -259,6 +300,7 @@ public:
                                                           std::to_string(value) + ", not an integer");
     }
     result.map = map;
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
   }
 
@@ -313,6 +355,7 @@ private:
     }
   };
 
+  static constexpr double tie_tolerance = 1e-9;
   static double distance_to_integer(double x) { return std::abs(x - std::round(x)); }
   int kind_of(const Unknown& u) const
   {

@@ -71,7 +71,8 @@ struct Quad_pipeline_result
 {
   Quad_mesh mesh;
   double continuous_energy = 0, rounded_energy = 0;
-  int integer_unknowns = 0, solves = 0, arcs = 0;
+  int integer_unknowns = 0, solves = 0, factorizations = 0, arcs = 0;
+  double rounding_seconds = 0;
 };
 
 // singular: the singular vertices (array numbering), each once; H > 0 the quad size; max_quads the bound of
@@ -105,6 +106,8 @@ Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, cons
   result.rounded_energy = rounded.map.energy;
   result.integer_unknowns = rounded.integer_unknowns;
   result.solves = rounded.solves;
+  result.factorizations = rounded.factorizations;
+  result.rounding_seconds = rounded.seconds;
   result.arcs = int(cut.arcs.size());
   return result;
 }

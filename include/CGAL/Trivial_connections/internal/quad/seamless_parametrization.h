@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -146,22 +147,53 @@ public:
   */
   Map solve()
   {
+    factor();
+    return map_of(m_reduced_solution);
+  }
+
+  /*
+    solve() without the map: reduces, factors the normal equations and solves them. The factor is kept (the
+    rounding layer borders it with the unknowns it fixes later, see Kept_factor_fixing) until the next factor().
+  */
+  void factor()
+  {
     reduce();
-    const Sparse M = m_gradients * m_corner_basis;
-    const Eigen::VectorXd r = m_target - m_gradients * m_corner_offset;
+    m_least_squares = m_gradients * m_corner_basis;
+    m_least_squares_rhs = m_target - m_gradients * m_corner_offset;
+    const Sparse& M = m_least_squares;
     const Sparse normal = Sparse(M.transpose() * M);
     m_normal_matrix = normal;
-    m_normal_rhs = M.transpose() * r;
+    m_normal_rhs = M.transpose() * m_least_squares_rhs;
     Eigen::VectorXd y = Eigen::VectorXd::Zero(M.cols());
+    m_factor.reset();
     if(M.cols() > 0) {
-      Eigen::SimplicialLDLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt(normal);
-      if(ldlt.info() != Eigen::Success)
+      auto ldlt = std::make_shared<Ldlt>(normal);
+      if(ldlt->info() != Eigen::Success)
         throw Invalid_input(Error_code::solver_failure, "the seamless parametrisation's normal equations could not be factored");
-      y = ldlt.solve(m_normal_rhs);
-      if(ldlt.info() != Eigen::Success || !y.allFinite())
+      y = ldlt->solve(m_normal_rhs);
+      if(ldlt->info() != Eigen::Success || !y.allFinite())
         throw Invalid_input(Error_code::solver_failure, "the seamless parametrisation's solve failed");
+      m_factor = ldlt;
     }
     m_reduced_solution = y;
+  }
+
+  // N^-1 b with the normal matrix N of the last factor() (b: one entry per reduced unknown)
+  Eigen::VectorXd solve_normal(const Eigen::VectorXd& b) const
+  {
+    CGAL_precondition(b.size() == m_normal_matrix.rows());
+    if(!m_factor)
+      return Eigen::VectorXd::Zero(b.size());
+    Eigen::VectorXd x = m_factor->solve(b);
+    if(!x.allFinite())
+      throw Invalid_input(Error_code::solver_failure, "the seamless parametrisation's solve failed");
+    return x;
+  }
+
+  // the map of reduced unknowns y (in the coordinates of the last factor())
+  Map map_of(const Eigen::VectorXd& y) const
+  {
+    CGAL_precondition(y.size() == m_corner_basis.cols());
     Map map;
     const Eigen::VectorXd corners = m_corner_basis * y + m_corner_offset;
     map.corner_uv.resize(3 * std::size_t(m_nf));
@@ -174,7 +206,7 @@ public:
     map.translation.resize(m_arcs);
     for(int a = 0; a < m_arcs; ++a)
       map.translation[a] = {{z[translation_variable(a)], z[translation_variable(a) + 1]}};
-    map.energy = (M * y - r).squaredNorm();
+    map.energy = (m_least_squares * y - m_least_squares_rhs).squaredNorm();
     return map;
   }
 
@@ -257,8 +289,13 @@ public:
     return scale;
   }
 
-  // After solve(), for checks: corner values = corner_basis() y + corner_offset() (2 per corner, u then v) over
-  // the reduced unknowns y (every feasible map is of this form), the normal equations and their solution.
+  // After factor(): the kept unknowns z_kept = variable_basis() y + variable_offset() over the reduced unknowns y
+  // (the kept unknowns are those not eliminated by feature lines; z = P z_kept)
+  const Sparse& variable_basis() const { return m_variable_basis; }
+  const Eigen::VectorXd& variable_offset() const { return m_variable_offset; }
+
+  // After solve() or factor(), for checks: corner values = corner_basis() y + corner_offset() (2 per corner, u then
+  // v) over the reduced unknowns y (every feasible map is of this form), the normal equations and their solution.
   const Sparse& corner_basis() const { return m_corner_basis; }
   const Eigen::VectorXd& corner_offset() const { return m_corner_offset; }
   const Sparse& normal_matrix() const { return m_normal_matrix; }
@@ -820,8 +857,10 @@ private:
   double m_H = 1;
   Sparse m_gradients;            // 4 rows per face over the corners' (u, v)
   Eigen::VectorXd m_target;
-  Sparse m_variable_basis, m_corner_basis, m_normal_matrix;
-  Eigen::VectorXd m_variable_offset, m_corner_offset, m_normal_rhs, m_reduced_solution;
+  Sparse m_variable_basis, m_corner_basis, m_normal_matrix, m_least_squares;
+  Eigen::VectorXd m_variable_offset, m_corner_offset, m_normal_rhs, m_reduced_solution, m_least_squares_rhs;
+  using Ldlt = Eigen::SimplicialLDLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>>;
+  std::shared_ptr<const Ldlt> m_factor; // of the last factor(); shared: the class stays copyable
 };
 
 } // namespace internal

@@ -248,10 +248,17 @@ public:
   }
 
 private:
+  // the blocks of a supernode, in buffers that only grow: a fresh allocation per supernode (sizes vary) would be
+  // fresh pages, each a fault
   struct Scratch
   {
-    std::vector<double> sum;
-    Eigen::MatrixXd zrr, l, u, z, inverse;
+    std::vector<double> sum, zrr, lrj, u, z, small;
+    static double* at_least(std::vector<double>& buffer, std::size_t size)
+    {
+      if(buffer.size() < size)
+        buffer.resize(size);
+      return buffer.data();
+    }
   };
 
   // The columns j0..j1 of a supernode at once, with dense blocks (J its columns, R the rows below them):
@@ -259,13 +266,15 @@ private:
   // when an entry of Z_RR is off the pattern (a supernodal factor's padded rows): then column by column.
   bool block(int j0, int j1, Scratch& w)
   {
+    using Matrix = Eigen::Map<Eigen::MatrixXd>;
     const int s = j1 - j0 + 1;
     const int rb = m_start[std::size_t(j1)], re = m_start[std::size_t(j1) + 1];
     const int r = re - rb;
     const int* R = m_row.data() + rb;
-    w.zrr.resize(r, r);
+    const std::size_t rs = std::size_t(r) * std::size_t(s);
+    Matrix zrr(Scratch::at_least(w.zrr, std::size_t(r) * std::size_t(r)), r, r);
     for(int a = 0; a < r; ++a) {
-      w.zrr(a, a) = m_diagonal[std::size_t(R[a])];
+      zrr(a, a) = m_diagonal[std::size_t(R[a])];
       int p = m_start[std::size_t(R[a])];
       const int pe = m_start[std::size_t(R[a]) + 1];
       for(int b = a + 1; b < r; ++b) {
@@ -273,28 +282,31 @@ private:
           ++p;
         if(p == pe || m_row[std::size_t(p)] != R[b])
           return false;
-        w.zrr(b, a) = m_value[std::size_t(p)];
+        zrr(b, a) = m_value[std::size_t(p)];
       }
     }
-    w.l.setZero(s, s);
-    w.u.resize(r, s);
+    double* small = Scratch::at_least(w.small, 3 * std::size_t(s) * std::size_t(s));
+    Matrix l(small, s, s), inverse(small + s * s, s, s), zjj(small + 2 * s * s, s, s);
+    Matrix lrj(Scratch::at_least(w.lrj, rs), r, s);
+    l.setZero();
     for(int c = 0; c < s; ++c) {
       const int b = m_start[std::size_t(j0 + c)];
-      w.l(c, c) = 1;
+      l(c, c) = 1;
       for(int i = c + 1; i < s; ++i)
-        w.l(i, c) = m_l[std::size_t(b + (i - c - 1))];
+        l(i, c) = m_l[std::size_t(b + (i - c - 1))];
       for(int t = 0; t < r; ++t)
-        w.u(t, c) = m_l[std::size_t(b + (s - 1 - c) + t)];
+        lrj(t, c) = m_l[std::size_t(b + (s - 1 - c) + t)];
     }
-    w.inverse.setIdentity(s, s);
-    w.l.triangularView<Eigen::UnitLower>().solveInPlace(w.inverse);
-    Eigen::MatrixXd zjj = w.inverse.transpose() *
-                          Eigen::Map<const Eigen::VectorXd>(m_d.data() + j0, s).cwiseInverse().asDiagonal() *
-                          w.inverse;
+    inverse.setIdentity();
+    l.triangularView<Eigen::UnitLower>().solveInPlace(inverse);
+    zjj.noalias() = inverse.transpose() *
+                    Eigen::Map<const Eigen::VectorXd>(m_d.data() + j0, s).cwiseInverse().asDiagonal() * inverse;
+    Matrix z(Scratch::at_least(w.z, rs), r, s);
     if(r > 0) { // (Eigen's blocked products divide by the sizes)
-      w.u = w.u * w.inverse; // L_RJ L_JJ^-1
-      w.z.noalias() = -(w.zrr.selfadjointView<Eigen::Lower>() * w.u);
-      zjj.noalias() -= w.u.transpose() * w.z;
+      Matrix u(Scratch::at_least(w.u, rs), r, s);
+      u.noalias() = lrj * inverse; // L_RJ L_JJ^-1
+      z.noalias() = -(zrr.selfadjointView<Eigen::Lower>() * u);
+      zjj.noalias() -= u.transpose() * z;
     }
     for(int c = 0; c < s; ++c) {
       const int b = m_start[std::size_t(j0 + c)];
@@ -302,7 +314,7 @@ private:
       for(int i = c + 1; i < s; ++i)
         m_value[std::size_t(b + (i - c - 1))] = zjj(i, c);
       for(int t = 0; t < r; ++t)
-        m_value[std::size_t(b + (s - 1 - c) + t)] = w.z(t, c);
+        m_value[std::size_t(b + (s - 1 - c) + t)] = z(t, c);
     }
     return true;
   }

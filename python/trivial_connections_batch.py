@@ -261,7 +261,7 @@ def _run_program(cmd: List[str], timeout: Optional[float], memory_limit: Optiona
     over = threading.Event()
     done = threading.Event()
     if memory_limit:
-        import psutil
+        import psutil  # type: ignore[import]  # (Debian ships no stubs for it)
 
         def watch() -> None:
             try:

@@ -608,6 +608,52 @@ TEST(Refinement, selected_inverse_of_a_supernodal_factor_is_the_inverse_on_its_p
   }
   EXPECT_GT(padded, std::size_t(0)); // the case of the fallback is there
 }
+
+// The paths go through CHOLMOD's factor without its explicit zeros; when they grow past the inversion's cost the
+// factor is read again, zeros included, and inverted (the pattern without them is not chordal); read in vain, the
+// paths stay. Either way the entries are those of M^-1.
+TEST(Refinement, paths_through_a_supernodal_factor_give_way_to_the_inversion_of_the_factor_read_again)
+{
+  const int side = 30, nn = side * side;
+  const Eigen::SparseMatrix<double> M = grid_in_fill_reducing_order(side);
+  TC::Cholmod_solver_traits traits;
+  traits.solver().compute(M);
+  ASSERT_EQ(traits.solver().info(), Eigen::Success);
+  std::vector<int> row_of_vertex(static_cast<std::size_t>(nn)), position(static_cast<std::size_t>(nn));
+  std::iota(row_of_vertex.begin(), row_of_vertex.end(), 0);
+  std::iota(position.begin(), position.end(), 0);
+  auto solve = [&](const Eigen::VectorXd& e) { return Eigen::VectorXd(traits.solver().solve(e)); };
+  std::vector<int> all(static_cast<std::size_t>(nn));
+  std::iota(all.begin(), all.end(), 0);
+  for(const bool readable : {true, false}) {
+    SCOPED_TRACE(readable ? "read again" : "not readable again");
+    TC::internal::Unit_lower_factor f;
+    ASSERT_TRUE(TC::internal::Factor_reading<TC::Cholmod_solver_traits>::read(traits, f));
+    ASSERT_TRUE(std::count(f.value.begin(), f.value.end(), 0.) > 0); // padded
+    int reads = 0;
+    TC::internal::Move_energy energy(
+      row_of_vertex, position.data(), nn, std::move(f), {0, 1}, solve, TC::internal::Move_energy::Entries::automatic,
+      TC::internal::Move_energy::default_column_budget_bytes, [&] {
+        ++reads;
+        TC::internal::Unit_lower_factor again;
+        if(readable)
+          TC::internal::Factor_reading<TC::Cholmod_solver_traits>::read(traits, again);
+        return again;
+      });
+    ASSERT_TRUE(energy.paths());
+    energy.prefetch_paths({0, 1, 2});
+    EXPECT_EQ(reads, 0);
+    energy.prefetch_paths(all);
+    EXPECT_EQ(reads, 1);
+    EXPECT_EQ(energy.selected(), readable);
+    EXPECT_EQ(energy.paths(), !readable);
+    for(int v = 0; v < nn; v += 37)
+      for(int w : {v, (std::min)(v + 1, nn - 1), (std::min)(v + side, nn - 1), nn - 1 - v}) {
+        const double expected = solve(Eigen::VectorXd::Unit(nn, v))[w];
+        EXPECT_NEAR(energy.entry(v, w), expected, 1e-10 * (1 + std::abs(expected))) << v << " " << w;
+      }
+  }
+}
 #endif
 
 // The refinement's entries of M^-1, wherever they come from: the selected inversion, the elimination tree paths (few
@@ -671,14 +717,19 @@ TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_column
         if(!column)
           continue;
         const Eigen::VectorXd expected = solve(Eigen::VectorXd::Unit(nn, row_of_vertex[std::size_t(v)]));
+        std::vector<char> entry_used(static_cast<std::size_t>(nn), 0);
         for(int r = 0; r < nn; ++r) {
           if(!energy.watched(r)) {
             ++rows_unwatched;
-            EXPECT_TRUE(std::isnan(column[r])) << v << " " << r; // never read as a value
+            EXPECT_EQ(energy.entry_of_row(r), -1) << v << " " << r; // no entry: never read
             continue;
           }
           ++rows_compared;
-          EXPECT_NEAR(column[r], expected[r], 1e-10 * expected.cwiseAbs().maxCoeff()) << v << " " << r;
+          const int e = energy.entry_of_row(r);
+          ASSERT_TRUE(e >= 0 && e < nn) << r;
+          EXPECT_FALSE(entry_used[std::size_t(e)]) << r; // one entry per row
+          entry_used[std::size_t(e)] = 1;
+          EXPECT_NEAR(column[e], expected[r], 1e-10 * expected.cwiseAbs().maxCoeff()) << v << " " << r;
         }
       }
       EXPECT_GT(rows_compared, 0u);
@@ -732,7 +783,7 @@ TEST(Refinement, columns_asked_for_stay_past_the_budget)
       const Eigen::VectorXd expected = solve(Eigen::VectorXd::Unit(nn, v));
       const double* column = energy.column_of(v);
       for(int r = 0; r < nn; ++r)
-        EXPECT_NEAR(column[r], expected[r], 1e-10 * expected.cwiseAbs().maxCoeff()) << v << " " << r;
+        EXPECT_NEAR(column[energy.entry_of_row(r)], expected[r], 1e-10 * expected.cwiseAbs().maxCoeff()) << v << " " << r;
     }
   };
   energy.prefetch({3, 50, 170});

@@ -46,6 +46,7 @@
 #include <future>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -503,9 +504,13 @@ public:
     }
     m_period_hint.clear();
     m_last_periods = periods;
-    internal::Constraint_sums sums;
-    Eigen::VectorXd xe = internal::checked_connection(
-      m_rows, [&](const Eigen::VectorXd& r) { return m_system.solve(m_rows, r); }, b, lambda, sums);
+    // the connection and its sums in vectors the solver keeps for later solves (see Connection_workspace)
+    Workspace_lease workspace(*this);
+    internal::Constraint_sums& sums = workspace->sums;
+    Eigen::VectorXd& xe = workspace->connection;
+    internal::checked_connection(
+      m_rows, [&](const Eigen::VectorXd& r) { return m_system.solve(m_rows, r); }, b, lambda, sums, xe,
+      workspace->checked, m_refine_residuals_above);
     if(decided) {
       xe += x_fixed;
       internal::Constraint_sums with_fixed;
@@ -671,6 +676,43 @@ private:
   internal::Prefactored_system<Solver_traits> m_system; // factorization/: M factored, its solves
   std::vector<internal::Reduced_lattice> m_lattices;    // integers/: per component, the reduced lattice of its integers
   Eigen::VectorXd m_multipliers; // of the last solve that gave its energy gradient (the refinement reads them)
+  // solve()'s connection, its constraint sums and scratch vectors, kept for later solves: one set per solve running
+  // at once (solves may run concurrently), taken and given back under a lock
+  struct Solve_workspace
+  {
+    Eigen::VectorXd connection;
+    internal::Constraint_sums sums;
+    internal::Connection_workspace checked;
+  };
+  class Workspace_lease
+  {
+  public:
+    explicit Workspace_lease(Trivial_connection_solver& s) : m_solver(s)
+    {
+      std::lock_guard<std::mutex> lock(s.m_workspaces_mutex);
+      if(!s.m_workspaces.empty()) {
+        m_workspace = std::move(s.m_workspaces.back());
+        s.m_workspaces.pop_back();
+      }
+      if(!m_workspace)
+        m_workspace.reset(new Solve_workspace());
+    }
+    ~Workspace_lease()
+    {
+      std::lock_guard<std::mutex> lock(m_solver.m_workspaces_mutex);
+      m_solver.m_workspaces.push_back(std::move(m_workspace));
+    }
+    Workspace_lease(const Workspace_lease&) = delete;
+    Workspace_lease& operator=(const Workspace_lease&) = delete;
+    Solve_workspace* operator->() { return m_workspace.get(); }
+
+  private:
+    Trivial_connection_solver& m_solver;
+    std::unique_ptr<Solve_workspace> m_workspace;
+  };
+  std::mutex m_workspaces_mutex;
+  std::vector<std::unique_ptr<Solve_workspace>> m_workspaces; // given back, free
+  double m_refine_residuals_above = internal::refine_residuals_above; // see checked_connection()
   // the integers of every slot of the last solve, and those the next solve alone tries too (the refinement's)
   std::vector<std::int64_t> m_last_periods, m_period_hint;
   struct Face_sets

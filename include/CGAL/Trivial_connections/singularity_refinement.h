@@ -24,6 +24,7 @@
 #include <type_traits>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -116,8 +117,9 @@ Poincare-Hopf is kept: a move keeps every component's index sum.
 \tparam SingularityRange as for `solve()`
 \param solver the prefactored solver
 \param start the starting singularities (checked as by `solve()`)
-\param x a writable property map `halfedge_descriptor -> double`: receives the connection of the refined set
-       (its energy at most `energy_after`). Its integers of loops and links are also a candidate of the solver's next
+\param x a writable property map `halfedge_descriptor -> double`: receives the connection of the refined set,
+       solved again at the end with the residual refined as by `solve()` (the trial solves refine it only from
+       1e-11) and with the integers the trials accepted as a candidate (its energy is `energy_after`). Its integers of loops and links are also a candidate of the solver's next
        `solve()` (once): when no solve can prove them optimal (many of them, e.g. under guidance), solving the
        refined set again chooses them or better ones, never the worse ones a fresh search might settle for.
 \param np an optional sequence of named parameters: those of `solve()` (`symmetry_order`, `loop_periods`,
@@ -177,9 +179,9 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   };
   using Gradient = boost::vector_property_map<double, typename std::decay_t<decltype(m)>::Vertex_index_map>;
   std::vector<double> gradient(std::size_t(m.nv), 0.);
+  Gradient map(std::size_t(m.nv), m.vertex_index); // written whole by each solve, kept (fresh pages are faults)
   auto solve = [&](const std::vector<std::pair<vertex_descriptor, Singularity_index>>& set,
                    std::vector<double>& gradient_out, Solve_report& report) {
-    Gradient map(std::size_t(m.nv), m.vertex_index);
     report = solver.solve(set, x, parameters::energy_gradient(map, np));
     for(int v = 0; v < m.nv; ++v)
       gradient_out[std::size_t(v)] = map[m.vertex_descriptors[v]];
@@ -189,6 +191,18 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   // rows bordered outside the factor (set_constraints() on a kept factorization) would leave the entries of M^-1
   // to one back-substitution per vertex: factored in first
   Access::factor_bordered_links(solver);
+
+  // The trial solves refine their connection only from a relative residual of 1e-11 (the promise is 1e-9): on a
+  // large mesh the first residual is barely above the rounding level that solve() refines down to (cheese_loop3:
+  // 1.0e-13 to 2.2e-13 of 1 + |b|), and that refinement is a second back-substitution per trial. The connection
+  // returned is solved again at full accuracy, as is the first (so energy_after <= energy_before).
+  struct Trial_accuracy
+  {
+    Solver& s;
+    explicit Trial_accuracy(Solver& solver) : s(solver) { Access::refine_residuals_above(s, 1e-11); }
+    ~Trial_accuracy() { Access::refine_residuals_above(s, internal::refine_residuals_above); }
+  };
+  std::optional<Trial_accuracy> trial_accuracy;
 
   Refinement_report<vertex_descriptor> result;
   double energy = 0;
@@ -203,6 +217,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     result.singularities_before = given.size();
   }
   result.energy_before = energy;
+  trial_accuracy.emplace(solver); // after the first solve, at full accuracy: energy_before is exact to rounding
   // each trial also tries the integers of the set it moves from: a move predicted with them kept is then never
   // rejected because a search that cannot prove the optimum (hundreds of integers) found worse ones
   std::vector<std::int64_t> accepted_periods = Access::last_periods(solver);
@@ -242,7 +257,12 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   internal::Move_energy inverse(std::move(row_of_vertex),
                                 rows.rows > 0 ? system.permutation().indices().data() : nullptr, system_rows,
                                 std::move(factor), singular_and_neighbours(),
-                                [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
+                                [&](const Eigen::VectorXd& e) { return system.solve(rows, e); },
+                                internal::Move_energy::Entries::automatic,
+                                internal::Move_energy::default_column_budget_bytes, [&] {
+                                  internal::Unit_lower_factor again;
+                                  return system.read_factor(rows, again) ? again : internal::Unit_lower_factor();
+                                });
 
   // The free integers (loops, links) of each component, which the solves choose: see Move_integers. Only those of
   // components with a free singularity: nothing moves in the others, ever.
@@ -284,7 +304,6 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   };
   std::vector<double> trial_gradient(std::size_t(m.nv), 0.);
   Solve_report trial_report;
-  bool last_trial_accepted = true;
   std::vector<int> blocked(std::size_t(m.nv), -1); // the round that last blocked a vertex
   internal::Second_thread second_thread;          // half of each round's pair pricing
   const std::size_t unlimited = (std::numeric_limits<std::size_t>::max)();
@@ -350,14 +369,15 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         inverse.prefetch(columns);
         struct End
         {
-          int vertex, row;
+          int vertex, row, entry; // entry: where the columns hold row's (see Move_energy::entry_of_row())
           std::size_t component;
           double gradient, diagonal;
           internal::Move_integers::Row_terms terms;
         };
         auto end_of = [&](int v) {
           const std::size_t c = component(v);
-          return End{v, inverse.row_of(v), c, gradient[std::size_t(v)], diagonal[std::size_t(v)],
+          const int r = inverse.row_of(v);
+          return End{v, r, r >= 0 ? inverse.entry_of_row(r) : -1, c, gradient[std::size_t(v)], diagonal[std::size_t(v)],
                      search ? integers.terms(c, inverse.row_of(v)) : internal::Move_integers::Row_terms()};
         };
         std::vector<End> column_ends, other_ends;
@@ -389,7 +409,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
               const End& v = by_positive ? a : b;
               const End& w = by_positive ? b : a;
               CGAL_assertion(b.row < 0 || inverse.watched(b.row));
-              const double g_vw = column && b.row >= 0 ? column[b.row] : 0.;
+              const double g_vw = column && b.row >= 0 ? column[b.entry] : 0.;
               // score(v, w, 1, G_vv + G_ww - 2 G_vw)
               const double kept = 1. / n * (w.gradient - v.gradient) + unit2 * (v.diagonal + w.diagonal - 2 * g_vw);
               const double hoped = search ? kept + integers.quick_bound(a.component, v.terms, w.terms, unit) : kept;
@@ -533,7 +553,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     auto at = [&](const double* column, int v) {
       const int r = inverse.row_of(v);
       CGAL_assertion(r < 0 || inverse.watched(r));
-      return r >= 0 && column ? column[r] : 0.;
+      return r >= 0 && column ? column[inverse.entry_of_row(r)] : 0.;
     };
     for(std::size_t i = 0; i < candidates.size(); ++i) {
       const Candidate& c = candidates[i];
@@ -593,7 +613,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       Access::hint_periods(solver, size == 1 && chosen[0].integers && !changed_periods.empty() ? changed_periods
                                                                                               : accepted_periods);
       const double e = solve(as_set(kk), trial_gradient, trial_report);
-      last_trial_accepted = accepted = e < energy * (1 - 1e-12);
+      accepted = e < energy * (1 - 1e-12);
       if(!accepted)
         continue;
       // after a halving, the next round starts at twice the size that was accepted (fewer solves rejected where
@@ -622,12 +642,13 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   result.column_solves = inverse.column_solves() + integers.column_solves();
   result.energy_after = energy;
   result.singularities = as_set(k);
-  // x holds the last trial's connection: solved again when that trial was rejected, from the integers accepted
-  if(!last_trial_accepted) {
-    Access::hint_periods(solver, accepted_periods);
-    result.report = solver.solve(result.singularities, x, np);
-    accepted_periods = Access::last_periods(solver);
-  }
+  // x holds the last trial's connection (of a rejected set, or refined only from 1e-11): solved again at full
+  // accuracy, from the integers accepted
+  trial_accuracy.reset();
+  Access::hint_periods(solver, accepted_periods);
+  result.report = solver.solve(result.singularities, x, np);
+  accepted_periods = Access::last_periods(solver);
+  result.energy_after = result.report.energy + result.report.guidance_energy;
   // and the next solve, of the refined set as a rule, starts from them (ChineseDragon-10kv with --align-curvature:
   // the refinement reached 175.51, a fresh solve of its singularities 177.94)
   Access::hint_periods(solver, accepted_periods);

@@ -40,6 +40,8 @@ struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverT
   // then gives an energy no higher than with them (when its search cannot prove the optimum)
   static const std::vector<std::int64_t>& last_periods(const Solver& s) { return s.m_last_periods; }
   static void hint_periods(Solver& s, std::vector<std::int64_t> periods) { s.m_period_hint = std::move(periods); }
+  // the residual from which solve() refines its connection (see checked_connection())
+  static void refine_residuals_above(Solver& s, double relative) { s.m_refine_residuals_above = relative; }
   // after set_constraints() on a kept factorization: its links into the factor (factored again)
   static void factor_bordered_links(Solver& s) { s.factor_bordered_links(); }
   // a solver of tm from its arrays, made from the connectivity tm is built from (see Mesh_arrays); with a

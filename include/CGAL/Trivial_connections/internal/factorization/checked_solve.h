@@ -21,6 +21,15 @@ namespace CGAL {
 namespace Trivial_connections {
 namespace internal {
 
+// The vectors of checked_connection(), kept by a caller that solves again and again (a refinement's trial solves):
+// allocated afresh, megabytes each, every page of theirs is a fault (cheese_loop3's trial solves touched some 15k
+// fresh pages each).
+struct Connection_workspace
+{
+  Eigen::VectorXd ax, refined_ax, rhs, refined_x;
+  Constraint_sums refined;
+};
+
 /*
   The connection x = W^-1 A^T lambda of the multipliers `lambda` of A W^-1 A^T lambda = b, checked through the
   constraints it must satisfy: A x - b is M lambda - b, computed from x at the cost of one pass over the edges
@@ -28,32 +37,41 @@ namespace internal {
   drops, up to three steps, when it is not already at rounding level. `solve` is the unchecked b -> M^-1 b.
   Throws solver_failure when the residual stays above the package's promise.
 */
+// `refine_above`: the residual, relative to 1 + |b|, from which x is refined (the rounding level by default; a
+// refinement's trial solves take 1e-11, still a hundred times below the promise, and save a solve each).
+constexpr double refine_residuals_above = 1e-13;
+
 template <class Solve>
-Eigen::VectorXd checked_connection(const Constraint_rows& rows, Solve solve, const Eigen::VectorXd& b,
-                                   Eigen::VectorXd& lambda, Constraint_sums& sums)
+void checked_connection(const Constraint_rows& rows, Solve solve, const Eigen::VectorXd& b, Eigen::VectorXd& lambda,
+                        Constraint_sums& sums, Eigen::VectorXd& xe, Connection_workspace& w,
+                        double refine_above = refine_residuals_above)
 {
   const double scale = 1 + b.template lpNorm<Eigen::Infinity>();
-  Eigen::VectorXd xe = rows.connection_of(lambda);
+  rows.connection_of(lambda, xe);
   std::vector<double> slack = rows.slacks(lambda);
   rows.sums_of(xe, slack, sums);
-  double res = (b - rows.row_sums(sums)).template lpNorm<Eigen::Infinity>();
+  rows.row_sums(sums, w.ax);
+  double res = (b - w.ax).template lpNorm<Eigen::Infinity>();
   // Refined in x itself: x += W^-1 A^T M^-1 (b - A x). Recomputing x from refined multipliers would divide
   // their rounding errors by the smallest weights again, which on needle triangles is the residual itself.
-  for(int step = 0; step < 3 && std::isfinite(res) && res > 1e-13 * scale; ++step) {
-    const Eigen::VectorXd delta = solve(Eigen::VectorXd(b - rows.row_sums(sums)));
-    Eigen::VectorXd refined_x = xe + rows.connection_of(delta);
+  for(int step = 0; step < 3 && std::isfinite(res) && res > refine_above * scale; ++step) {
+    w.rhs = b - w.ax;
+    const Eigen::VectorXd delta = solve(w.rhs);
+    rows.connection_of(delta, w.refined_x);
+    w.refined_x += xe;
     std::vector<double> refined_slack = rows.slacks(delta);
     for(std::size_t g = 0; g < slack.size(); ++g)
       refined_slack[g] += slack[g];
-    Constraint_sums refined;
-    rows.sums_of(refined_x, refined_slack, refined);
-    const double refined_res = (b - rows.row_sums(refined)).template lpNorm<Eigen::Infinity>();
+    rows.sums_of(w.refined_x, refined_slack, w.refined);
+    rows.row_sums(w.refined, w.refined_ax);
+    const double refined_res = (b - w.refined_ax).template lpNorm<Eigen::Infinity>();
     if(!(refined_res < res))
       break;
     lambda += delta;
-    xe.swap(refined_x);
+    xe.swap(w.refined_x);
     slack.swap(refined_slack);
-    sums = std::move(refined);
+    std::swap(sums, w.refined);
+    w.ax.swap(w.refined_ax);
     res = refined_res;
   }
   // the package promises holonomy residuals below 1e-9 rad (plus the rounding of 2 pi k for huge indices): a
@@ -66,6 +84,15 @@ Eigen::VectorXd checked_connection(const Constraint_rows& rows, Solve solve, con
             << "double precision)";
     throw Invalid_input(Error_code::solver_failure, message.str());
   }
+}
+
+template <class Solve>
+Eigen::VectorXd checked_connection(const Constraint_rows& rows, Solve solve, const Eigen::VectorXd& b,
+                                   Eigen::VectorXd& lambda, Constraint_sums& sums)
+{
+  Eigen::VectorXd xe;
+  Connection_workspace w;
+  checked_connection(rows, solve, b, lambda, sums, xe, w);
   return xe;
 }
 

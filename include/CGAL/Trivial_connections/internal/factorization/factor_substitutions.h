@@ -10,6 +10,7 @@
 
 #include <CGAL/Trivial_connections/solver_traits.h>
 #include <CGAL/Trivial_connections/internal/factorization/backend_view.h>
+#include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
 
 #include <CGAL/assertions.h>
 
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <new>
+#include <type_traits>
 
 namespace CGAL {
 namespace Trivial_connections {
@@ -41,6 +43,11 @@ struct Factor_substitutions
   static bool available(const SolverTraits&) { return false; }
   static void forward(SolverTraits&, Eigen::VectorXd&) { CGAL_error(); }
   static void scale(SolverTraits&, Eigen::VectorXd&) { CGAL_error(); }
+  static double scaled_square_norm(SolverTraits&, const Eigen::VectorXd&, Eigen::Index)
+  {
+    CGAL_error();
+    return 0;
+  }
   static void backward(SolverTraits&, Eigen::VectorXd&) { CGAL_error(); }
 };
 
@@ -55,10 +62,20 @@ struct Factor_substitutions<CGAL::Eigen_solver_traits<
   {
     return traits.solver().info() == Eigen::Success && traits.solver().permutationP().size() == 0;
   }
+  // D read in place: vectorD() returns a copy (a fresh vector per solve, each of its pages a fault)
   template <class Traits>
   static void scale(Traits& traits, Eigen::VectorXd& v)
   {
-    v = v.cwiseQuotient(traits.solver().vectorD());
+    auto& solver = traits.solver();
+    v.array() /= Simplicial_members<std::remove_reference_t<decltype(solver)>>::diagonal(solver).array();
+  }
+  // sum of v_i^2 / d_i over the first `count` rows (what scale() then a dot product with v give, without a copy)
+  template <class Traits>
+  static double scaled_square_norm(Traits& traits, const Eigen::VectorXd& v, Eigen::Index count)
+  {
+    auto& solver = traits.solver();
+    const auto& d = Simplicial_members<std::remove_reference_t<decltype(solver)>>::diagonal(solver);
+    return (v.head(count).array().square() / d.head(count).array()).sum();
   }
   // L is stored strictly lower (unit diagonal), column major
   template <class Traits>
@@ -125,6 +142,11 @@ struct Factor_substitutions<CGAL::Eigen_solver_traits<Cholmod_supernodal_factori
 
   template <class Traits>
   static void scale(Traits&, Eigen::VectorXd&) {} // L L^T: D = I
+  template <class Traits>
+  static double scaled_square_norm(Traits&, const Eigen::VectorXd& v, Eigen::Index count)
+  {
+    return v.head(count).squaredNorm();
+  }
   template <class Traits>
   static void backward(Traits& traits, Eigen::VectorXd& v) { solve(traits, CHOLMOD_Lt, v); }
 
@@ -234,6 +256,12 @@ struct Factor_substitutions<Cost_based_solver_traits<Crossover>>
     // L L^T for CHOLMOD: D = I
     on_backend(
       traits, [&](auto& view) { Simplicial::scale(view, v); return true; }, [](auto&) { return true; }, false);
+  }
+  static double scaled_square_norm(Traits& traits, const Eigen::VectorXd& v, Eigen::Index count)
+  {
+    return on_backend(
+      traits, [&](auto& view) { return Simplicial::scaled_square_norm(view, v, count); },
+      [&](auto& view) { return Supernodal::scaled_square_norm(view, v, count); }, 0.);
   }
   static void backward(Traits& traits, Eigen::VectorXd& v)
   {

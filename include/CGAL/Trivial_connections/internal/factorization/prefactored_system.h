@@ -206,9 +206,8 @@ public:
       for(Eigen::Index a = 0; a < tc.size(); ++a)
         z[first + metric.block[a]] = tc[a];
     }
-    const Eigen::VectorXd z_nodes = z.head(first);
+    f.node_part = m_factor.scaled_square_norm(z, first); // b_N^T M_NN^-1 b_N = z_N^T D_N^-1 z_N, no copy of z_N
     m_factor.scale(z);
-    f.node_part = z_nodes.dot(z.head(first)); // b_N^T M_NN^-1 b_N
     if constexpr(Sparse_factor<SolverTraits>::leading_columns) {
       for(std::size_t c = 0; c < m_metrics.size(); ++c) {
         const Loop_metric& metric = m_metrics[c];
@@ -221,7 +220,8 @@ public:
       }
     }
     m_factor.backward(z, first);
-    return m_factor.permutation().transpose() * z;
+    z = m_factor.permutation().transpose() * z; // in place
+    return std::move(z);
   }
 
 private:

@@ -11,6 +11,8 @@
 #include <CGAL/Trivial_connections/internal/factorization/backend_view.h>
 #include <CGAL/Trivial_connections/internal/factorization/factor_substitutions.h>
 
+#include <CGAL/assertions.h>
+
 #include <Eigen/Core>
 #include <Eigen/Dense>
 
@@ -204,11 +206,13 @@ inline double selected_inversion_work(const std::vector<int>& start, const std::
 class Selected_inverse
 {
 public:
-  // takes the factor's storage (the pattern is kept, the values become those of M^-1)
-  explicit Selected_inverse(Unit_lower_factor&& f)
-    : m_start(std::move(f.start)), m_row(std::move(f.row)), m_l(std::move(f.value)), m_d(std::move(f.d))
+  // takes the factor's storage (the pattern is kept); `keep_factor`: its values are kept too, for factor() (a
+  // caller that reads the factor after the inversion needs no copy of it: hundreds of megabytes, each page a fault)
+  explicit Selected_inverse(Unit_lower_factor&& f, bool keep_factor = false)
+    : m_factor(std::move(f)), m_start(m_factor.start), m_row(m_factor.row), m_l(m_factor.value), m_d(m_factor.d),
+      m_factor_kept(keep_factor)
   {
-    const int n = f.n;
+    const int n = m_factor.n;
     m_value.assign(m_l.size(), 0.);
     m_diagonal.assign(std::size_t(n), 0.);
     // A column needs those of its ancestors in the elimination tree only: two disjoint subtrees go on two
@@ -231,8 +235,20 @@ public:
     auto second = concurrently([&] { return columns_of(2); });
     columns_of(1);
     second.get();
-    std::vector<double>().swap(m_l);
-    std::vector<double>().swap(m_d);
+    if(!m_factor_kept) {
+      std::vector<double>().swap(m_l);
+      std::vector<double>().swap(m_d);
+    }
+  }
+  Selected_inverse(const Selected_inverse&) = delete;
+  Selected_inverse& operator=(const Selected_inverse&) = delete;
+
+  // the factor inverted, when kept
+  bool factor_kept() const { return m_factor_kept; }
+  const Unit_lower_factor& factor() const
+  {
+    CGAL_precondition(m_factor_kept);
+    return m_factor;
   }
 
   // (M^-1)_ij for positions i, j of the factored system; NaN when (i, j) is off the pattern
@@ -416,8 +432,12 @@ private:
     return owner;
   }
 
-  std::vector<int> m_start, m_row;
-  std::vector<double> m_l, m_d; // the factor, while the inverse is made
+  Unit_lower_factor m_factor;
+  std::vector<int>& m_start;  // its pattern, kept
+  std::vector<int>& m_row;
+  std::vector<double>& m_l;   // its values, while the inverse is made (or kept)
+  std::vector<double>& m_d;
+  bool m_factor_kept;
   std::vector<double> m_value, m_diagonal;
 };
 

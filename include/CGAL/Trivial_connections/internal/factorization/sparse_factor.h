@@ -137,6 +137,11 @@ public:
   }
   // z <- D^-1 z
   void scale(Eigen::VectorXd& z) { Substitutions::scale(m_solver, z); }
+  // the sum of z_i^2 / d_i over the first `count` rows
+  double scaled_square_norm(const Eigen::VectorXd& z, Eigen::Index count)
+  {
+    return Substitutions::scaled_square_norm(m_solver, z, count);
+  }
   // z <- L^-T z, likewise
   void backward(Eigen::VectorXd& z, Eigen::Index columns)
   {
@@ -154,7 +159,8 @@ public:
       forward(z, z.size());
       scale(z);
       backward(z, z.size());
-      return m_permutation.transpose() * z;
+      z = m_permutation.transpose() * z; // in place: one vector per solve, not two
+      return z;
     }
     typename SolverTraits::Vector rhs(b.size()), sol(b.size());
     rhs = m_permutation * b;

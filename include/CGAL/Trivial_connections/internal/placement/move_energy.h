@@ -45,41 +45,42 @@ class Move_energy
 {
 public:
   using Column_solve = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
+  // the factor as read again from the backend, zeros included (n = 0: it cannot be)
+  using Factor_reading = std::function<Unit_lower_factor()>;
   // where the entries near the singularities come from, with a readable factor (tests choose)
   enum class Entries { automatic, selected_inversion, paths };
+  static constexpr double default_column_budget_bytes = 256e6; // see Column_store
 
   // `row_of_vertex`: the row of each vertex (or -1); `position`: row -> position in the factored system;
   // `factor`: the factor M = L D L^T in those positions when it could be read (n = 0 otherwise); `first`: the
   // vertices whose entries are wanted first (the singular ones and their neighbours), to choose between a
-  // selected inversion and paths
+  // selected inversion and paths; `read_again`: reads the factor again, for a switch from paths to the inversion
+  // when the factor had explicit zeros (dropped for the paths, needed by the inversion)
   Move_energy(std::vector<int> row_of_vertex, const int* position, Eigen::Index rows, Unit_lower_factor&& factor,
               const std::vector<int>& first, Column_solve solve, Entries choice = Entries::automatic,
-              double column_budget_bytes = 256e6)
-    : m_row(std::move(row_of_vertex)), m_position(position), m_rows(rows), m_factor(std::move(factor)),
-      m_solve(std::move(solve)), m_store(rows, column_budget_bytes)
+              double column_budget_bytes = default_column_budget_bytes, Factor_reading read_again = Factor_reading())
+    : m_row(std::move(row_of_vertex)), m_position(position), m_rows(rows), m_factor_storage(std::move(factor)),
+      m_solve(std::move(solve)), m_read_again(std::move(read_again)), m_store(rows, column_budget_bytes)
   {
-    if(m_factor.n != int(m_rows) || m_factor.n == 0)
+    if(m_factor_storage.n != int(m_rows) || m_factor_storage.n == 0)
       return;
-    m_row_at.resize(std::size_t(m_rows));
-    for(Eigen::Index r = 0; r < m_rows; ++r)
-      m_row_at[std::size_t(m_position[r])] = int(r);
     // The work of each: a selected inversion's from its supernodes (see selected_inversion_work()); a path that of
     // the columns along it, for each vertex wanted, and more as singularities move.
-    const int n = m_factor.n;
-    const double inversion = selected_inversion_work(m_factor.start, m_factor.row);
+    const int n = m_factor_storage.n;
+    const double inversion = selected_inversion_work(m_factor_storage.start, m_factor_storage.row);
     // The elimination tree of the factor as read: its rows of a column are ancestors of it, which the paths and
     // the columns rely on. A supernodal factor brings the zeros of its dense blocks along, and pins' fixed edges
     // put zeros in any factor: the inversion needs them (its pattern must stay chordal), the substitutions of
     // paths and columns do not (CHOLMOD, refined_elephant: 3.7 x faster), but the tree is read before they go
     // (without them, a column's first row may no longer be its parent: fandisk's pins left neither paths nor
     // columns but one back-substitution per entry).
-    const bool tree = elimination_tree_pattern(m_factor);
-    m_parent = elimination_tree_parents(m_factor.start, m_factor.row);
-    // the factor with its zeros, for the inversion (empty when it has none: m_factor is copied if inverted)
-    Unit_lower_factor padded = without_zeros(m_factor);
+    const bool tree = elimination_tree_pattern(m_factor_storage);
+    m_parent = elimination_tree_parents(m_factor_storage.start, m_factor_storage.row);
+    // the factor with its zeros, for the inversion (empty when it has none)
+    Unit_lower_factor padded = without_zeros(m_factor_storage);
     std::vector<double> path(std::size_t(n), 0.);
     for(int j = n - 1; j >= 0; --j) {
-      const int b = m_factor.start[std::size_t(j)], e = m_factor.start[std::size_t(j) + 1];
+      const int b = m_factor_storage.start[std::size_t(j)], e = m_factor_storage.start[std::size_t(j) + 1];
       path[std::size_t(j)] = double(e - b + 1) + (parent(j) >= 0 ? path[std::size_t(parent(j))] : 0.);
     }
     double paths = 0;
@@ -90,26 +91,39 @@ public:
     // with paths, femur N = 4 at 15 is 1.5 x slower
     const bool use_paths =
       tree && (choice == Entries::paths || (choice == Entries::automatic && 2 * paths < 3 * inversion));
-    m_paths_usable = use_paths && std::all_of(m_factor.d.begin(), m_factor.d.end(), [](double d) { return d > 0; });
+    m_paths_usable = use_paths && std::all_of(m_factor_storage.d.begin(), m_factor_storage.d.end(), [](double d) { return d > 0; });
     // The paths made grow with the moves (the new neighbours of every singularity moved): chosen by the vertices
     // wanted first, they may cost more than the inversion in the end (cheese_loop3, N = 2: 616 singularities, 5,460
     // moves, half of the refinement in paths). Past the rule's own break-even the inversion takes over, where the
-    // factor as read is the one to invert (no explicit zeros to keep its pattern chordal).
-    if(m_paths_usable && choice == Entries::automatic && padded.n == 0) {
+    // factor as read is the one to invert, or, when it had explicit zeros to keep its pattern chordal (CHOLMOD's
+    // supernodes), the factor read again (cheese_loop3, N = 2: paths to the end were 1.6 x the placement).
+    m_zeros_dropped = padded.n > 0;
+    if(m_paths_usable && choice == Entries::automatic && (!m_zeros_dropped || m_read_again)) {
       m_path_cost = std::move(path);
       m_inversion_cost = inversion;
     }
     m_covered.assign(std::size_t(n), tree ? 0 : 1);
+    m_entry.assign(std::size_t(n), -1);
     if(m_covered.front())
-      for(int j = n - 1; j >= 0; --j)
+      for(int j = n - 1; j >= 0; --j) {
         m_covered_positions.push_back(j);
+        m_entry[std::size_t(j)] = m_entries++;
+      }
     if(m_paths_usable)
       m_paths.resize(std::size_t(m_rows));
     else
-      m_inverse.reset(new Selected_inverse(padded.n > 0 ? std::move(padded) : Unit_lower_factor(m_factor)));
+      // the factor as read goes to the inversion, which keeps it for the columns (no copy); with its zeros, the
+      // inversion gets that one, and the columns keep the factor without them
+      m_inverse.reset(padded.n > 0 ? new Selected_inverse(std::move(padded))
+                                   : new Selected_inverse(std::move(m_factor_storage), true));
   }
 
   bool selected() const { return bool(m_inverse); }
+  // the factor read, without its explicit zeros (n = 0: none)
+  const Unit_lower_factor& factor() const
+  {
+    return m_inverse && m_inverse->factor_kept() ? m_inverse->factor() : m_factor_storage;
+  }
   std::size_t column_solves() const { return m_column_solves; }
 
   double diagonal(int v) { return entry(v, v); }
@@ -135,7 +149,7 @@ public:
         return path_product(a, b);
     }
     watch_rows({rv, rw});
-    return column(rv)[rw];
+    return column(rv)[entry_of_row(rw)];
   }
 
   // G_vv + G_ww - 2 G_vw: the energy of moving a unit of b from v to w (an effective resistance)
@@ -178,7 +192,7 @@ public:
       m_columns.emplace(r, slots.back());
     }
     auto solve_range = [&](std::size_t begin, std::size_t end) {
-      if(m_factor.n == int(m_rows)) {
+      if(factor().n == int(m_rows)) {
         // one workspace per half (the second ends the range), kept: megabytes, fresh pages each round otherwise
         Block_work& work = m_block_work[end == missing.size() ? 1 : 0];
         for(std::size_t i = begin; i < end; i += block)
@@ -211,16 +225,25 @@ public:
       }
     }
     if(!m_path_cost.empty() && 2 * (m_path_work + work) >= 3 * m_inversion_cost) {
-      m_inverse.reset(new Selected_inverse(Unit_lower_factor(m_factor)));
-      m_paths_usable = false;
-      std::vector<Path>().swap(m_paths);
-      std::vector<double>().swap(m_path_cost);
-      return;
+      if(!m_zeros_dropped) // the factor goes to the inversion, kept there for the columns
+        m_inverse.reset(new Selected_inverse(std::move(m_factor_storage), true));
+      else {
+        Unit_lower_factor again = m_read_again();
+        if(again.n == m_factor_storage.n)
+          m_inverse.reset(new Selected_inverse(std::move(again)));
+      }
+      if(m_inverse) {
+        m_paths_usable = false;
+        std::vector<Path>().swap(m_paths);
+        std::vector<double>().swap(m_path_cost);
+        return;
+      }
+      std::vector<double>().swap(m_path_cost); // the factor could not be read again: the paths stay
     }
     m_path_work += work;
     auto make = [&](std::size_t begin, std::size_t end) {
-      std::vector<double> work(std::size_t(m_factor.n), 0.);
-      std::vector<int> stamp(std::size_t(m_factor.n), -1);
+      std::vector<double> work(std::size_t(factor().n), 0.);
+      std::vector<int> stamp(std::size_t(factor().n), -1);
       bool tree = true;
       for(std::size_t i = begin; i < end && tree; ++i)
         tree = make_path(missing[i], work, stamp);
@@ -236,7 +259,9 @@ public:
     j needs those above j in the elimination tree only (the backward substitution reads the rows of column j of L,
     its ancestors), so the kept columns grow onto newly watched paths exactly, each at the cost of those columns
     of L. refined_elephant, N = 4: the singular vertices and their neighbours reach a fifth of the tree.
-    Reading a kept column elsewhere than on the watched rows is an error (they hold NaN).
+    A kept column holds its entries in the order the positions were covered, so that it touches as much memory as
+    there are covered positions (cheese_loop3, N = 4: 184k of 569k rows; its columns, kept at once by the hundred,
+    were a peak of 5.5 GB and a fifth of the refinement in fresh pages): entry_of_row() tells where a row's is.
   */
   void watch(const std::vector<int>& vertices)
   {
@@ -247,6 +272,8 @@ public:
     watch_rows(rows);
   }
   bool watched(int r) const { return m_covered.empty() || m_covered[std::size_t(m_position[r])]; }
+  // where the entry of row r is in a column (r itself when columns are whole; -1: not watched)
+  int entry_of_row(int r) const { return m_covered.empty() ? r : m_entry[std::size_t(m_position[r])]; }
 
   // whether column_of(v) is made already (or null)
   bool has_column(int v) const
@@ -255,7 +282,8 @@ public:
     return r < 0 || m_columns.count(r) != 0;
   }
 
-  // G e_v over the rows (kept until a prefetch() makes room), or null for a vertex without a row
+  // G e_v on the rows watched, at entry_of_row() (kept until a prefetch() makes room), or null for a vertex
+  // without a row
   const double* column_of(int v)
   {
     const int r = m_row[std::size_t(v)];
@@ -316,8 +344,8 @@ private:
     if(!p.made) {
       p.made = true;
       if(m_work.empty()) {
-        m_work.assign(std::size_t(m_factor.n), 0.);
-        m_stamp.assign(std::size_t(m_factor.n), -1);
+        m_work.assign(std::size_t(factor().n), 0.);
+        m_stamp.assign(std::size_t(factor().n), -1);
       }
       m_paths_usable = make_path(r, m_work, m_stamp);
     }
@@ -339,8 +367,9 @@ private:
   {
     Path& path = const_cast<Path&>(m_paths[std::size_t(r)]); // each row's path is made by one thread
     path.position.clear();
-    const int* start = m_factor.start.data();
-    const int* row = m_factor.row.data();
+    const Unit_lower_factor& f = factor();
+    const int* start = f.start.data();
+    const int* row = f.row.data();
     for(int j = m_position[r]; j >= 0; j = parent(j)) {
       path.position.push_back(j);
       stamp[std::size_t(j)] = r;
@@ -352,10 +381,10 @@ private:
       const int j = path.position[i];
       const double yj = work[std::size_t(j)];
       work[std::size_t(j)] = 0;
-      path.value[i] = yj / std::sqrt(m_factor.d[std::size_t(j)]);
+      path.value[i] = yj / std::sqrt(f.d[std::size_t(j)]);
       for(int p = start[j]; p < start[j + 1]; ++p) {
         tree = tree && stamp[std::size_t(row[p])] == r;
-        work[std::size_t(row[p])] -= m_factor.value[std::size_t(p)] * yj;
+        work[std::size_t(row[p])] -= f.value[std::size_t(p)] * yj;
       }
     }
     if(!tree)
@@ -395,6 +424,7 @@ private:
       if(r >= 0)
         for(int j = m_position[r]; j >= 0 && !m_covered[std::size_t(j)]; j = parent(j)) {
           m_covered[std::size_t(j)] = 1;
+          m_entry[std::size_t(j)] = m_entries++;
           fresh.push_back(j);
         }
     if(fresh.empty())
@@ -409,16 +439,16 @@ private:
     for(auto& c : m_columns)
       kept.push_back(c.second);
     auto extend = [&](std::size_t begin, std::size_t end) {
-      const int* start = m_factor.start.data();
-      const int* row = m_factor.row.data();
-      const double* l = m_factor.value.data();
+      const int* start = factor().start.data();
+      const int* row = factor().row.data();
+      const double* l = factor().value.data();
       for(std::size_t i = begin; i < end; ++i) {
         double* column = kept[i];
         for(int j : fresh) {
           double sum = 0;
           for(int p = start[j]; p < start[j + 1]; ++p)
-            sum += l[p] * column[m_row_at[std::size_t(row[p])]];
-          column[m_row_at[std::size_t(j)]] = -sum;
+            sum += l[p] * column[m_entry[std::size_t(row[p])]];
+          column[m_entry[std::size_t(j)]] = -sum;
         }
       }
     };
@@ -430,10 +460,12 @@ private:
   void columns_of_factor(const std::vector<int>& rows, const std::vector<double*>& out, std::size_t begin,
                          std::size_t end, std::vector<double>& z, std::vector<char>& on_path) const
   {
-    const std::size_t b = end - begin, n = std::size_t(m_factor.n);
-    const int* start = m_factor.start.data();
-    const int* row = m_factor.row.data();
-    const double* l = m_factor.value.data();
+    const Unit_lower_factor& f = factor();
+    const std::size_t b = end - begin, n = std::size_t(f.n);
+    const int* start = f.start.data();
+    const int* row = f.row.data();
+    const double* l = f.value.data();
+    const double* d = f.d.data();
     z.assign(n * b, 0.); // position-major: z[p * b + c]
     // L^-1: nonzero only on the paths of the units to their roots in the elimination tree (their union, in
     // increasing order); the dense pass from the first unit on when the pattern is not a tree's
@@ -496,7 +528,7 @@ private:
         double* zj = &z[std::size_t(j) * b];
         double sum[block];
         for(std::size_t c = 0; c < w; ++c)
-          sum[c] = zj[c] / m_factor.d[std::size_t(j)];
+          sum[c] = zj[c] / d[j];
         for(int p = start[j]; p < start[j + 1]; ++p) {
           const double* zi = &z[std::size_t(row[p]) * b];
           const double lp = l[p];
@@ -506,23 +538,18 @@ private:
         std::copy(sum, sum + w, zj);
       }
     });
-    // out by rows, all columns at once: the b values of a position share a cache line (by columns, each row was a
-    // miss per column)
+    // out on the covered positions, all columns at once: the b values of a position share a cache line (by
+    // columns, each entry was a miss per column)
     with_width([&](auto width) {
       const std::size_t w = std::size_t(width);
       double* column[block];
       for(std::size_t c = 0; c < w; ++c)
         column[c] = out[begin + c];
-      const double unwatched = std::numeric_limits<double>::quiet_NaN();
-      for(Eigen::Index r = 0; r < m_rows; ++r) {
-        const std::size_t j = std::size_t(m_position[r]);
-        const double* zj = &z[j * b];
-        if(m_covered[j])
-          for(std::size_t c = 0; c < w; ++c)
-            column[c][r] = zj[c];
-        else
-          for(std::size_t c = 0; c < w; ++c)
-            column[c][r] = unwatched;
+      for(int j : m_covered_positions) {
+        const double* zj = &z[std::size_t(j) * b];
+        const int e = m_entry[std::size_t(j)];
+        for(std::size_t c = 0; c < w; ++c)
+          column[c][e] = zj[c];
       }
     });
   }
@@ -536,7 +563,7 @@ private:
     ++m_column_solves;
     watch_rows({r});
     double* slot = m_store.slot();
-    if(m_factor.n == int(m_rows)) {
+    if(factor().n == int(m_rows)) {
       columns_of_factor({r}, {slot}, 0, 1, m_column_work, m_on_path);
     } else {
       Eigen::VectorXd e = Eigen::VectorXd::Zero(m_rows);
@@ -610,12 +637,15 @@ private:
   const int* m_position;
   Eigen::Index m_rows;
   std::unique_ptr<Selected_inverse> m_inverse;
-  Unit_lower_factor m_factor;
+  Unit_lower_factor m_factor_storage; // the factor read (without its zeros), unless the inversion keeps it
   Column_solve m_solve;
+  Factor_reading m_read_again;
+  bool m_zeros_dropped = false; // the factor read had explicit zeros, dropped
   std::unordered_map<int, double*> m_columns; // into m_store, on the covered positions
   std::vector<char> m_covered;           // per position: watched (empty: no factor, columns whole)
   std::vector<int> m_covered_positions;  // those, descending
-  std::vector<int> m_row_at;             // position -> row
+  std::vector<int> m_entry;              // per position: where a kept column has its entry (-1: not covered)
+  int m_entries = 0;                     // the entries of a kept column
   std::vector<int> m_parent;             // position -> its parent in the elimination tree (-1: a root)
   Column_store m_store;
   std::size_t m_column_solves = 0;

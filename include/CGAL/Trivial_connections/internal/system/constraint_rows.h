@@ -214,22 +214,30 @@ public:
   // generators and links that cross it.
   Eigen::VectorXd connection_of(const Eigen::VectorXd& lambda) const
   {
-    Eigen::VectorXd xe = transposed_product(lambda);
+    Eigen::VectorXd xe;
+    connection_of(lambda, xe);
+    return xe;
+  }
+  // the same into `xe`, whose storage is reused when it has the size already (a solve's vectors are megabytes:
+  // allocated afresh, each of their pages is a fault)
+  void connection_of(const Eigen::VectorXd& lambda, Eigen::VectorXd& xe) const
+  {
+    transposed_product(lambda, xe);
     for(Eigen::Index e = 0; e < xe.size(); ++e)
       xe[e] *= inverse_weight[std::size_t(e)];
-    return xe;
   }
 
   // A^T lambda, per interior edge (w_e x_e of x = W^-1 A^T lambda): the decided links, which have no row, left out
   Eigen::VectorXd transposed_product(const Eigen::VectorXd& lambda) const
   {
-    const Mesh_topology& t = *m_topology;
+    Eigen::VectorXd xe;
+    transposed_product(lambda, xe);
+    return xe;
+  }
+  void transposed_product(const Eigen::VectorXd& lambda, Eigen::VectorXd& xe) const
+  {
     const int ne = m_geometry->number_of_interior_edges();
-    std::vector<double> multiplier(std::size_t(t.number_of_nodes), 0.);
-    for(int node = 0; node < t.number_of_nodes; ++node)
-      if(row_of_node[node] >= 0)
-        multiplier[node] = lambda[row_of_node[node]];
-    Eigen::VectorXd xe = Eigen::VectorXd::Zero(ne); // first the generators' (and links') part, then the stars'
+    xe.setZero(ne); // first the generators' (and links') part, then the stars'
     for(std::size_t l = 0; l < row_of_slot.size(); ++l)
       if(is_crossing_row(l)) {
         const double g = lambda[row_of_slot[l]];
@@ -237,10 +245,9 @@ public:
           xe[index_of_code(slot_edges[p])] += sign_of_code(slot_edges[p]) * g;
       }
     for(int e = 0; e < ne; ++e) {
-      const int a = edge_nodes[e][0], c = edge_nodes[e][1];
-      xe[e] += multiplier[c] - multiplier[a];
+      const int a = row_of_node[edge_nodes[e][0]], c = row_of_node[edge_nodes[e][1]];
+      xe[e] += (c >= 0 ? lambda[c] : 0.) - (a >= 0 ? lambda[a] : 0.);
     }
-    return xe;
   }
 
   // the slacks s = C^T lambda / mu of the guided faces (their mismatches d_g), from the multipliers
@@ -265,8 +272,11 @@ public:
     const Mesh_topology& t = *m_topology;
     const Constraint_links& k = *m_links;
     const int ne = m_geometry->number_of_interior_edges();
-    // x(i) enters target(i)'s star, -x(i) = x(opposite(i)) enters source(i)'s star
-    std::vector<double> node_sum(std::size_t(t.number_of_nodes), 0.);
+    // x(i) enters target(i)'s star, -x(i) = x(opposite(i)) enters source(i)'s star (in the storage of sums.node:
+    // sums kept from solve to solve are not allocated again)
+    std::vector<double> node_sum;
+    node_sum.swap(sums.node);
+    node_sum.assign(std::size_t(t.number_of_nodes), 0.);
     double energy = 0;
     for(int e = 0; e < ne; ++e) {
       const int a = edge_nodes[e][0], c = edge_nodes[e][1];
@@ -305,14 +315,19 @@ public:
   // A x, from its constraint sums
   Eigen::VectorXd row_sums(const Constraint_sums& sums) const
   {
-    Eigen::VectorXd ax = Eigen::VectorXd::Zero(size());
+    Eigen::VectorXd ax;
+    row_sums(sums, ax);
+    return ax;
+  }
+  void row_sums(const Constraint_sums& sums, Eigen::VectorXd& ax) const
+  {
+    ax.setZero(size());
     for(int node = 0; node < m_topology->number_of_nodes; ++node)
       if(row_of_node[node] >= 0)
         ax[row_of_node[node]] = sums.node[node];
     for(std::size_t l = 0; l < row_of_slot.size(); ++l)
       if(row_of_slot[l] >= 0)
         ax[row_of_slot[l]] = sums.loop[l];
-    return ax;
   }
 
 private:

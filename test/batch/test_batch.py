@@ -34,6 +34,16 @@ pytestmark = pytest.mark.skipif(not PROGRAM or not MESHES.is_dir(),
                                 reason="TC_PROGRAM and TC_CGAL_MESHES (bash scripts/fetch_cgal_data.sh) needed")
 
 
+def records_while_running(out):
+    """The records written so far under `out`, while a batch writes there: a temporary folder it renames while
+    the listing walks the tree is skipped (the listing is started again)."""
+    while True:
+        try:
+            return list(out.rglob(tcb.RECORD))
+        except FileNotFoundError:
+            continue
+
+
 def scratch(name):
     d = SCRATCH / name
     shutil.rmtree(d, ignore_errors=True)
@@ -164,7 +174,7 @@ def test_killed_worker_and_memory_limit():
         t = threading.Thread(target=batch)
         t.start()
         deadline = time.time() + 120
-        while not any(out.rglob(tcb.RECORD)) and time.time() < deadline:  # a few meshes done, others running
+        while not records_while_running(out) and time.time() < deadline:  # a few meshes done, others running
             time.sleep(0.05)
         time.sleep(0.3)
         os.kill(victim[1], signal.SIGKILL)
@@ -204,7 +214,7 @@ def test_interrupted_batch_resumes():
     cmd = [sys.executable, tcb.__file__, str(src), "--out", str(out), "--workers", "2", "--auto", "--n", "4"]
     p = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.time() + 120
-    while len(list(out.rglob(tcb.RECORD))) < 5 and time.time() < deadline and p.poll() is None:
+    while len(records_while_running(out)) < 5 and time.time() < deadline and p.poll() is None:
         time.sleep(0.05)
     p.send_signal(signal.SIGINT)
     _, err = p.communicate(timeout=120)

@@ -38,6 +38,15 @@
 //                        internal classes (internal/placement/smoothest_field.h, as place_singularities() uses
 //                        them): building the face pencil (A, B), the factorization of A + sigma B, and one solve
 //                        with it (the median of 3; each eigensolver iteration (LOBPCG) is one such solve plus O(faces) work)
+//   then, small meshes only, from the aligned placement (n = 4) on the same solver, the refinement under a design
+//   control (suffix _none, _constrained, _guided): none, 64 faces of spread_guided_faces(solver, guide, 64) as
+//   constrained_faces, then as guided_faces, each with face_directions(guide) and cancel_pairs (issue 38: a step
+//   under pins and guidance at the cost of one without):
+//   t_refine_C           to a local minimum;   t_first_round_C   the same with maximum_trials(0): set-up, the first
+//                        solve, the first round's pricing and the final solve
+//   t_step_C = (t_refine_C - t_first_round_C) / trials_C   the cost of one step (a round's pricing + a trial solve)
+//   r_step_C = t_step_C / t_step_none (C = constrained, guided);   control_faces_C, trials_C, local_minimum_C,
+//   singularities_before_C, singularities_after_C, energy_before_C, energy_after_C
 //   t_reference          the reference factorization
 //   r_end_to_end = (t_build + t_place + t_solve) / t_reference (issue target: <= 3)
 //   r_end_to_end_aligned = (t_build + t_guide + t_place_aligned + t_solve_aligned) / t_reference
@@ -68,6 +77,7 @@
 #include <cstdint>
 #include <exception>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <string>
 #include <utility>
@@ -128,6 +138,17 @@ struct Refinement_run
   TC::Refinement_report<Vertex> report;
 };
 
+// one refinement from the curvature-aligned placement (n = 4) under a design control, or none: the cost of a step
+// is (t_refine - t_first_round) / trials, its set-up and first round (a budget of 0 trials) taken apart
+struct Controlled_refinement
+{
+  std::string control; // "none", "constrained", "guided"
+  std::size_t faces = 0;
+  double t_refine = 0, t_first_round = 0;
+  TC::Refinement_report<Vertex> report;
+  double step() const { return report.trials > 0 ? (t_refine - t_first_round) / double(report.trials) : -1; }
+};
+
 template <class SolverTraits, class ReferenceSolver>
 void placement(benchmark::State& state, const Mesh_spec& spec)
 {
@@ -147,6 +168,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
   double t_assembly = 0, t_factorization = 0, t_pencil_solve = 0, peak = -1;
   double field_energy = 0, solve_energy = 0;
   std::vector<Refinement_run> refinements;
+  std::vector<Controlled_refinement> controlled;
   TC::Placement_report smooth, aligned;
   std::int64_t genus = 0;
   Reference_result ref;
@@ -230,6 +252,36 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
         t_pencil_solve = median(solves);
       }
       edges = tc_bench::laplacian_edges(mesh, solver);
+
+      // a step of the refinement under design controls against one without (issue 38: "at the same cost per
+      // step"), from the same start, the aligned placement: no control, then 64 faces spread over the curvature
+      // guide (spread_guided_faces(), as the program's --align-curvature) held at its directions, then guided
+      // towards them (the program's --align-curvature). Small meshes only (a dozen refinements more).
+      controlled.clear();
+      if(spec.size == Size::small) {
+        const std::vector<Mesh::Face_index> spread = TC::spread_guided_faces(solver, guide, 64);
+        for(const char* control : {"none", "constrained", "guided"}) {
+          Controlled_refinement c;
+          c.control = control;
+          c.faces = c.control == "none" ? 0 : spread.size();
+          if(c.control == "constrained")
+            solver.set_constraints(P::constrained_faces(spread));
+          else if(c.control == "guided")
+            solver.set_constraints(P::guided_faces(spread));
+          for(const std::size_t budget : {std::size_t(0), (std::numeric_limits<std::size_t>::max)()}) {
+            tc_bench::stop_idle_blas_threads();
+            t0 = Clock::now();
+            auto r = TC::refine_singularities(
+              solver, placed_aligned, x,
+              P::maximum_trials(budget, P::cancel_pairs(true, P::face_directions(guide, P::symmetry_order(symmetry)))));
+            (budget == 0 ? c.t_first_round : c.t_refine) = seconds_since(t0);
+            if(budget != 0)
+              c.report = std::move(r);
+          }
+          controlled.push_back(std::move(c));
+        }
+        solver.set_constraints();
+      }
     } catch(const std::exception& e) {
       state.SkipWithError((spec.name + ": " + e.what()).c_str());
       break;
@@ -271,6 +323,22 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
     k["column_solves" + n] = double(r.column_solves);
     k["local_minimum" + n] = r.local_minimum ? 1 : 0;
     k["stop" + n] = double(int(r.stop));
+  }
+  for(const Controlled_refinement& c : controlled) {
+    const std::string s = "_" + c.control;
+    const TC::Refinement_report<Vertex>& r = c.report;
+    k["control_faces" + s] = double(c.faces);
+    k["t_refine" + s] = c.t_refine;
+    k["t_first_round" + s] = c.t_first_round;
+    k["t_step" + s] = c.step();
+    k["singularities_before" + s] = double(r.singularities_before);
+    k["singularities_after" + s] = double(r.singularities.size());
+    k["energy_before" + s] = r.energy_before;
+    k["energy_after" + s] = r.energy_after;
+    k["trials" + s] = double(r.trials);
+    k["local_minimum" + s] = r.local_minimum ? 1 : 0;
+    if(c.control != "none" && controlled.front().step() > 0 && c.step() >= 0)
+      k["r_step" + s] = c.step() / controlled.front().step();
   }
   k["t_pencil_assembly"] = t_assembly;
   k["t_pencil_factorization"] = t_factorization;

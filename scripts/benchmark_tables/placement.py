@@ -112,6 +112,7 @@ def placement_table(results, lines, command):
             str(e["repetitions"])]) + " |")
     lines.append("")
     refinement_table(rows, lines)
+    controlled_refinement_table(rows, lines)
 
 
 REFINED_ORDERS = (1, 2, 4)
@@ -162,4 +163,46 @@ def refinement_table(rows, lines):
                 f"{g('rounds') or 0:.0f} ({g('trials') or 0:.0f})",
                 f"{g('moves') or 0:.0f} ({g('cancellations') or 0:.0f})",
                 minimum, fmt_num(g("r_refine")), str(e["repetitions"])]) + " |")
+    lines.append("")
+
+
+CONTROLS = ("none", "constrained", "guided")
+
+
+def controlled_refinement_table(rows, lines):
+    """per small mesh and backend: a step of the refinement under constrained and guided faces against none"""
+    if not any(e["counters"].get("t_step_guided") is not None for _, _, e in rows):
+        return
+    lines.append("**A step under design controls** (issue 38: refinement under pins and guidance at the cost per "
+                 "step of one without), small meshes, n = 4, on the same prefactored solver, from the same start "
+                 "(the curvature-aligned placement): no control; the 64 faces of `spread_guided_faces(solver, "
+                 "guide, 64)` held at the curvature guide's directions (`constrained_faces`: hard constraints, the "
+                 "feature pins' kind); the same faces guided towards them (`guided_faces`, as the program's "
+                 "`--align-curvature`). Each refinement runs twice: to a local minimum, and with "
+                 "`maximum_trials(0)` (its set-up, first solve, first round and final solve); a step is the "
+                 "difference over the trials (a round's pricing and its trial solve), `step / none` its ratio "
+                 "to the step without control, and `whole / none` that of the whole refinements (set-up included). Trials, energy before → after, whether a local minimum was reached.")
+    lines.append("")
+    head = ["mesh", "backend", "faces"]
+    for c in CONTROLS:
+        head += [f"{c}: trials, energy", f"{c}: first round", f"{c}: step"]
+    head += ["constrained: step / none (whole / none)", "guided: step / none (whole / none)", "reps"]
+    table_head(lines, head)
+    for b, mesh, e in rows:
+        c = e["counters"]
+        if e["error"] or c.get("t_step_guided") is None:
+            continue
+        cells = [mesh, b, fmt_faces(c.get("faces", 0))]
+        for k in CONTROLS:
+            g = lambda name: c.get(f"{name}_{k}")
+            minimum = "" if g("local_minimum") else " (no local minimum)"
+            cells += [f"{g('trials') or 0:.0f}, {fmt_num(g('energy_before'), 5)} → {fmt_num(g('energy_after'), 5)}"
+                      + minimum,
+                      fmt_time(g("t_first_round")), fmt_time(g("t_step")) if (g("t_step") or -1) >= 0 else "–"]
+        def whole(k):
+            none = c.get("t_refine_none")
+            return fmt_num(c.get(f"t_refine_{k}") / none) if none and c.get(f"t_refine_{k}") else "–"
+        cells += [f"{fmt_num(c.get('r_step_constrained'))} ({whole('constrained')})",
+                  f"{fmt_num(c.get('r_step_guided'))} ({whole('guided')})", str(e["repetitions"])]
+        lines.append("| " + " | ".join(cells) + " |")
     lines.append("")

@@ -286,7 +286,8 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       }
     }
   internal::Move_integers integers(free_rows, system_rows, unit,
-                                   [&](const Eigen::VectorXd& e) { return system.solve(rows, e); });
+                                   [&](const Eigen::VectorXd& e) { return system.solve(rows, e); },
+                                   [&](const std::vector<int>& at, auto& out) { return inverse.full_columns(at, out); });
   auto component = [&](int v) { return std::size_t(t.component_of_node[t.node_of_vertex[v]]); };
 
   struct Candidate

@@ -52,9 +52,16 @@ class Move_integers
 public:
   static constexpr std::size_t largest_block = 64;
 
-  // `free_rows[c]`: the rows of component c's free integers; `solve(e)`: M^-1 e
-  template <class Solve>
-  Move_integers(const std::vector<std::vector<int>>& free_rows, Eigen::Index system_rows, double unit, Solve solve)
+  // `free_rows[c]`: the rows of component c's free integers; `solve(e)`: M^-1 e; `columns(rows, out)`: M^-1 at
+  // those rows into out (rows of the system x rows), all at once, or false (then one solve() per column)
+  struct Column_by_column
+  {
+    template <class Matrix>
+    bool operator()(const std::vector<int>&, Matrix&) const { return false; }
+  };
+  template <class Solve, class Columns = Column_by_column>
+  Move_integers(const std::vector<std::vector<int>>& free_rows, Eigen::Index system_rows, double unit, Solve solve,
+                Columns columns_at = Columns())
     : m_unit(unit), m_block_of_component(free_rows.size(), -1), m_gamma(std::size_t(system_rows), -1.),
       m_beta(std::size_t(system_rows), 0.), m_beta_round(std::size_t(system_rows), -1),
       m_slot_of_row(std::size_t(system_rows), -1)
@@ -74,11 +81,15 @@ public:
       columns_left -= rows.size();
       Block b;
       b.rows = rows;
-      Eigen::MatrixXd columns(system_rows, k);
-      for(Eigen::Index a = 0; a < k; ++a) {
+      Row_major columns;
+      if(!columns_at(rows, columns)) {
+        columns.resize(system_rows, k);
         Eigen::VectorXd e = Eigen::VectorXd::Zero(system_rows);
-        e[rows[std::size_t(a)]] = 1;
-        columns.col(a) = solve(e);
+        for(Eigen::Index a = 0; a < k; ++a) {
+          e[rows[std::size_t(a)]] = 1;
+          columns.col(a) = solve(e);
+          e[rows[std::size_t(a)]] = 0;
+        }
       }
       m_columns_made += std::size_t(k);
       b.metric.resize(k, k);

@@ -30,17 +30,17 @@ struct Connection_workspace
   Constraint_sums refined;
 };
 
+// the residual, relative to 1 + |b|, from which checked_connection() refines x by default: the rounding level
+constexpr double refine_residuals_above = 1e-13;
+
 /*
   The connection x = W^-1 A^T lambda of the multipliers `lambda` of A W^-1 A^T lambda = b, checked through the
   constraints it must satisfy: A x - b is M lambda - b, computed from x at the cost of one pass over the edges
   (cheaper than a product with M, and the sums are the ones the report needs). Refined while the residual
-  drops, up to three steps, when it is not already at rounding level. `solve` is the unchecked b -> M^-1 b.
+  drops, up to three steps, when it is above `refine_above` (a refinement's trial solves take 1e-11, still a
+  hundred times below the promise, and save a solve each). `solve` is the unchecked b -> M^-1 b.
   Throws solver_failure when the residual stays above the package's promise.
 */
-// `refine_above`: the residual, relative to 1 + |b|, from which x is refined (the rounding level by default; a
-// refinement's trial solves take 1e-11, still a hundred times below the promise, and save a solve each).
-constexpr double refine_residuals_above = 1e-13;
-
 template <class Solve>
 void checked_connection(const Constraint_rows& rows, Solve solve, const Eigen::VectorXd& b, Eigen::VectorXd& lambda,
                         Constraint_sums& sums, Eigen::VectorXd& xe, Connection_workspace& w,

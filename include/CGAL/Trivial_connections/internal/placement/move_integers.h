@@ -34,8 +34,9 @@ namespace internal {
   p = lambda_F + d (G_Fw - G_Fv), the change is that of the move plus 2 u s.p + u^2 s^T G_F s (u = 2 pi / n):
   a closest vector problem, searched when its real minimum -p^T G_F^-1 p could make the move pay off.
   M is block diagonal by component, and a move stays in its component, so only that component's integers can
-  change: one block per component, each searched in its own (small) lattice. A block costs a back-substitution
-  per integer (its column of M^-1), once, for at most 64 in all; the integers of the other components are kept.
+  change: one block per component, each searched in its own (small) lattice. A block costs a column of M^-1
+  per integer, once, for at most 64 in all (made through the factor eight at a time where it is readable); the
+  integers of the other components are kept.
   In a round whose solve could not prove its integers optimal, its integers are taken as the nearest all the same
   (bound()), and each search is a descent in the reduced basis from them and from Babai's point, the trial
   solve's own start points (its hint and Babai's), without enumeration (local()): the prices stay those of actual
@@ -52,13 +53,14 @@ class Move_integers
 public:
   static constexpr std::size_t largest_block = 64;
 
-  // `free_rows[c]`: the rows of component c's free integers; `solve(e)`: M^-1 e; `columns(rows, out)`: M^-1 at
-  // those rows into out (rows of the system x rows), all at once, or false (then one solve() per column)
+  // without a way to make the columns at once: one solve() per column
   struct Column_by_column
   {
     template <class Matrix>
     bool operator()(const std::vector<int>&, Matrix&) const { return false; }
   };
+  // `free_rows[c]`: the rows of component c's free integers; `solve(e)`: M^-1 e; `columns_at(rows, out)`: the
+  // columns of M^-1 at those rows into out (rows of the system x rows), all at once, or false
   template <class Solve, class Columns = Column_by_column>
   Move_integers(const std::vector<std::vector<int>>& free_rows, Eigen::Index system_rows, double unit, Solve solve,
                 Columns columns_at = Columns())
@@ -66,8 +68,9 @@ public:
       m_beta(std::size_t(system_rows), 0.), m_beta_round(std::size_t(system_rows), -1),
       m_slot_of_row(std::size_t(system_rows), -1)
   {
-    // At most 64 columns in all (each a back-substitution) and 2 x 128 MB of them, the components with fewest
-    // integers first: a mesh of many parts, each with a few boundary loops, has them searched on most parts.
+    // At most 64 columns in all (columns_at(), or a back-substitution each) and 2 x 128 MB of them, the components
+    // with fewest integers first: a mesh of many parts, each with a few boundary loops, has them searched on most
+    // parts.
     std::vector<std::size_t> order(free_rows.size());
     std::iota(order.begin(), order.end(), std::size_t(0));
     std::stable_sort(order.begin(), order.end(),

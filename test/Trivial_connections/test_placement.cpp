@@ -741,66 +741,6 @@ TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_column
   }
 }
 
-// Whole columns of M^-1 for the free integers (Move_integers), made a block of columns at a time through the factor
-// on two threads, are those of solves, at rows in any order against the factor's positions; without a readable
-// factor there are none (the caller solves per column).
-TEST(Refinement, whole_columns_through_the_factor_agree_with_solves)
-{
-  const int side = 25, nn = side * side;
-  const Eigen::SparseMatrix<double> M = grid_in_fill_reducing_order(side);
-  struct View
-  {
-    Simplicial_natural s;
-    const Simplicial_natural& solver() const { return s; }
-  } view;
-  view.s.compute(M);
-  ASSERT_EQ(view.s.info(), Eigen::Success);
-  // system row r at factor position position[r], a permutation
-  std::vector<int> position(static_cast<std::size_t>(nn));
-  std::iota(position.begin(), position.end(), 0);
-  std::mt19937 random(11);
-  std::shuffle(position.begin(), position.end(), random);
-  std::vector<int> row_of_vertex(static_cast<std::size_t>(nn));
-  std::iota(row_of_vertex.begin(), row_of_vertex.end(), 0);
-  // M^-1 in system rows: (M^-1)[position[r], position[s]]
-  auto solve = [&](const Eigen::VectorXd& e) {
-    Eigen::VectorXd in(nn), out(nn);
-    for(int r = 0; r < nn; ++r)
-      in[position[std::size_t(r)]] = e[r];
-    const Eigen::VectorXd z = view.s.solve(in);
-    for(int r = 0; r < nn; ++r)
-      out[r] = z[position[std::size_t(r)]];
-    return out;
-  };
-  using Entries = TC::internal::Move_energy::Entries;
-  using Row_major = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  // 19 rows: two full blocks of 8 and a short one, the first and the last position among them
-  std::vector<int> rows = {int(std::find(position.begin(), position.end(), 0) - position.begin()),
-                           int(std::find(position.begin(), position.end(), nn - 1) - position.begin())};
-  std::uniform_int_distribution<int> row(0, nn - 1);
-  while(rows.size() < 19)
-    rows.push_back(row(random));
-  for(int mode = 0; mode < 3; ++mode) {
-    SCOPED_TRACE(mode == 0 ? "paths" : mode == 1 ? "selected inversion" : "no factor");
-    TC::internal::Unit_lower_factor f;
-    if(mode < 2)
-      ASSERT_TRUE(TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial_natural>>::read(view, f));
-    TC::internal::Move_energy energy(row_of_vertex, position.data(), nn, std::move(f), {0, 1}, solve,
-                                     mode == 0 ? Entries::paths : Entries::selected_inversion);
-    Row_major columns;
-    ASSERT_EQ(energy.full_columns(rows, columns), mode < 2);
-    if(mode == 2)
-      continue;
-    ASSERT_EQ(columns.rows(), nn);
-    ASSERT_EQ(columns.cols(), Eigen::Index(rows.size()));
-    for(std::size_t c = 0; c < rows.size(); ++c) {
-      const Eigen::VectorXd expected = solve(Eigen::VectorXd::Unit(nn, rows[c]));
-      for(int r = 0; r < nn; ++r)
-        EXPECT_NEAR(columns(r, Eigen::Index(c)), expected[r], 1e-10 * expected.cwiseAbs().maxCoeff()) << rows[c] << " " << r;
-    }
-  }
-}
-
 // A grid's matrix in a fill-reducing order, factored: vertex v on row v, the factor as the refinement reads it
 struct Factored_grid
 {
@@ -822,6 +762,58 @@ struct Factored_grid
            TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial_natural>>::read(*this, factor);
   }
 };
+
+// Whole columns of M^-1 for the free integers (Move_integers), made a block of columns at a time through the factor
+// on two threads, are those of solves, at rows in any order against the factor's positions; without a readable
+// factor there are none (the caller solves per column).
+TEST(Refinement, whole_columns_through_the_factor_agree_with_solves)
+{
+  Factored_grid grid(25);
+  ASSERT_TRUE(grid.read);
+  const int nn = grid.nn;
+  // system row r at factor position position[r], a permutation
+  std::vector<int> position(static_cast<std::size_t>(nn));
+  std::iota(position.begin(), position.end(), 0);
+  std::mt19937 random(11);
+  std::shuffle(position.begin(), position.end(), random);
+  // M^-1 in system rows: (M^-1)[position[r], position[s]]
+  auto solve = [&](const Eigen::VectorXd& e) {
+    Eigen::VectorXd in(nn), out(nn);
+    for(int r = 0; r < nn; ++r)
+      in[position[std::size_t(r)]] = e[r];
+    const Eigen::VectorXd z = grid.solve(in);
+    for(int r = 0; r < nn; ++r)
+      out[r] = z[position[std::size_t(r)]];
+    return out;
+  };
+  using Entries = TC::internal::Move_energy::Entries;
+  using Row_major = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  // 19 rows: two full blocks of 8 and a short one, the first and the last position among them
+  std::vector<int> rows = {int(std::find(position.begin(), position.end(), 0) - position.begin()),
+                           int(std::find(position.begin(), position.end(), nn - 1) - position.begin())};
+  std::uniform_int_distribution<int> row(0, nn - 1);
+  while(rows.size() < 19)
+    rows.push_back(row(random));
+  for(int mode = 0; mode < 3; ++mode) {
+    SCOPED_TRACE(mode == 0 ? "paths" : mode == 1 ? "selected inversion" : "no factor");
+    TC::internal::Unit_lower_factor f;
+    if(mode < 2)
+      ASSERT_TRUE(TC::internal::Factor_reading<CGAL::Eigen_solver_traits<Simplicial_natural>>::read(grid, f));
+    TC::internal::Move_energy energy(grid.row_of_vertex, position.data(), nn, std::move(f), {0, 1}, solve,
+                                     mode == 0 ? Entries::paths : Entries::selected_inversion);
+    Row_major columns;
+    ASSERT_EQ(energy.full_columns(rows, columns), mode < 2);
+    if(mode == 2)
+      continue;
+    ASSERT_EQ(columns.rows(), nn);
+    ASSERT_EQ(columns.cols(), Eigen::Index(rows.size()));
+    for(std::size_t c = 0; c < rows.size(); ++c) {
+      const Eigen::VectorXd expected = solve(Eigen::VectorXd::Unit(nn, rows[c]));
+      for(int r = 0; r < nn; ++r)
+        EXPECT_NEAR(columns(r, Eigen::Index(c)), expected[r], 1e-10 * expected.cwiseAbs().maxCoeff()) << rows[c] << " " << r;
+    }
+  }
+}
 
 // Past the columns' budget, prefetch() drops only the columns not asked for: those asked for and kept stay where
 // they are (not made again), and all hold the columns of M^-1.

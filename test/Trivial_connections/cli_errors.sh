@@ -75,7 +75,10 @@ fi
 # the field when the limit leaves it room (150 MB), and under a tighter one either so or with "out of memory" and
 # no output file. Not with AddressSanitizer, which reserves terabytes of address space at start. (Below about
 # 65 MB OpenBLAS cannot start its threads when it is loaded, before the program runs, and ends the process.)
-if ! ldd "$cli" 2>/dev/null | grep -q libasan; then
+# ldd's whole output is read first: with pipefail, "ldd | grep -q" fails when grep quits before ldd has written
+# everything (SIGPIPE), which ran these checks under AddressSanitizer on a loaded machine.
+libraries=$(ldd "$cli" 2>/dev/null || true)
+if [[ "$libraries" != *libasan* ]]; then
   for kb in 150000 72000; do
     rm -f "$out/c.txt" "$out/f.txt"
     message=$(ulimit -v "$kb"; timeout 120 "$cli" "$pig" --auto --n 4 --connection "$out/c.txt" --field "$out/f.txt" 2>&1 >/dev/null)

@@ -697,6 +697,12 @@ TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_column
                                 : solve(Eigen::VectorXd::Unit(nn, row_of_vertex[std::size_t(v)]))[row_of_vertex[std::size_t(w)]];
       EXPECT_NEAR(energy.entry(v, w), expected, 1e-10 * (1 + std::abs(expected))) << v << " " << w;
       EXPECT_NEAR(energy.entry(w, v), energy.entry(v, w), 1e-12 * (1 + std::abs(expected)));
+      if(mode == 0) { // both paths made by entry(): the product alone (what the pricing of pairs reads)
+        const int rv = row_of_vertex[std::size_t(v)], rw = row_of_vertex[std::size_t(w)];
+        ASSERT_TRUE(energy.path_made(rv) && energy.path_made(rw));
+        EXPECT_EQ(energy.path_entry(rv, rw), energy.entry(v, w));
+        EXPECT_EQ(energy.path_length(rv) > 0, rv >= 0);
+      }
     }
     EXPECT_EQ(energy.paths(), mode == 0); // the pattern was that of an elimination tree
     // columns, made eight at a time through the factor (two threads) when it is readable, on the rows watched
@@ -954,6 +960,39 @@ Confirmed_refinement refine_and_confirm(const Mesh_view<Surface_mesh>& view, S& 
   expect_no_single_move_or_cancellation_lowers_the_energy(view, solver, c.refined, n, r.energy_after,
                                                           TC::parameters::symmetry_order(n));
   return c;
+}
+
+// A few singularities on a finer sphere: the entries come from paths in the elimination tree, and so do those of
+// the pairs a cancellation prices and of the long dipoles a round takes (no column of the inverse made). Eight
+// +1/4 near the cube's corners and a +1/4, -1/4 pair at opposite poles: the pair cancels, and the end is a local
+// minimum, confirmed by brute force.
+TEST(Refinement, cancels_distant_pairs_priced_from_paths_to_a_confirmed_local_minimum)
+{
+  const Surface_mesh tm = to_surface_mesh(icosphere_soup(5));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  const int n = 4;
+  Singularities start;
+  for(double sx : {-1., 1.})
+    for(double sy : {-1., 1.})
+      for(double sz : {-1., 1.})
+        start.emplace_back(nearest_interior_vertex(view, V3{{sx, sy, sz}}), Index(1, 4));
+  start.emplace_back(nearest_interior_vertex(view, V3{{0, 0, 1}}), Index(1, 4));
+  start.emplace_back(nearest_interior_vertex(view, V3{{0, 0, -1}}), Index(-1, 4));
+  std::vector<double> x;
+  const auto r = TC::refine_singularities(solver, descriptors(view, start), view.halfedge_map(x),
+                                          TC::parameters::cancel_pairs(true, TC::parameters::symmetry_order(n)));
+  ASSERT_TRUE(r.local_minimum);
+  EXPECT_LT(r.energy_after, r.energy_before);
+  EXPECT_GE(r.cancellations, 1u);
+  EXPECT_EQ(r.column_solves, 0u); // every entry from paths: no integer on a sphere, no column
+  const Singularities end = numbered(view, r.singularities);
+  EXPECT_EQ(sum_of(end, n), Index(2));
+  for(const auto& e : end)
+    EXPECT_EQ(e.second, Index(1, 4));
+  check_connection(view, solver, end, n, x, r.report);
+  expect_no_single_move_or_cancellation_lowers_the_energy(view, solver, end, n, r.energy_after,
+                                                          TC::parameters::symmetry_order(n));
 }
 
 TEST(Refinement, stops_at_a_local_minimum_that_every_single_move_and_cancellation_confirms)

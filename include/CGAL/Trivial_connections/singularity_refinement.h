@@ -23,6 +23,7 @@
 #include <array>
 #include <type_traits>
 #include <cstdint>
+#include <unordered_map>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -330,6 +331,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       std::int64_t units;
       bool cancels;
     };
+    bool pairs_by_paths = false; // this round's cancellations priced from paths, not columns (collect())
     auto collect = [&](const bool search) {
       std::vector<Candidate> candidates;
       std::vector<Hope> hopes;
@@ -367,7 +369,29 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         const bool by_positive = positive.size() <= negative.size();
         const std::vector<int>& columns = by_positive ? positive : negative;
         const std::vector<int>& others = by_positive ? negative : positive;
-        inverse.prefetch(columns);
+        // With the paths of all singularities made, a pair's G_vw is also the product of their paths over the
+        // part they share: the cheaper of the two, the products bounded by the shorter path of each pair, the
+        // columns by those not kept (bunny00_loop1, N = 4, under guidance: 53 columns for 89 moves, most of a step)
+        pairs_by_paths = false;
+        if(inverse.paths()) {
+          double products = 0, missing = 0;
+          bool made = true;
+          for(int s : columns) {
+            const int r = inverse.row_of(s);
+            made = made && inverse.path_made(r);
+            missing += inverse.has_row_column(r) ? 0. : 1.;
+          }
+          for(int o : others)
+            made = made && inverse.path_made(inverse.row_of(o));
+          if(made && missing > 0) {
+            for(int s : columns)
+              for(int o : others)
+                products += double((std::min)(inverse.path_length(inverse.row_of(s)), inverse.path_length(inverse.row_of(o))));
+            pairs_by_paths = products < missing * inverse.column_work();
+          }
+        }
+        if(!pairs_by_paths)
+          inverse.prefetch(columns);
         struct End
         {
           int vertex, row, entry; // entry: where the columns hold row's (see Move_energy::entry_of_row())
@@ -385,7 +409,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         std::vector<const double*> column_values; // null: no row, G_s. = 0
         for(int s : columns) {
           column_ends.push_back(end_of(s));
-          column_values.push_back(inverse.column_of(s));
+          column_values.push_back(pairs_by_paths ? nullptr : inverse.column_of(s));
         }
         for(int o : others)
           other_ends.push_back(end_of(o));
@@ -409,8 +433,10 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
                 continue;
               const End& v = by_positive ? a : b;
               const End& w = by_positive ? b : a;
-              CGAL_assertion(b.row < 0 || inverse.watched(b.row));
-              const double g_vw = column && b.row >= 0 ? column[b.entry] : 0.;
+              CGAL_assertion(pairs_by_paths || b.row < 0 || inverse.watched(b.row));
+              const double g_vw = pairs_by_paths          ? inverse.path_entry(a.row, b.row)
+                                  : column && b.row >= 0 ? column[b.entry]
+                                                         : 0.;
               // score(v, w, 1, G_vv + G_ww - 2 G_vw)
               const double kept = 1. / n * (w.gradient - v.gradient) + unit2 * (v.diagonal + w.diagonal - 2 * g_vw);
               const double hoped = search ? kept + integers.quick_bound(a.component, v.terms, w.terms, unit) : kept;
@@ -551,8 +577,19 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     std::vector<std::pair<Candidate, std::array<const double*, 2>>> long_dipoles;
     bool integers_taken = false;
     auto free_here = [&](int v) { return blocked[std::size_t(v)] != round; };
-    auto at = [&](const double* column, int v) {
+    // G between a long dipole's end (its column, or its vertex when the pairs were priced from paths) and v; the
+    // products from paths kept, a candidate's ends recurring in many pairs
+    std::unordered_map<std::uint64_t, double> products;
+    auto at = [&](const double* column, int end, int v) {
       const int r = inverse.row_of(v);
+      if(pairs_by_paths) {
+        const int re = inverse.row_of(end);
+        if(r < 0 || re < 0)
+          return 0.;
+        const std::uint64_t key = (std::uint64_t(std::uint32_t(re)) << 32) | std::uint32_t(r);
+        auto known = products.find(key);
+        return known != products.end() ? known->second : products.emplace(key, inverse.path_entry(re, r)).first->second;
+      }
       CGAL_assertion(r < 0 || inverse.watched(r));
       return r >= 0 && column ? column[inverse.entry_of_row(r)] : 0.;
     };
@@ -569,15 +606,19 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       double change = c.change;
       for(const auto& x : long_dipoles) {
         const double dx = two_pi * double(x.first.units) / n;
+        const int from = x.first.from, to = x.first.to;
         change += 2 * dc * dx *
-                  ((at(x.second[1], c.to) - at(x.second[1], c.from)) - (at(x.second[0], c.to) - at(x.second[0], c.from)));
+                  ((at(x.second[1], to, c.to) - at(x.second[1], to, c.from)) -
+                   (at(x.second[0], from, c.to) - at(x.second[0], from, c.from)));
       }
       if(change >= -tolerance)
         continue;
       chosen.push_back(c);
       chosen.back().change = change;
       integers_taken = integers_taken || c.integers;
-      if(c.cancels && !c.integers) {
+      if(c.cancels && !c.integers && pairs_by_paths) {
+        long_dipoles.emplace_back(c, std::array<const double*, 2>{{nullptr, nullptr}});
+      } else if(c.cancels && !c.integers) {
         // its columns (one end's is kept from the pricing), with those of the next cancellations still free: eight
         // substitutions cost about one (the factor is read once), and the best-scored are mostly taken next
         // (cheese_loop1, N = 4: 88 columns made one at a time were a fifth of the refinement)

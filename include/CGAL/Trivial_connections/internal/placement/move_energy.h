@@ -10,6 +10,8 @@
 #include <CGAL/Trivial_connections/internal/factorization/factor_storage.h>
 #include <CGAL/Trivial_connections/internal/factorization/selected_inverse.h>
 
+#include <CGAL/assertions.h>
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -108,6 +110,7 @@ public:
       for(int j = n - 1; j >= 0; --j) {
         m_covered_positions.push_back(j);
         m_entry[std::size_t(j)] = m_entries++;
+        m_covered_work += double(m_factor_storage.start[std::size_t(j) + 1] - m_factor_storage.start[std::size_t(j)] + 1);
       }
     if(m_paths_usable)
       m_paths.resize(std::size_t(m_rows));
@@ -154,6 +157,24 @@ public:
 
   // G_vv + G_ww - 2 G_vw: the energy of moving a unit of b from v to w (an effective resistance)
   double resistance(int v, int w) { return diagonal(v) + diagonal(w) - 2 * entry(v, w); }
+
+  /*
+    Entries of G between distant vertices from their paths, when both are made (prefetch_paths()), instead of the
+    column of one of them: a sum over the part of the paths common to both, the top of the elimination tree, where
+    a column costs the factor's columns over all the covered positions. Only reads: safe on two threads.
+  */
+  bool path_made(int r) const { return r < 0 || (m_paths_usable && m_paths[std::size_t(r)].made); }
+  double path_entry(int rv, int rw) const
+  {
+    CGAL_precondition(path_made(rv) && path_made(rw));
+    return rv < 0 || rw < 0 ? 0. : path_product(m_paths[std::size_t(rv)], m_paths[std::size_t(rw)]);
+  }
+  // the length of a made path (0 for no row): a bound on the work of a product with it
+  std::size_t path_length(int r) const { return r < 0 ? 0 : m_paths[std::size_t(r)].position.size(); }
+  // the work of one more column now: its substitutions over the covered positions (twice the factor's entries
+  // there), the path of its unit aside
+  double column_work() const { return 2 * m_covered_work; }
+  bool has_row_column(int r) const { return r < 0 || m_columns.count(r) != 0; }
 
   // makes the columns of these vertices that are not kept yet, half on a second thread (the solves only read the
   // factor); `make_room`: the columns kept and not asked for may be dropped first when they would exceed the budget
@@ -494,6 +515,7 @@ private:
         for(int j = m_position[r]; j >= 0 && !m_covered[std::size_t(j)]; j = parent(j)) {
           m_covered[std::size_t(j)] = 1;
           m_entry[std::size_t(j)] = m_entries++;
+          m_covered_work += double(factor().start[std::size_t(j) + 1] - factor().start[std::size_t(j)] + 1);
           fresh.push_back(j);
         }
     if(fresh.empty())
@@ -715,6 +737,7 @@ private:
   std::vector<int> m_covered_positions;  // those, descending
   std::vector<int> m_entry;              // per position: where a kept column has its entry (-1: not covered)
   int m_entries = 0;                     // the entries of a kept column
+  double m_covered_work = 0;             // the factor's entries in the covered columns, diagonals included
   std::vector<int> m_parent;             // position -> its parent in the elimination tree (-1: a root)
   Column_store m_store;
   std::size_t m_column_solves = 0;

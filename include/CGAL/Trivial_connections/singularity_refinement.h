@@ -369,25 +369,38 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         const bool by_positive = positive.size() <= negative.size();
         const std::vector<int>& columns = by_positive ? positive : negative;
         const std::vector<int>& others = by_positive ? negative : positive;
-        // With the paths of all singularities made, a pair's G_vw is also the product of their paths over the
-        // part they share: the cheaper of the two, the products bounded by the shorter path of each pair, the
-        // columns by those not kept (bunny00_loop1, N = 4, under guidance: 53 columns for 89 moves, most of a step)
+        // A pair's G_vw is also the product of the two singularities' paths in the elimination tree over the part
+        // they share (Move_energy::path_entry()). The cheaper of the two: the products (bounded by the shorter
+        // path of each pair) and the paths not made yet, or the columns not kept. Singularities that move make
+        // new columns every round (bunny00_loop1, N = 4, under guidance: 53 columns for 89 moves, most of a step).
         pairs_by_paths = false;
-        if(inverse.paths()) {
-          double products = 0, missing = 0;
-          bool made = true;
-          for(int s : columns) {
-            const int r = inverse.row_of(s);
-            made = made && inverse.path_made(r);
-            missing += inverse.has_row_column(r) ? 0. : 1.;
-          }
-          for(int o : others)
-            made = made && inverse.path_made(inverse.row_of(o));
-          if(made && missing > 0) {
-            for(int s : columns)
-              for(int o : others)
-                products += double((std::min)(inverse.path_length(inverse.row_of(s)), inverse.path_length(inverse.row_of(o))));
-            pairs_by_paths = products < missing * inverse.column_work();
+        if(inverse.paths_possible()) {
+          double missing = 0;
+          for(int s : columns)
+            missing += inverse.has_row_column(inverse.row_of(s)) ? 0. : 1.;
+          if(missing > 0) {
+            std::vector<int> rows_c, rows_o;
+            double work = 0;
+            for(int s : columns) {
+              rows_c.push_back(inverse.row_of(s));
+              work += inverse.path_work(rows_c.back());
+            }
+            for(int o : others) {
+              rows_o.push_back(inverse.row_of(o));
+              work += inverse.path_work(rows_o.back());
+            }
+            std::vector<double> length_o;
+            for(int r : rows_o)
+              length_o.push_back(double(inverse.path_length(r)));
+            for(int r : rows_c) {
+              const double length = double(inverse.path_length(r));
+              for(double lo : length_o)
+                work += (std::min)(length, lo);
+            }
+            if(work < missing * inverse.column_work()) {
+              rows_c.insert(rows_c.end(), rows_o.begin(), rows_o.end());
+              pairs_by_paths = inverse.prefetch_pair_paths(rows_c);
+            }
           }
         }
         if(!pairs_by_paths)
@@ -577,12 +590,14 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     std::vector<std::pair<Candidate, std::array<const double*, 2>>> long_dipoles;
     bool integers_taken = false;
     auto free_here = [&](int v) { return blocked[std::size_t(v)] != round; };
-    // G between a long dipole's end (its column, or its vertex when the pairs were priced from paths) and v; the
-    // products from paths kept, a candidate's ends recurring in many pairs
+    // G between a long dipole's end (its column, or its vertex when every vertex a candidate moves has its path:
+    // the entries from paths and the pairs priced from them) and v; the products kept, a candidate's ends recurring
+    // in many pairs
+    const bool dipoles_by_paths = pairs_by_paths && inverse.paths();
     std::unordered_map<std::uint64_t, double> products;
     auto at = [&](const double* column, int end, int v) {
       const int r = inverse.row_of(v);
-      if(pairs_by_paths) {
+      if(dipoles_by_paths) {
         const int re = inverse.row_of(end);
         if(r < 0 || re < 0)
           return 0.;
@@ -616,7 +631,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       chosen.push_back(c);
       chosen.back().change = change;
       integers_taken = integers_taken || c.integers;
-      if(c.cancels && !c.integers && pairs_by_paths) {
+      if(c.cancels && !c.integers && dipoles_by_paths) {
         long_dipoles.emplace_back(c, std::array<const double*, 2>{{nullptr, nullptr}});
       } else if(c.cancels && !c.integers) {
         // its columns (one end's is kept from the pricing), with those of the next cancellations still free: eight

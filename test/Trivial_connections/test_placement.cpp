@@ -705,26 +705,6 @@ TEST(Refinement, entries_of_the_inverse_from_paths_selected_inversion_and_column
       }
     }
     EXPECT_EQ(energy.paths(), mode == 0); // the pattern was that of an elimination tree
-    EXPECT_EQ(energy.paths_possible(), mode < 2);
-    if(mode == 1) {
-      // with the entries from the inversion, paths for the pricing of pairs: made on two threads, those of an
-      // earlier call not listed again dropped
-      std::vector<int> rows;
-      for(int i = 0; i < 40; ++i)
-        rows.push_back(row_of_vertex[std::size_t(vertex(random))]);
-      ASSERT_TRUE(energy.prefetch_pair_paths(rows));
-      for(int rv : rows)
-        for(int rw : {rows.front(), rows.back(), rv}) {
-          ASSERT_TRUE(energy.path_made(rv));
-          const double expected = rv < 0 || rw < 0 ? 0. : solve(Eigen::VectorXd::Unit(nn, rv))[rw];
-          EXPECT_NEAR(energy.path_entry(rv, rw), expected, 1e-10 * (1 + std::abs(expected))) << rv << " " << rw;
-        }
-      const int kept = rows[5] >= 0 ? rows[5] : 0, dropped = rows[6] >= 0 && rows[6] != kept ? rows[6] : -1;
-      ASSERT_TRUE(energy.prefetch_pair_paths({kept}));
-      EXPECT_TRUE(energy.path_made(kept));
-      if(dropped >= 0)
-        EXPECT_FALSE(energy.path_made(dropped));
-    }
     // columns, made eight at a time through the factor (two threads) when it is readable, on the rows watched
     // (with a factor: the paths of the vertices watched and of the columns' own), which grow onto more rows
     std::vector<int> some, watched;

@@ -95,7 +95,8 @@ index from `v` to `w` changes it, the integers of loops and links kept, by
 The entries of `G` between neighbours are on the pattern of the sparse factor, so one selected inversion of
 the factor gives all of them; with few singularities, their paths in the elimination tree give those wanted for
 less (the cheaper of the two is predicted). A cancellation between distant vertices reads `G_vw` from the column
-of `G` at one of them (a back-substitution, kept from round to round). A move may lower the energy only with
+of `G` at one of them (a back-substitution, kept from round to round), or from the two singularities' paths
+where their products cost less than the columns not kept. A move may lower the energy only with
 some free integers of its component changed: the rounds price the moves with the integers kept (each trial solve
 chooses them again) and, on components with few of them (64 in all, fewest first), search the moves for the best
 change of the integers (a closest vector search in their metric), by increasing lower bound of what it may give,
@@ -369,38 +370,27 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         const bool by_positive = positive.size() <= negative.size();
         const std::vector<int>& columns = by_positive ? positive : negative;
         const std::vector<int>& others = by_positive ? negative : positive;
-        // A pair's G_vw is also the product of the two singularities' paths in the elimination tree over the part
-        // they share (Move_energy::path_entry()). The cheaper of the two: the products (bounded by the shorter
-        // path of each pair) and the paths not made yet, or the columns not kept. Singularities that move make
-        // new columns every round (bunny00_loop1, N = 4, under guidance: 53 columns for 89 moves, most of a step).
+        // With the entries from paths, a pair's G_vw is also the product of the two singularities' paths over the
+        // part they share (Move_energy::path_entry()). Singularities that move make new columns every round
+        // (bunny00_loop1, N = 4, under guidance: 53 columns for 89 moves, most of a step); but a column is kept
+        // while the products are made again every round, so they are taken only when all of them (bounded by the
+        // shorter path of each pair) cost less than one column.
         pairs_by_paths = false;
-        if(inverse.paths_possible()) {
-          double missing = 0;
+        if(inverse.paths()) { // the paths of the singular vertices are made (prefetch_paths() above)
+          bool missing = false; // a column to make: else the columns kept serve
           for(int s : columns)
-            missing += inverse.has_row_column(inverse.row_of(s)) ? 0. : 1.;
-          if(missing > 0) {
-            std::vector<int> rows_c, rows_o;
+            missing = missing || !inverse.has_row_column(inverse.row_of(s));
+          if(missing) {
+            std::vector<double> length_o;
+            for(int o : others)
+              length_o.push_back(double(inverse.path_length(inverse.row_of(o))));
             double work = 0;
             for(int s : columns) {
-              rows_c.push_back(inverse.row_of(s));
-              work += inverse.path_work(rows_c.back());
-            }
-            for(int o : others) {
-              rows_o.push_back(inverse.row_of(o));
-              work += inverse.path_work(rows_o.back());
-            }
-            std::vector<double> length_o;
-            for(int r : rows_o)
-              length_o.push_back(double(inverse.path_length(r)));
-            for(int r : rows_c) {
-              const double length = double(inverse.path_length(r));
+              const double length = double(inverse.path_length(inverse.row_of(s)));
               for(double lo : length_o)
                 work += (std::min)(length, lo);
             }
-            if(work < missing * inverse.column_work()) {
-              rows_c.insert(rows_c.end(), rows_o.begin(), rows_o.end());
-              pairs_by_paths = inverse.prefetch_pair_paths(rows_c);
-            }
+            pairs_by_paths = work < inverse.column_work();
           }
         }
         if(!pairs_by_paths)
@@ -590,10 +580,9 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     std::vector<std::pair<Candidate, std::array<const double*, 2>>> long_dipoles;
     bool integers_taken = false;
     auto free_here = [&](int v) { return blocked[std::size_t(v)] != round; };
-    // G between a long dipole's end (its column, or its vertex when every vertex a candidate moves has its path:
-    // the entries from paths and the pairs priced from them) and v; the products kept, a candidate's ends recurring
-    // in many pairs
-    const bool dipoles_by_paths = pairs_by_paths && inverse.paths();
+    // G between a long dipole's end (its column, or its vertex when the pairs were priced from paths: every vertex
+    // a candidate moves has its path) and v; the products kept, a candidate's ends recurring in many pairs
+    const bool dipoles_by_paths = pairs_by_paths;
     std::unordered_map<std::uint64_t, double> products;
     auto at = [&](const double* column, int end, int v) {
       const int r = inverse.row_of(v);

@@ -40,7 +40,7 @@ namespace internal {
   The entries of G between a vertex and its neighbours are on the pattern of the factor, so one selected inversion
   gives them all, at about the factorization's cost; with few singularities their paths in the
   elimination tree (see Path) give those wanted for far less. A pair of distant vertices costs the
-  back-substitution of a column (kept). Without a readable factor every entry comes from columns. A vertex without
+  back-substitution of a column (kept), or with paths the product of their two paths (path_entry()). Without a readable factor every entry comes from columns. A vertex without
   a row (boundary vertices, one pinned vertex per closed component) has G = 0.
 */
 class Move_energy
@@ -93,8 +93,7 @@ public:
     // with paths, femur N = 4 at 15 is 1.5 x slower
     const bool use_paths =
       tree && (choice == Entries::paths || (choice == Entries::automatic && 2 * paths < 3 * inversion));
-    m_paths_possible = tree && std::all_of(m_factor_storage.d.begin(), m_factor_storage.d.end(), [](double d) { return d > 0; });
-    m_paths_usable = use_paths && m_paths_possible;
+    m_paths_usable = use_paths && std::all_of(m_factor_storage.d.begin(), m_factor_storage.d.end(), [](double d) { return d > 0; });
     // The paths made grow with the moves (the new neighbours of every singularity moved): chosen by the vertices
     // wanted first, they may cost more than the inversion in the end (cheese_loop3, N = 2: 616 singularities, 5,460
     // moves, half of the refinement in paths). Past the rule's own break-even the inversion takes over, where the
@@ -160,93 +159,22 @@ public:
   double resistance(int v, int w) { return diagonal(v) + diagonal(w) - 2 * entry(v, w); }
 
   /*
-    Entries of G between distant vertices from their paths (see Path), instead of the column of one of them: a sum
-    over the part of the two paths common to both, the top of the elimination tree, where a column costs the
-    factor's columns over all the covered positions, and the path of a vertex only those along it. The paths are
-    those of the entries (prefetch_paths()) or, when the entries come from the inversion, those of
-    prefetch_pair_paths(). path_entry() only reads: safe on two threads.
+    Entries of G between distant vertices from their paths, when both are made (prefetch_paths()), instead of the
+    column of one of them: a sum over the part of the two paths common to both, the top of the elimination tree,
+    where a column costs the factor's columns over all the covered positions. Only reads: safe on two threads.
   */
-  // whether paths can be made at all: the factor is readable, its pattern a tree's and D positive
-  bool paths_possible() const { return m_paths_possible; }
-  bool path_made(int r) const { return r < 0 || made_path(r) != nullptr; }
+  bool path_made(int r) const { return r < 0 || (m_paths_usable && m_paths[std::size_t(r)].made); }
   double path_entry(int rv, int rw) const
   {
     CGAL_precondition(path_made(rv) && path_made(rw));
-    return rv < 0 || rw < 0 ? 0. : path_product(*made_path(rv), *made_path(rw));
+    return rv < 0 || rw < 0 ? 0. : path_product(m_paths[std::size_t(rv)], m_paths[std::size_t(rw)]);
   }
-  // the length of the path of row r (0: no row), a bound on the work of a product with it; and the work of making
-  // it (0 when it is made)
-  std::size_t path_length(int r) const
-  {
-    if(r < 0)
-      return 0;
-    if(const Path* p = made_path(r))
-      return p->position.size();
-    std::size_t length = 0;
-    for(int j = m_position[r]; j >= 0; j = parent(j))
-      ++length;
-    return length;
-  }
-  double path_work(int r) const
-  {
-    if(r < 0 || made_path(r))
-      return 0;
-    double work = 0;
-    for(int j = m_position[r]; j >= 0; j = parent(j))
-      work += double(factor().start[std::size_t(j) + 1] - factor().start[std::size_t(j)] + 1);
-    return work;
-  }
+  // the length of a made path (0 for no row): a bound on the work of a product with it
+  std::size_t path_length(int r) const { return r < 0 ? 0 : m_paths[std::size_t(r)].position.size(); }
   // the work of one more column now: its substitutions over the covered positions (twice the factor's entries
   // there), the path of its unit aside
   double column_work() const { return 2 * m_covered_work; }
   bool has_row_column(int r) const { return r < 0 || m_columns.count(r) != 0; }
-
-  // Makes the paths of these rows (-1: none) for path_entry(), half on a second thread, when the entries come from
-  // the inversion; those made for earlier calls and not listed are dropped (the singularities of past rounds).
-  // With the entries from paths, those of prefetch_paths() serve. False when some cannot be made.
-  bool prefetch_pair_paths(const std::vector<int>& rows)
-  {
-    if(m_paths_usable)
-      return std::all_of(rows.begin(), rows.end(), [&](int r) { return path_made(r); });
-    if(!m_paths_possible)
-      return false;
-    std::unordered_map<int, Path> kept;
-    std::vector<int> missing;
-    for(int r : rows) {
-      if(r < 0 || kept.count(r))
-        continue;
-      auto old = m_pair_paths.find(r);
-      if(old != m_pair_paths.end()) {
-        kept.emplace(r, std::move(old->second));
-      } else {
-        kept[r];
-        missing.push_back(r);
-      }
-    }
-    m_pair_paths.swap(kept);
-    std::vector<Path*> targets;
-    for(int r : missing)
-      targets.push_back(&m_pair_paths.at(r)); // stable: no insertion from here on
-    auto make = [&](std::size_t begin, std::size_t end) {
-      std::vector<double>& work = m_pair_work[end == missing.size() ? 1 : 0];
-      std::vector<int>& stamp = m_pair_stamp[end == missing.size() ? 1 : 0];
-      if(work.size() != std::size_t(factor().n)) {
-        work.assign(std::size_t(factor().n), 0.);
-        stamp.assign(std::size_t(factor().n), -1);
-      }
-      bool tree = true;
-      for(std::size_t i = begin; i < end && tree; ++i)
-        tree = make_path(missing[i], *targets[i], work, stamp);
-      return tree;
-    };
-    const std::pair<bool, bool> made = m_second_thread.on_two_halves(missing.size(), make);
-    for(Path* p : targets)
-      p->made = true;
-    m_paths_possible = made.first && made.second;
-    if(!m_paths_possible)
-      std::unordered_map<int, Path>().swap(m_pair_paths);
-    return m_paths_possible;
-  }
 
   // makes the columns of these vertices that are not kept yet, half on a second thread (the solves only read the
   // factor); `make_room`: the columns kept and not asked for may be dropped first when they would exceed the budget
@@ -339,12 +267,11 @@ public:
       std::vector<int> stamp(std::size_t(factor().n), -1);
       bool tree = true;
       for(std::size_t i = begin; i < end && tree; ++i)
-        tree = make_path(missing[i], m_paths[std::size_t(missing[i])], work, stamp);
+        tree = make_path(missing[i], work, stamp);
       return tree;
     };
     const std::pair<bool, bool> made = m_second_thread.on_two_halves(missing.size(), make);
     m_paths_usable = made.first && made.second;
-    m_paths_possible = m_paths_possible && m_paths_usable;
   }
 
   /*
@@ -510,8 +437,7 @@ private:
         m_work.assign(std::size_t(factor().n), 0.);
         m_stamp.assign(std::size_t(factor().n), -1);
       }
-      m_paths_usable = make_path(r, p, m_work, m_stamp);
-      m_paths_possible = m_paths_possible && m_paths_usable;
+      m_paths_usable = make_path(r, m_work, m_stamp);
     }
     return p;
   }
@@ -525,20 +451,11 @@ private:
     return sum;
   }
 
-  // the made path of row r >= 0, or null
-  const Path* made_path(int r) const
+  // the path of row r; `work` is zero and `stamp` has no entry r on entry, and `work` is zero again on exit; false
+  // when a row of L is off the path (not an elimination tree's pattern: paths are not used then)
+  bool make_path(int r, std::vector<double>& work, std::vector<int>& stamp) const
   {
-    if(m_paths_usable)
-      return m_paths[std::size_t(r)].made ? &m_paths[std::size_t(r)] : nullptr;
-    const auto p = m_pair_paths.find(r);
-    return p != m_pair_paths.end() && p->second.made ? &p->second : nullptr;
-  }
-
-  // the path of row r into `path` (each made by one thread); `work` is zero and `stamp` has no entry r on entry,
-  // or only those of r's path, and `work` is zero again on exit; false when a row of L is off the path (not an
-  // elimination tree's pattern: paths are not used then)
-  bool make_path(int r, Path& path, std::vector<double>& work, std::vector<int>& stamp) const
-  {
+    Path& path = const_cast<Path&>(m_paths[std::size_t(r)]); // each row's path is made by one thread
     path.position.clear();
     const Unit_lower_factor& f = factor();
     const int* start = f.start.data();
@@ -824,12 +741,8 @@ private:
   std::vector<int> m_parent;             // position -> its parent in the elimination tree (-1: a root)
   Column_store m_store;
   std::size_t m_column_solves = 0;
-  bool m_paths_usable = false; // the entries come from paths
-  bool m_paths_possible = false; // paths can be made (the factor's pattern is a tree's, D > 0)
-  std::vector<Path> m_paths; // by row, for the entries
-  std::unordered_map<int, Path> m_pair_paths; // by row, for pairs when the entries come from the inversion
-  std::vector<double> m_pair_work[2]; // zero between paths, one per half
-  std::vector<int> m_pair_stamp[2];
+  bool m_paths_usable = false;
+  std::vector<Path> m_paths; // by row
   std::vector<double> m_path_cost; // by position: the work of its path (empty: no switch to the inversion)
   double m_inversion_cost = 0, m_path_work = 0; // the inversion's work, and that of the paths made
   std::vector<double> m_work; // zero between paths

@@ -95,14 +95,14 @@ index from `v` to `w` changes it, the integers of loops and links kept, by
 The entries of `G` between neighbours are on the pattern of the sparse factor, so one selected inversion of
 the factor gives all of them; with few singularities, their paths in the elimination tree give those wanted for
 less (the cheaper of the two is predicted). A cancellation between distant vertices reads `G_vw` from the column
-of `G` at one of them (a back-substitution, kept from round to round), or from the two singularities' paths
-where their products cost less than the columns not kept. A move may lower the energy only with
-some free integers of its component changed: the rounds price the moves with the integers kept (each trial solve
-chooses them again) and, on components with few of them (64 in all, fewest first), search the moves for the best
-change of the integers (a closest vector search in their metric), by increasing lower bound of what it may give,
-until that bound reaches the best change found: a round takes one such move at most, when it beats every move
-with the integers kept. Proven integers (loops) are searched every round; unproven ones (links under guidance,
-whose bounds prune little) only when no move pays with them kept.
+of `G` at one of them (a back-substitution, kept from round to round), or, with the entries from paths, from
+the product of the two singularities' paths when all of a round's products cost less than one column. A move
+may lower the energy only with some free integers of its component changed: the rounds price the moves with the
+integers kept (each trial solve chooses them again) and, on components with few of them (64 in all, fewest
+first), search the moves for the best change of the integers (a closest vector search in their metric), by
+increasing lower bound of what it may give, until that bound reaches the best change found: a round takes one
+such move at most, when it beats every move with the integers kept. Proven integers (loops) are searched every
+round; unproven ones (links under guidance, whose bounds prune little) only when no move pays with them kept.
 A round applies the best-scored candidates that lie apart (no two within one ring of each other) in one
 `solve()` that chooses the integers again, each cancellation's change corrected exactly for its interaction
 with those taken before it; when that solve does not lower the energy, half of the moves are tried, down to a
@@ -582,11 +582,10 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     auto free_here = [&](int v) { return blocked[std::size_t(v)] != round; };
     // G between a long dipole's end (its column, or its vertex when the pairs were priced from paths: every vertex
     // a candidate moves has its path) and v; the products kept, a candidate's ends recurring in many pairs
-    const bool dipoles_by_paths = pairs_by_paths;
     std::unordered_map<std::uint64_t, double> products;
     auto at = [&](const double* column, int end, int v) {
       const int r = inverse.row_of(v);
-      if(dipoles_by_paths) {
+      if(pairs_by_paths) {
         const int re = inverse.row_of(end);
         if(r < 0 || re < 0)
           return 0.;
@@ -620,7 +619,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       chosen.push_back(c);
       chosen.back().change = change;
       integers_taken = integers_taken || c.integers;
-      if(c.cancels && !c.integers && dipoles_by_paths) {
+      if(c.cancels && !c.integers && pairs_by_paths) {
         long_dipoles.emplace_back(c, std::array<const double*, 2>{{nullptr, nullptr}});
       } else if(c.cancels && !c.integers) {
         // its columns (one end's is kept from the pricing), with those of the next cancellations still free: eight

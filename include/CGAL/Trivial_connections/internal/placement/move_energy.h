@@ -40,8 +40,9 @@ namespace internal {
   The entries of G between a vertex and its neighbours are on the pattern of the factor, so one selected inversion
   gives them all, at about the factorization's cost; with few singularities their paths in the
   elimination tree (see Path) give those wanted for far less. A pair of distant vertices costs the
-  back-substitution of a column (kept), or with paths the product of their two paths (path_entry()). Without a readable factor every entry comes from columns. A vertex without
-  a row (boundary vertices, one pinned vertex per closed component) has G = 0.
+  back-substitution of a column (kept), or with paths the product of their two paths (path_entry()). Without a
+  readable factor every entry comes from columns. A vertex without a row (boundary vertices, one pinned vertex per
+  closed component) has G = 0.
 */
 class Move_energy
 {
@@ -110,7 +111,8 @@ public:
       for(int j = n - 1; j >= 0; --j) {
         m_covered_positions.push_back(j);
         m_entry[std::size_t(j)] = m_entries++;
-        m_covered_work += double(m_factor_storage.start[std::size_t(j) + 1] - m_factor_storage.start[std::size_t(j)] + 1);
+        m_covered_work +=
+          double(m_factor_storage.start[std::size_t(j) + 1] - m_factor_storage.start[std::size_t(j)] + 1);
       }
     if(m_paths_usable)
       m_paths.resize(std::size_t(m_rows));

@@ -379,7 +379,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
         if(inverse.paths()) { // the paths of the singular vertices are made (prefetch_paths() above)
           bool missing = false; // a column to make: else the columns kept serve
           for(int s : columns)
-            missing = missing || !inverse.has_row_column(inverse.row_of(s));
+            missing = missing || !inverse.has_column(s);
           if(missing) {
             std::vector<double> length_o;
             for(int o : others)

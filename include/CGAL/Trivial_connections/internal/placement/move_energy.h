@@ -111,8 +111,7 @@ public:
       for(int j = n - 1; j >= 0; --j) {
         m_covered_positions.push_back(j);
         m_entry[std::size_t(j)] = m_entries++;
-        m_covered_work +=
-          double(m_factor_storage.start[std::size_t(j) + 1] - m_factor_storage.start[std::size_t(j)] + 1);
+        m_covered_work += entries_of_column(j);
       }
     if(m_paths_usable)
       m_paths.resize(std::size_t(m_rows));
@@ -176,7 +175,6 @@ public:
   // the work of one more column now: its substitutions over the covered positions (twice the factor's entries
   // there), the path of its unit aside
   double column_work() const { return 2 * m_covered_work; }
-  bool has_row_column(int r) const { return r < 0 || m_columns.count(r) != 0; }
 
   // makes the columns of these vertices that are not kept yet, half on a second thread (the solves only read the
   // factor); `make_room`: the columns kept and not asked for may be dropped first when they would exceed the budget
@@ -385,6 +383,12 @@ public:
 private:
   static constexpr std::size_t block = 8;
 
+  // the factor's entries in column j, its diagonal included (the work of that column in a substitution)
+  double entries_of_column(int j) const
+  {
+    return double(factor().start[std::size_t(j) + 1] - factor().start[std::size_t(j)] + 1);
+  }
+
   // the parent of position j in the elimination tree: the first row below the diagonal of its column in the factor
   // as read, zeros included (-1: a root)
   int parent(int j) const { return m_parent[std::size_t(j)]; }
@@ -517,7 +521,7 @@ private:
         for(int j = m_position[r]; j >= 0 && !m_covered[std::size_t(j)]; j = parent(j)) {
           m_covered[std::size_t(j)] = 1;
           m_entry[std::size_t(j)] = m_entries++;
-          m_covered_work += double(factor().start[std::size_t(j) + 1] - factor().start[std::size_t(j)] + 1);
+          m_covered_work += entries_of_column(j);
           fresh.push_back(j);
         }
     if(fresh.empty())

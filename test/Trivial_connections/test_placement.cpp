@@ -1818,6 +1818,38 @@ TEST(Refinement, reaches_a_local_minimum_under_pins_and_with_boundary_alignment)
                                                               TC::parameters::symmetry_order(n));
     }
   }
+  {
+    // The boundary aligned for n = 4 given to the constructor: most of the boundary's turns are decided by
+    // rounding (links through the fans of boundary vertices), 22 free. The report's proof also bounds the decided
+    // links' other choices, weakly (unproven); the rounds search the free integers as proven, and the trial
+    // solves skip that bound: the refined set's own solve gives it again.
+    Surface_mesh tm;
+    TC_READ_CGAL_MESH_OR_SKIP("holes.off", tm);
+    const Mesh_view<Surface_mesh> view(tm);
+    const auto np = TC::parameters::align_with_boundary(true, TC::parameters::symmetry_order(4));
+    Solver solver(tm, np);
+    using Access = TC::internal::Solver_access<Solver>;
+    ASSERT_FALSE(Access::rows(solver).decided_slots.empty());
+    const Placed p = place(view, solver, np);
+    std::vector<double> x;
+    const auto r = TC::refine_singularities(solver, descriptors(view, p.singularities), view.halfedge_map(x),
+                                            TC::parameters::cancel_pairs(true, TC::parameters::symmetry_order(4)));
+    EXPECT_TRUE(r.local_minimum);
+    EXPECT_LT(r.energy_after, r.energy_before);
+    EXPECT_LE(r.report.max_constraint_residual, 1e-9);
+    Solver fresh(tm, np);
+    std::vector<double> y;
+    const TC::Solve_report again = fresh.solve(r.singularities, view.halfedge_map(y), TC::parameters::symmetry_order(4));
+    EXPECT_NEAR(again.energy + again.guidance_energy, r.energy_after, 1e-9 * r.energy_after);
+    EXPECT_EQ(again.integers_proven_optimal, r.report.integers_proven_optimal);
+    EXPECT_NEAR(again.energy_lower_bound, r.report.energy_lower_bound, 1e-9 * r.energy_after);
+    EXPECT_GT(r.report.energy_lower_bound, 0.); // the bound of the decided links' choices, not a trial's 0
+    const TC::Solve_report after = solver.solve(r.singularities, view.halfedge_map(y), TC::parameters::symmetry_order(4));
+    EXPECT_NEAR(after.energy_lower_bound, again.energy_lower_bound, 1e-9 * r.energy_after); // the solver's as before
+    const Singularities end = numbered(view, r.singularities);
+    expect_no_single_move_or_cancellation_lowers_the_energy(view, solver, end, 4, r.energy_after,
+                                                            TC::parameters::symmetry_order(4));
+  }
 }
 
 } // namespace

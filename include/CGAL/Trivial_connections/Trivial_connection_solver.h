@@ -489,7 +489,7 @@ public:
         choose_periods = choose_periods || !prescribed[l];
     Eigen::VectorXd lambda;
     internal::Integer_choice_energies energies;
-    energies.want_relaxed = decided;
+    energies.want_relaxed = decided && m_bound_decided_choices;
     if(choose_periods)
       lambda = internal::solve_choosing_integers(
         m_system, m_rows, m_lattices, b, unit, prescribed, holonomy, periods, energies,
@@ -504,6 +504,7 @@ public:
     }
     m_period_hint.clear();
     m_last_periods = periods;
+    m_free_integers_proven = energies.proven;
     // the connection and its sums in vectors the solver keeps for later solves (see Connection_workspace)
     Workspace_lease workspace(*this);
     internal::Constraint_sums& sums = workspace->sums;
@@ -525,7 +526,10 @@ public:
     // the bound is exact arithmetic on the enumeration's costs: rounding may put it a hair above the energy
     report.energy_lower_bound =
       energies.proven ? minimised : (std::min)(energies.lower_bound + fixed_energy, minimised);
-    if(decided) {
+    if(decided && !m_bound_decided_choices) {
+      energies.proven = false; // the decided integers' other choices not bounded: nothing claimed for them
+      report.energy_lower_bound = 0;
+    } else if(decided) {
       // the choices where a decided integer differs from its rounding (see decided_links_bound())
       double relaxed_energy = minimised;
       Eigen::VectorXd relaxed_lambda = lambda;
@@ -713,6 +717,11 @@ private:
   std::mutex m_workspaces_mutex;
   std::vector<std::unique_ptr<Solve_workspace>> m_workspaces; // given back, free
   double m_refine_residuals_above = internal::refine_residuals_above; // see checked_connection()
+  // whether solve() bounds the other choices of the decided links (a solve more, for the report alone: the
+  // refinement's trial solves skip it), and whether the last solve proved its free integers optimal (loops and
+  // links not decided, the decided ones held: what the refinement's moves can change)
+  bool m_bound_decided_choices = true;
+  bool m_free_integers_proven = false;
   // the integers of every slot of the last solve, and those the next solve alone tries too (the refinement's)
   std::vector<std::int64_t> m_last_periods, m_period_hint;
   struct Face_sets

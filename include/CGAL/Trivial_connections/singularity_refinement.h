@@ -196,13 +196,23 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
 
   // The trial solves refine their connection only from a relative residual of 1e-11 (the promise is 1e-9): on a
   // large mesh the first residual is barely above the rounding level that solve() refines down to (cheese_loop3:
-  // 1.0e-13 to 2.2e-13 of 1 + |b|), and that refinement is a second back-substitution per trial. The connection
-  // returned is solved again at full accuracy, as is the first (so energy_after <= energy_before).
+  // 1.0e-13 to 2.2e-13 of 1 + |b|), and that refinement is a second back-substitution per trial. Nor do they bound
+  // the other choices of the links decided by rounding (touching pins, an aligned boundary): a solve more per trial
+  // for the report alone (holes.off with its boundary aligned: a third of a trial). The connection returned is
+  // solved again at full accuracy, with its bound, as is the first (so energy_after <= energy_before).
   struct Trial_accuracy
   {
     Solver& s;
-    explicit Trial_accuracy(Solver& solver) : s(solver) { Access::refine_residuals_above(s, 1e-11); }
-    ~Trial_accuracy() { Access::refine_residuals_above(s, internal::refine_residuals_above); }
+    explicit Trial_accuracy(Solver& solver) : s(solver)
+    {
+      Access::refine_residuals_above(s, 1e-11);
+      Access::bound_decided_choices(s, false);
+    }
+    ~Trial_accuracy()
+    {
+      Access::refine_residuals_above(s, internal::refine_residuals_above);
+      Access::bound_decided_choices(s, true);
+    }
   };
   std::optional<Trial_accuracy> trial_accuracy;
 
@@ -219,6 +229,10 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     result.singularities_before = given.size();
   }
   result.energy_before = energy;
+  // whether the accepted solve's free integers are optimal: the moves price changes of these only (the links
+  // decided by rounding are held by every solve), so the weak bound of the decided ones' other choices, which
+  // leaves the report unproven under an aligned boundary, does not make the rounds search them as unproven
+  bool integers_proven = Access::free_integers_proven(solver);
   trial_accuracy.emplace(solver); // after the first solve, at full accuracy: energy_before is exact to rounding
   // each trial also tries the integers of the set it moves from: a move predicted with them kept is then never
   // rejected because a search that cannot prove the optimum (hundreds of integers) found worse ones
@@ -556,12 +570,12 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
     // 1.5 to 2.9 ms on two threads, a solve 0.4 ms) only when no candidate lowers the energy with them kept,
     // before stopping, so that a step costs what it costs without; either way the local minimum is one with the
     // integers chosen again.
-    const bool search_every_round = !integers.empty() && result.report.integers_proven_optimal;
+    const bool search_every_round = !integers.empty() && integers_proven;
     if(search_every_round)
       integers.start_round(Access::multipliers(solver), true);
     std::vector<Candidate> candidates = collect(search_every_round);
     if(candidates.empty() && !integers.empty() && !search_every_round) {
-      integers.start_round(Access::multipliers(solver), result.report.integers_proven_optimal);
+      integers.start_round(Access::multipliers(solver), integers_proven);
       candidates = collect(true);
     }
     if(candidates.empty())
@@ -670,6 +684,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
       accepted_periods = Access::last_periods(solver);
       gradient.swap(trial_gradient);
       result.report = trial_report;
+      integers_proven = Access::free_integers_proven(solver);
       energy = e;
       ++result.rounds;
       for(std::size_t i = 0; i < size; ++i) {

@@ -42,6 +42,10 @@ struct Solver_access<Trivial_connection_solver<TriangleMesh, GeomTraits, SolverT
   static void hint_periods(Solver& s, std::vector<std::int64_t> periods) { s.m_period_hint = std::move(periods); }
   // the residual from which solve() refines its connection (see checked_connection())
   static void refine_residuals_above(Solver& s, double relative) { s.m_refine_residuals_above = relative; }
+  // whether solve() bounds the other choices of the links decided by rounding (report only: a solve more)
+  static void bound_decided_choices(Solver& s, bool bound) { s.m_bound_decided_choices = bound; }
+  // whether the last solve() proved its free integers optimal, the links decided by rounding held
+  static bool free_integers_proven(const Solver& s) { return s.m_free_integers_proven; }
   // after set_constraints() on a kept factorization: its links into the factor (factored again)
   static void factor_bordered_links(Solver& s) { s.factor_bordered_links(); }
   // a solver of tm from its arrays, made from the connectivity tm is built from (see Mesh_arrays); with a

@@ -49,6 +49,10 @@
 //   t_step_C = (t_refine_C - t_first_round_C) / trials_C   the cost of one step (a round's pricing + a trial solve)
 //   r_step_C = t_step_C / t_step_none, r_whole_C = (t_refine_C + t_refactor_C) / (the same for none)
 //   (C = constrained, guided);   control_faces_C, trials_C, local_minimum_C,
+//   and on bordered meshes C = boundary: a second solver built with align_with_boundary (n = 4), the same start and
+//   runs; t_refactor_boundary = what its construction takes more than t_build (the links it factors), control_faces_
+//   boundary = the faces with a border edge;   t_solve_C: one solve() of the start under control C, after the
+//   refinements (the links factored in; the median of 3)
 //   singularities_before_C, singularities_after_C, energy_before_C, energy_after_C
 //   t_reference          the reference factorization
 //   r_end_to_end = (t_build + t_place + t_solve) / t_reference (issue target: <= 3)
@@ -103,19 +107,20 @@ using tc_bench::seconds_since;
 constexpr int symmetry = 4;                       // n of the placements timed apart (t_place, t_place_aligned, ...)
 constexpr int refined_orders[] = {1, 2, 4};       // n of the refinements (_nN counters)
 
-// femur (issue 38's mesh for the refinement), and the meshes of at least 50k faces: the suite's, and three more
-// small ones of other genera
+// femur (issue 38's mesh for the refinement), the meshes of at least 50k faces: the suite's, and three more
+// small ones of other genera; two bordered ones (holes: seven loops; mannequin_devil: one) for the boundary alignment
 const std::vector<Mesh_spec>& placement_specs()
 {
   static const std::vector<Mesh_spec> specs = [] {
     std::vector<Mesh_spec> s = {
-      {"femur", "femur.off", 0, Size::small},           // genus 2, 7.8k faces, ~566 singularities for n = 4
-      {"armadillo", "armadillo.off", 0, Size::small},   // 52k faces
-      {"cheese_loop1", "cheese.off", 1, Size::small},   // genus 133, 71k
-      {"turbine_loop1", "turbine.off", 1, Size::small}, // genus 11, 74k
+      {"femur", "femur.off", 0, Size::small},                     // genus 2, 7.8k faces, ~566 singularities (n = 4)
+      {"armadillo", "armadillo.off", 0, Size::small},             // 52k faces
+      {"cheese_loop1", "cheese.off", 1, Size::small},             // genus 133, 71k
+      {"turbine_loop1", "turbine.off", 1, Size::small},           // genus 11, 74k
+      {"mannequin_devil", "mannequin-devil.off", 0, Size::small}, // bordered (one loop), 26k
     };
-    const std::set<std::string> from_suite = {"bunny00",       "refined_elephant", "bunny00_loop1", "bunny00_loop2",
-                                              "turbine_loop3", "cheese_loop3",     "bunny00_loop3"};
+    const std::set<std::string> from_suite = {"holes",         "bunny00",       "refined_elephant", "bunny00_loop1",
+                                              "bunny00_loop2", "turbine_loop3", "cheese_loop3",     "bunny00_loop3"};
     for(const Mesh_spec& spec : tc_bench::mesh_specs())
       if(from_suite.count(spec.name))
         s.push_back(spec);
@@ -147,7 +152,7 @@ struct Controlled_refinement
 {
   std::string control; // "none", "constrained", "guided"
   std::size_t faces = 0;
-  double t_refine = 0, t_first_round = 0, t_refactor = 0;
+  double t_refine = 0, t_first_round = 0, t_refactor = 0, t_solve = 0; // t_solve: one solve() of the start
   TC::Refinement_report<Vertex> report;
   double step() const { return report.trials > 0 ? (t_refine - t_first_round) / double(report.trials) : -1; }
 };
@@ -262,7 +267,20 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
       // towards them (the program's --align-curvature). Small meshes only (a dozen refinements more).
       controlled.clear();
       if(spec.size == Size::small) {
+        const bool has_border = std::any_of(halfedges(mesh).begin(), halfedges(mesh).end(),
+                                            [&](Mesh::Halfedge_index h) { return is_border(h, mesh); });
         const std::vector<Mesh::Face_index> spread = TC::spread_guided_faces(solver, guide, 64);
+        // one solve() of the start, the median of 3 (what a trial is made of), once the links are factored in
+        auto median_solve = [&](Solver& on) {
+          std::vector<double> times;
+          for(int i = 0; i < 3; ++i) {
+            t0 = Clock::now();
+            benchmark::DoNotOptimize(
+              on.solve(placed_aligned, x, P::face_directions(guide, P::symmetry_order(symmetry))).energy);
+            times.push_back(seconds_since(t0));
+          }
+          return median(times);
+        };
         for(const char* control : {"none", "constrained", "guided"}) {
           Controlled_refinement c;
           c.control = control;
@@ -286,9 +304,41 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
               c.report = std::move(r);
           }
           c.t_refactor = (std::max)(t_first_call - c.t_first_round, 0.);
+          c.t_solve = median_solve(solver);
           controlled.push_back(std::move(c));
         }
         solver.set_constraints();
+
+        // bordered meshes: the field aligned with the boundary, a solver option (its links are factored by the
+        // constructor), from the same start; what it costs more than the solver without is its set-up
+        if(has_border) {
+          tc_bench::stop_idle_blas_threads();
+          t0 = Clock::now();
+          Solver aligned_solver(mesh, P::align_with_boundary(true, P::symmetry_order(symmetry)));
+          const double t_build_aligned = seconds_since(t0);
+          Controlled_refinement c;
+          c.control = "boundary";
+          for(Mesh::Face_index f : faces(mesh))
+            c.faces += CGAL::is_border_edge(halfedge(f, mesh), mesh) ||
+                       CGAL::is_border_edge(next(halfedge(f, mesh), mesh), mesh) ||
+                       CGAL::is_border_edge(prev(halfedge(f, mesh), mesh), mesh);
+          for(int run = 0; run < 3; ++run) {
+            const std::size_t budget = run == 1 ? (std::numeric_limits<std::size_t>::max)() : std::size_t(0);
+            tc_bench::stop_idle_blas_threads();
+            t0 = Clock::now();
+            auto r = TC::refine_singularities(
+              aligned_solver, placed_aligned, x,
+              P::maximum_trials(budget, P::cancel_pairs(true, P::face_directions(guide, P::symmetry_order(symmetry)))));
+            if(run == 1) {
+              c.t_refine = seconds_since(t0);
+              c.report = std::move(r);
+            } else if(run == 2)
+              c.t_first_round = seconds_since(t0);
+          }
+          c.t_refactor = (std::max)(t_build_aligned - t_build, 0.);
+          c.t_solve = median_solve(aligned_solver);
+          controlled.push_back(std::move(c));
+        }
       }
     } catch(const std::exception& e) {
       state.SkipWithError((spec.name + ": " + e.what()).c_str());
@@ -340,6 +390,8 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
     k["t_first_round" + s] = c.t_first_round;
     k["t_refactor" + s] = c.t_refactor;
     k["t_step" + s] = c.step();
+    if(c.t_solve > 0)
+      k["t_solve" + s] = c.t_solve;
     k["singularities_before" + s] = double(r.singularities_before);
     k["singularities_after" + s] = double(r.singularities.size());
     k["energy_before" + s] = r.energy_before;

@@ -113,6 +113,7 @@ def placement_table(results, lines, command):
     lines.append("")
     refinement_table(rows, lines)
     controlled_refinement_table(rows, lines)
+    boundary_refinement_table(rows, lines)
 
 
 REFINED_ORDERS = (1, 2, 4)
@@ -183,12 +184,16 @@ def controlled_refinement_table(rows, lines):
                  "than the third), to a local minimum, and again with `maximum_trials(0)` (`first round`: set-up, "
                  "first solve, first round and final solve); a step is the difference of the last two over the trials "
                  "(a round's pricing and its trial solve), `step / none` its ratio to the step without control, and "
-                 "`whole / none` that of the whole refinements, the factorization again included. Trials, energy before → after, whether a local minimum was reached.")
+                 "`whole / none` that of the whole refinements, the factorization again included. Trials, energy before → after, whether a local minimum was reached. "
+                 "`solve`: one `solve()` of the start under each control once its links are factored in (median of 3), "
+                 "and `step / solve` a step in such solves: the links are rows of the system (and fill in its factor), "
+                 "so every solve under a control costs more, the refinement's trials included.")
     lines.append("")
     head = ["mesh", "backend", "faces"]
     for c in CONTROLS:
         head += [f"{c}: trials, energy", f"{c}: refactor., first round", f"{c}: step"]
-    head += ["constrained: step / none (whole / none)", "guided: step / none (whole / none)", "reps"]
+    head += ["constrained: step / none (whole / none)", "guided: step / none (whole / none)",
+             "solve: none, constrained, guided", "step / solve: none, constrained, guided", "reps"]
     table_head(lines, head)
     for b, mesh, e in rows:
         c = e["counters"]
@@ -206,6 +211,53 @@ def controlled_refinement_table(rows, lines):
         def whole(k):
             return fmt_num(c.get(f"r_whole_{k}"))
         cells += [f"{fmt_num(c.get('r_step_constrained'))} ({whole('constrained')})",
-                  f"{fmt_num(c.get('r_step_guided'))} ({whole('guided')})", str(e["repetitions"])]
+                  f"{fmt_num(c.get('r_step_guided'))} ({whole('guided')})",
+                  ", ".join(fmt_time(c.get(f"t_solve_{k}")) if c.get(f"t_solve_{k}") else "–" for k in CONTROLS),
+                  ", ".join(step_in_solves(c, k) for k in CONTROLS), str(e["repetitions"])]
+        lines.append("| " + " | ".join(cells) + " |")
+    lines.append("")
+
+
+def step_in_solves(c, k):
+    """a step of the refinement under control k in solve()s under the same control, '–' when either is missing"""
+    step, solve = c.get(f"t_step_{k}"), c.get(f"t_solve_{k}")
+    return fmt_num(step / solve) if step is not None and step >= 0 and solve else "–"
+
+
+def boundary_refinement_table(rows, lines):
+    """per bordered small mesh and backend: a step of the refinement with the boundary aligned against none"""
+    if not any(e["counters"].get("t_step_boundary") is not None for _, _, e in rows):
+        return
+    lines.append("**A step with the boundary aligned** (issue 38: refinement under boundary alignment at the cost per "
+                 "step of one without), the bordered meshes of the table above, n = 4, from the same start (the "
+                 "curvature-aligned placement): the solver without control (`none`, as above) and a second solver "
+                 "built with `align_with_boundary(true, symmetry_order(4))`, every face with a border edge linked to "
+                 "the boundary's direction (`boundary faces`). The same three runs as above; `set-up` is what the "
+                 "aligned solver's construction takes more than the one without (its links factored in), counted in "
+                 "`whole / none`; `solve` is one `solve()` of the start on each solver (median of 3), and `step / "
+                 "solve` a step in such solves: the aligned system is larger (the links' rows and fill in its "
+                 "factor), so a step there costs more by what a solve costs more.")
+    lines.append("")
+    head = ["mesh", "backend", "faces", "boundary faces", "none: trials, energy", "none: step",
+            "aligned: trials, energy", "aligned: set-up, first round", "aligned: step",
+            "aligned: step / none (whole / none)", "solve: none, aligned", "step / solve: none, aligned", "reps"]
+    table_head(lines, head)
+    for b, mesh, e in rows:
+        c = e["counters"]
+        if e["error"] or c.get("t_step_boundary") is None:
+            continue
+        cells = [mesh, b, fmt_faces(c.get("faces", 0)), f"{c.get('control_faces_boundary', 0):.0f}"]
+        for k in ("none", "boundary"):
+            g = lambda name: c.get(f"{name}_{k}")
+            minimum = "" if g("local_minimum") else " (no local minimum)"
+            cells.append(f"{g('trials') or 0:.0f}, {fmt_num(g('energy_before'), 5)} → {fmt_num(g('energy_after'), 5)}"
+                         + minimum)
+            if k == "boundary":
+                cells.append(f"{fmt_time(g('t_refactor')) if (g('t_refactor') or 0) > 1e-3 else '0'}, "
+                             f"{fmt_time(g('t_first_round'))}")
+            cells.append(fmt_time(g("t_step")) if (g("t_step") or -1) >= 0 else "–")
+        cells += [f"{fmt_num(c.get('r_step_boundary'))} ({fmt_num(c.get('r_whole_boundary'))})",
+                  f"{fmt_time(c.get('t_solve_none'))}, {fmt_time(c.get('t_solve_boundary'))}",
+                  f"{step_in_solves(c, 'none')}, {step_in_solves(c, 'boundary')}", str(e["repetitions"])]
         lines.append("| " + " | ".join(cells) + " |")
     lines.append("")

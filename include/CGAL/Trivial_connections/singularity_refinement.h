@@ -101,8 +101,10 @@ may lower the energy only with some free integers of its component changed: the 
 integers kept (each trial solve chooses them again) and, on components with few of them (64 in all, fewest
 first), search the moves for the best change of the integers (a closest vector search in their metric), by
 increasing lower bound of what it may give, until that bound reaches the best change found: a round takes one
-such move at most, when it beats every move with the integers kept. Proven integers (loops) are searched every
-round; unproven ones (links under guidance, whose bounds prune little) only when no move pays with them kept.
+such move at most, when it beats every move with the integers kept. Proven integers (loops; links decided by
+rounding, under an aligned boundary or between touching pins, are held, and the report's weak bound of their other
+choices does not count) are searched every round; unproven ones (links under guidance, whose bounds prune little)
+only when no move pays with them kept.
 A round applies the best-scored candidates that lie apart (no two within one ring of each other) in one
 `solve()` that chooses the integers again, each cancellation's change corrected exactly for its interaction
 with those taken before it; when that solve does not lower the energy, half of the moves are tried, down to a
@@ -121,7 +123,7 @@ Poincare-Hopf is kept: a move keeps every component's index sum.
 \param start the starting singularities (checked as by `solve()`)
 \param x a writable property map `halfedge_descriptor -> double`: receives the connection of the refined set,
        solved again at the end with the residual refined as by `solve()` (the trial solves refine it only from
-       1e-11) and with the integers the trials accepted as a candidate (its energy is `energy_after`). Its integers of loops and links are also a candidate of the solver's next
+       1e-11, and leave out the bound of the decided links' other choices; the report has both) and with the integers the trials accepted as a candidate (its energy is `energy_after`). Its integers of loops and links are also a candidate of the solver's next
        `solve()` (once): when no solve can prove them optimal (many of them, e.g. under guidance), solving the
        refined set again chooses them or better ones, never the worse ones a fresh search might settle for.
 \param np an optional sequence of named parameters: those of `solve()` (`symmetry_order`, `loop_periods`,

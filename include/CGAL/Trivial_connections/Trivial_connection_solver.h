@@ -490,21 +490,29 @@ public:
     Eigen::VectorXd lambda;
     internal::Integer_choice_energies energies;
     energies.want_relaxed = decided && m_bound_decided_choices;
+    std::vector<std::int64_t> hint; // the refinement's, for this solve alone
+    {
+      std::lock_guard<std::mutex> lock(m_last_solve_mutex);
+      hint.swap(m_period_hint);
+    }
     if(choose_periods)
       lambda = internal::solve_choosing_integers(
         m_system, m_rows, m_lattices, b, unit, prescribed, holonomy, periods, energies,
-        [&](double fraction) { notify(progress, Phase::loop_integers, fraction); },
-        m_period_hint.empty() ? nullptr : &m_period_hint);
+        [&](double fraction) { notify(progress, Phase::loop_integers, fraction); }, hint.empty() ? nullptr : &hint);
     else
       lambda = m_system.solve(m_rows, b);
 
-    if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, tc_np::energy_gradient_t>::value) {
+    constexpr bool wants_gradient =
+      !CGAL::parameters::is_default_parameter<NamedParameters, tc_np::energy_gradient_t>::value;
+    if constexpr(wants_gradient)
       write_energy_gradient(lambda, CGAL::parameters::get_parameter(np, tc_np::energy_gradient));
-      m_multipliers = lambda;
+    {
+      std::lock_guard<std::mutex> lock(m_last_solve_mutex); // solves may run concurrently
+      if constexpr(wants_gradient)
+        m_multipliers = lambda;
+      m_last_periods = periods;
+      m_free_integers_proven = energies.proven;
     }
-    m_period_hint.clear();
-    m_last_periods = periods;
-    m_free_integers_proven = energies.proven;
     // the connection and its sums in vectors the solver keeps for later solves (see Connection_workspace)
     Workspace_lease workspace(*this);
     internal::Constraint_sums& sums = workspace->sums;
@@ -724,6 +732,7 @@ private:
   bool m_free_integers_proven = false;
   // the integers of every slot of the last solve, and those the next solve alone tries too (the refinement's)
   std::vector<std::int64_t> m_last_periods, m_period_hint;
+  std::mutex m_last_solve_mutex; // over these, m_multipliers and m_free_integers_proven: solves run concurrently
   struct Face_sets
   {
     std::vector<int> user_faces, guided;

@@ -85,7 +85,7 @@ std::vector<char> feature_edges_of(const Mesh& mesh, const py::object& pairs)
 // the quads of the cross field of `result` (with its singularities): (vertices (k, 3), quads (q, 4), report)
 py::tuple Python_solver::quad_mesh(const Result& result, const py::object& singularities, const py::object& quad_size,
                                    const py::object& target_faces, const std::string& rounding, double max_quads,
-                                   const py::object& feature_edges)
+                                   const py::object& feature_edges, double scale_smoothness)
 {
   const Singularities s = singularities_of(singularities);
   const auto singular = vertex_descriptors(*m_mesh, s);
@@ -116,8 +116,10 @@ py::tuple Python_solver::quad_mesh(const Result& result, const py::object& singu
     auto feature_map = boost::make_function_property_map<edge_descriptor, bool>(
       [&features](edge_descriptor e) { return features[std::size_t(e)] != 0; });
     namespace P = TC::parameters;
-    const auto common =
-      P::max_quads(max_quads, P::quad_rounding(scheme, P::symmetry_order(n))).edge_is_constrained_map(feature_map);
+    // (a negative or non-finite S is refused by compute_quad_mesh(): invalid_argument)
+    const auto common = P::quad_scale_smoothness(
+                          scale_smoothness, P::max_quads(max_quads, P::quad_rounding(scheme, P::symmetry_order(n))))
+                          .edge_is_constrained_map(feature_map);
     return N > 0 ? TC::compute_quad_mesh(*m_mesh, x_map, field_map, singular, quads,
                                          P::target_faces(std::size_t(N), common))
                  : TC::compute_quad_mesh(*m_mesh, x_map, field_map, singular, quads, P::quad_size(H, common));
@@ -198,14 +200,17 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
 {
   solver.def("quad_mesh", &Python_solver::quad_mesh, py::arg("result"), py::arg("singularities"),
              py::arg("quad_size") = py::none(), py::arg("target_faces") = py::none(), py::arg("rounding") = "greedy",
-             py::arg("max_quads") = 1e7, py::arg("feature_edges") = py::none(),
+             py::arg("max_quads") = 1e7, py::arg("feature_edges") = py::none(), py::arg("scale_smoothness") = 0.,
              "The quad mesh of result's cross field (n = 4) with its singularities: quad_size H (the quads' edge "
              "length) or target_faces N (H = sqrt(area / N)), one of them; rounding \"greedy\" or \"naive\"; more "
              "than max_quads quads is refused. feature_edges: edges put on integer iso-lines so that quad edges "
              "follow them, as pairs of vertices (i, j) (an (m, 2) integer array or a sequence of pairs, e.g. "
              "numpy.vstack(feature_curves(V, F)[0])); the field must follow them (Solver(..., align_features=...)). "
              "Border edges are always put on iso-lines: the field must follow the border (align_boundary=True), "
-             "otherwise the call is refused. Returns (vertices (k, 3), quads (q, 4) counter-clockwise, report dict: "
+             "otherwise the call is refused. scale_smoothness S > 0: the field's length is first scaled per face to "
+             "make it closer to a gradient (C++ quad_scale_smoothness, the program's --quad-scale-smoothness; 0: "
+             "not scaled; the program tries 0.1 by itself when its quads have flaws, this call does not). Returns "
+             "(vertices (k, 3), quads (q, 4) counter-clockwise, report dict: "
              "quad_size, quads, vertices, integer_points, valence_histogram, valence_errors, border_corners, "
              "feature_edges, folded_triangles, degenerate_triangles, rejected_polygons, open_edges, dangling_edges, "
              "flipped_quads, concave_quads, hausdorff_distance (and its two one-sided parts), split_vertices, "

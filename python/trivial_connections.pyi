@@ -157,6 +157,7 @@ class Solver:
         rounding: str = "greedy",
         max_quads: float = 1e7,
         feature_edges: Optional[Union[npt.ArrayLike, Sequence[Tuple[int, int]]]] = None,
+        scale_smoothness: float = 0.0,
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Dict[str, Any]]: ...
     def move_singularities_off_features(
         self,

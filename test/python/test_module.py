@@ -1112,6 +1112,15 @@ def test_quad_mesh_cube():
         assert report["hausdorff_distance"] <= 0.5 / k
     P2, Q2, naive = solver.quad_mesh(result, s, quad_size=0.5, rounding="naive")
     assert len(Q2) == 24 and naive["valence_errors"] == 0
+    # the field scaled per face first (the program's --quad-scale-smoothness): the cube's field is a gradient
+    # already (flat faces, unit length), so the quads are those without; a negative or non-finite S is refused
+    P3, Q3, scaled = solver.quad_mesh(result, s, quad_size=0.5, scale_smoothness=0.1)
+    paired, euler, valence = quad_topology(Q3, len(P3))
+    assert len(Q3) == 24 and paired and euler == 2 and valence.count(3) == 8 and scaled["valence_errors"] == 0
+    assert np.all(np.min(np.minimum(np.abs(P3), np.abs(P3 - 1)), axis=1) < 1e-9)
+    for bad in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(tc.InvalidInput, match="quad_scale_smoothness"):
+            solver.quad_mesh(result, s, quad_size=0.5, scale_smoothness=bad)
 
 
 def quad_report_fields():

@@ -50,16 +50,28 @@ class Quads:
         curves, _ = tc.feature_curves(self.V, self.F, self.feature_angle(request, "feature_threshold"))
         return np.vstack(curves) if curves else np.zeros((0, 2), np.int64)
 
+    def scale_smoothness(self, request):
+        """the request's scale_smoothness S (a number, default 0: the field not scaled), the module's
+        quad_mesh(..., scale_smoothness=S); negative: the library's invalid_argument (422)"""
+        s = request.get("scale_smoothness", 0)
+        if type(s) not in (int, float):
+            raise ValueError(f"scale_smoothness must be a number, got {shown(s)}")
+        try:
+            return float(s)
+        except OverflowError:  # an integer of hundreds of digits: not finite, as the library says it
+            return math.inf
+
     def quads_frame(self, request):
         p = self.problem(request)
         if p.n != 4:  # before the solve: the library would refuse it after
             raise Refusal(422, f"invalid_symmetry_order: a quad mesh needs a cross field (n = 4), not n = {p.n}")
         sizes = self.quad_sizes(request)
+        scale = self.scale_smoothness(request)
         features = self.feature_edges(request)
         result, solver = self.solve(p)
         start = time.perf_counter()
         points, quads, report = solver.quad_mesh(result, p.singularities, max_quads=MAX_QUADS,
-                                                 feature_edges=features, **sizes)
+                                                 feature_edges=features, scale_smoothness=scale, **sizes)
         header = {"n": p.n, "energy": result.energy, "report": json_safe(report),
                   "timings": dict(result.timings, quads=time.perf_counter() - start)}
         return frame(header, [("points", points, "<f4"), ("quads", quads, "<u4")])

@@ -777,6 +777,10 @@ def test_malformed_bodies_get_a_400_line(server, capfd, endpoint, body, part):
     ("/api/quads", {"n": 6}, 422, b"invalid_symmetry_order:"),
     ("/api/quads", {"feature_threshold": "30"}, 400, b"feature_threshold must be a number"),
     ("/api/quads", {"singularities": [[0, 1], [1, 1]], "feature_threshold": 200}, 422, b"invalid_argument:"),
+    ("/api/quads", {"scale_smoothness": "0.1"}, 400, b"scale_smoothness must be a number"),
+    ("/api/quads", {"scale_smoothness": None}, 400, b"scale_smoothness must be a number"),
+    ("/api/quads", {"singularities": [[0, 1], [1, 1]], "scale_smoothness": -1}, 422, b"quad_scale_smoothness must"),
+    ("/api/quads", {"singularities": [[0, 1], [1, 1]], "scale_smoothness": 10**400}, 422, b"quad_scale_smoothness must"),
     ("/api/save", {"kind": "singularities", "path": "x\ud800.sing"}, 400, b""),
     ("/api/load", {"kind": "singularities", "path": "x\udcff.sing"}, 404, b""),
 ])
@@ -1121,7 +1125,9 @@ def test_quads_of_the_cube_are_its_squares(box):
     before = tree(str(folder))
     pins, _ = answer(port, "/api/features", {"n": 4})
     body = {"n": 4, "singularities": [[v, "1/4"] for v in corners_of(V)], "constraints": pins["constraints"]}
-    for k, size in [(5, {"quad_size": 0.2}), (3, {"target_faces": 54}), (1, {"quad_size": 1})]:
+    # scale_smoothness: the cube's field is a gradient already (flat faces, unit length), so scaled its quads stay
+    for k, size in [(5, {"quad_size": 0.2}), (3, {"target_faces": 54}), (1, {"quad_size": 1}),
+                    (5, {"quad_size": 0.2, "scale_smoothness": 0.1})]:
         header, arrays = answer(port, "/api/quads", dict(body, **size))
         points, quads, report = arrays["points"], arrays["quads"], header["report"]
         assert quads.shape == (6 * k * k, 4) and report["quads"] == len(quads) and report["vertices"] == len(points)

@@ -62,6 +62,8 @@ async function quadMesh() {
   if (!solvedRequest || solvedRequest.n !== 4) { drawQuads(null); draw(); return; }
   const body = { ...solvedRequest }, size = Number($("quad-size").value), asked = ++quadRequests;
   if ($("quad-size").value.trim() !== "" && Number.isFinite(size)) body.quad_size = size;
+  const scale = Number($("quad-scale").value); // the field scaled per face first (empty: not scaled)
+  if ($("quad-scale").value.trim() !== "" && Number.isFinite(scale)) body.scale_smoothness = scale;
   if (state.features) body.feature_threshold = state.features.threshold; // the sharp edges on iso-lines too
   const e = window.__editor;
   quadBusy = true;
@@ -71,6 +73,7 @@ async function quadMesh() {
       const r = h.report;
       e.quadSegments = drawQuads(arrays.points, arrays.quads);
       e.quadReport = r;
+      e.quadScale = body.scale_smoothness ?? 0; // the scale these quads were made with
       draw();
       say(`${solvedText} · quad mesh (H = ${r.quad_size.toPrecision(3)}): ${r.quads} quads, ` +
           `${r.folded_triangles} folded triangles, ${r.valence_errors} valence errors`);

@@ -515,6 +515,16 @@ async function borderedMesh(browser) {
     const finer = await quadsShown("quad mesh, half the size", half);
     if (!(finer.quads > 2.5 * first.quads && finer.quads < 6 * first.quads))
       fail(`half the quad size: ${finer.quads} quads against ${first.quads}`);
+    // the field scaled per face first (the scale box): quads of the same size again, made with that scale
+    // (a request still running when the box changes is shown first, then the scaled one is made)
+    await page.fill("#quad-scale", "0.1");
+    await page.dispatchEvent("#quad-scale", "change");
+    await page.waitForFunction(() => window.__editor.quadScale === 0.1 || window.__editor.lastError, null,
+                               { timeout: 60000 });
+    const scaled = await quadsShown("quad mesh, the field scaled", half);
+    if (!(scaled.quads > 0.5 * finer.quads && scaled.quads < 2 * finer.quads))
+      fail(`the field scaled: ${scaled.quads} quads against ${finer.quads}`);
+    await page.fill("#quad-scale", "");
     await page.uncheck("#quads");
     await page.waitForFunction(() => window.__editor.quadSegments === 0);
     if (await greenPixels(page) !== 0) fail("the quad mesh unchecked: green pixels left");

@@ -150,7 +150,7 @@ struct Refinement_run
 // is (t_refine - t_first_round) / trials, its set-up and first round (a budget of 0 trials) taken apart
 struct Controlled_refinement
 {
-  std::string control; // "none", "constrained", "guided"
+  std::string control; // "none", "constrained", "guided", "boundary" (bordered meshes: align_with_boundary)
   std::size_t faces = 0;
   double t_refine = 0, t_first_round = 0, t_refactor = 0, t_solve = 0; // t_solve: one solve() of the start
   TC::Refinement_report<Vertex> report;

@@ -7,6 +7,7 @@
 #define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_INTEGERS_CLOSEST_VECTOR_H
 
 #include <CGAL/number_type_config.h>
+#include <CGAL/Trivial_connections/exceptions.h>
 #include <CGAL/Trivial_connections/internal/integers/lattice_reduction.h>
 
 #include <Eigen/Dense>
@@ -418,8 +419,15 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
   best.proven = proven;
   best.lower_bound = proven ? best_value : (std::min)(lower_bound, best_value);
   best.m.resize(std::size_t(k));
-  for(Eigen::Index i = 0; i < k; ++i)
-    best.m[std::size_t(i)] = std::int64_t(nearest_integer(m[i]));
+  for(Eigen::Index i = 0; i < k; ++i) {
+    const double r = nearest_integer(m[i]);
+    // a metric so ill-conditioned (near-degenerate faces) that the integers leave int64: an error, not a cast
+    if(!(std::abs(r) < 4e18))
+      throw Invalid_input(Error_code::solver_failure,
+                          "the loop integers are out of range: the loops' metric is too ill-conditioned (near-"
+                          "degenerate faces?)");
+    best.m[std::size_t(i)] = std::int64_t(r);
+  }
   return best;
 }
 

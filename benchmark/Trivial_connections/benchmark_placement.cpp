@@ -281,6 +281,23 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
           }
           return median(times);
         };
+        // a refinement with maximum_trials(0), one to a local minimum (c.t_refine, c.report), one with
+        // maximum_trials(0) again (c.t_first_round), from the same start; returns the first call's time
+        auto three_runs = [&](Solver& on, Controlled_refinement& c) {
+          double t_first_call = 0;
+          for(int run = 0; run < 3; ++run) {
+            const std::size_t budget = run == 1 ? (std::numeric_limits<std::size_t>::max)() : std::size_t(0);
+            tc_bench::stop_idle_blas_threads();
+            t0 = Clock::now();
+            auto r = TC::refine_singularities(
+              on, placed_aligned, x,
+              P::maximum_trials(budget, P::cancel_pairs(true, P::face_directions(guide, P::symmetry_order(symmetry)))));
+            (run == 0 ? t_first_call : run == 1 ? c.t_refine : c.t_first_round) = seconds_since(t0);
+            if(run == 1)
+              c.report = std::move(r);
+          }
+          return t_first_call;
+        };
         for(const char* control : {"none", "constrained", "guided"}) {
           Controlled_refinement c;
           c.control = control;
@@ -291,18 +308,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
             solver.set_constraints(P::guided_faces(spread));
           // the first call factors the system again with the links (once per set_constraints()), then to a local
           // minimum and its first round alone on that factor
-          double t_first_call = 0;
-          for(int run = 0; run < 3; ++run) {
-            const std::size_t budget = run == 1 ? (std::numeric_limits<std::size_t>::max)() : std::size_t(0);
-            tc_bench::stop_idle_blas_threads();
-            t0 = Clock::now();
-            auto r = TC::refine_singularities(
-              solver, placed_aligned, x,
-              P::maximum_trials(budget, P::cancel_pairs(true, P::face_directions(guide, P::symmetry_order(symmetry)))));
-            (run == 0 ? t_first_call : run == 1 ? c.t_refine : c.t_first_round) = seconds_since(t0);
-            if(run == 1)
-              c.report = std::move(r);
-          }
+          const double t_first_call = three_runs(solver, c);
           c.t_refactor = (std::max)(t_first_call - c.t_first_round, 0.);
           c.t_solve = median_solve(solver);
           controlled.push_back(std::move(c));
@@ -322,19 +328,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
             c.faces += CGAL::is_border_edge(halfedge(f, mesh), mesh) ||
                        CGAL::is_border_edge(next(halfedge(f, mesh), mesh), mesh) ||
                        CGAL::is_border_edge(prev(halfedge(f, mesh), mesh), mesh);
-          for(int run = 0; run < 3; ++run) {
-            const std::size_t budget = run == 1 ? (std::numeric_limits<std::size_t>::max)() : std::size_t(0);
-            tc_bench::stop_idle_blas_threads();
-            t0 = Clock::now();
-            auto r = TC::refine_singularities(
-              aligned_solver, placed_aligned, x,
-              P::maximum_trials(budget, P::cancel_pairs(true, P::face_directions(guide, P::symmetry_order(symmetry)))));
-            if(run == 1) {
-              c.t_refine = seconds_since(t0);
-              c.report = std::move(r);
-            } else if(run == 2)
-              c.t_first_round = seconds_since(t0);
-          }
+          three_runs(aligned_solver, c);
           c.t_refactor = (std::max)(t_build_aligned - t_build, 0.);
           c.t_solve = median_solve(aligned_solver);
           controlled.push_back(std::move(c));

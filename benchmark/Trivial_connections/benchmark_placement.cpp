@@ -43,10 +43,11 @@
 //   constrained_faces, then as guided_faces, each with face_directions(guide) and cancel_pairs (issue 38: a step
 //   under pins and guidance at the cost of one without):
 //   t_refactor_C         what the first refinement after set_constraints() pays once: the system factored again with
-//                        the links (a first call with maximum_trials(0), less t_first_round_C)
-//   t_refine_C           to a local minimum, on that factor;   t_first_round_C   the same with maximum_trials(0):
-//                        set-up, the first solve, the first round's pricing and the final solve
-//   t_step_C = (t_refine_C - t_first_round_C) / trials_C   the cost of one step (a round's pricing + a trial solve)
+//                        the links (a first call with maximum_trials(0), less t_setup_C)
+//   t_refine_C           to a local minimum, on that factor;   t_setup_C   the same with maximum_trials(0), which
+//                        prices no round: the set-up (entries of M^-1, the integers' columns) and the first solve
+//   t_step_C = (t_refine_C - t_setup_C) / trials_C   the cost of one step (a round's pricing + its trial solve;
+//                        every round counted, the first one's pricing too, and the last one's, which finds no move)
 //   r_step_C = t_step_C / t_step_none, r_whole_C = (t_refine_C + t_refactor_C) / (the same for none)
 //   (C = constrained, guided);   control_faces_C, trials_C, local_minimum_C,
 //   and on bordered meshes C = boundary: a second solver built with align_with_boundary (n = 4), the same start and
@@ -147,14 +148,14 @@ struct Refinement_run
 };
 
 // one refinement from the curvature-aligned placement (n = 4) under a design control, or none: the cost of a step
-// is (t_refine - t_first_round) / trials, its set-up and first round (a budget of 0 trials) taken apart
+// is (t_refine - t_setup) / trials, its set-up and first solve (a budget of 0 trials: no round priced) taken apart
 struct Controlled_refinement
 {
   std::string control; // "none", "constrained", "guided", "boundary" (bordered meshes: align_with_boundary)
   std::size_t faces = 0;
-  double t_refine = 0, t_first_round = 0, t_refactor = 0, t_solve = 0; // t_solve: one solve() of the start
+  double t_refine = 0, t_setup = 0, t_refactor = 0, t_solve = 0; // t_solve: one solve() of the start
   TC::Refinement_report<Vertex> report;
-  double step() const { return report.trials > 0 ? (t_refine - t_first_round) / double(report.trials) : -1; }
+  double step() const { return report.trials > 0 ? (t_refine - t_setup) / double(report.trials) : -1; }
 };
 
 template <class SolverTraits, class ReferenceSolver>
@@ -282,7 +283,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
           return median(times);
         };
         // a refinement with maximum_trials(0), one to a local minimum (c.t_refine, c.report), one with
-        // maximum_trials(0) again (c.t_first_round), from the same start; returns the first call's time
+        // maximum_trials(0) again (c.t_setup), from the same start; returns the first call's time
         auto three_runs = [&](Solver& on, Controlled_refinement& c) {
           double t_first_call = 0;
           for(int run = 0; run < 3; ++run) {
@@ -292,7 +293,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
             auto r = TC::refine_singularities(
               on, placed_aligned, x,
               P::maximum_trials(budget, P::cancel_pairs(true, P::face_directions(guide, P::symmetry_order(symmetry)))));
-            (run == 0 ? t_first_call : run == 1 ? c.t_refine : c.t_first_round) = seconds_since(t0);
+            (run == 0 ? t_first_call : run == 1 ? c.t_refine : c.t_setup) = seconds_since(t0);
             if(run == 1)
               c.report = std::move(r);
           }
@@ -309,7 +310,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
           // the first call factors the system again with the links (once per set_constraints()), then to a local
           // minimum and its first round alone on that factor
           const double t_first_call = three_runs(solver, c);
-          c.t_refactor = (std::max)(t_first_call - c.t_first_round, 0.);
+          c.t_refactor = (std::max)(t_first_call - c.t_setup, 0.);
           c.t_solve = median_solve(solver);
           controlled.push_back(std::move(c));
         }
@@ -381,7 +382,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
     const TC::Refinement_report<Vertex>& r = c.report;
     k["control_faces" + s] = double(c.faces);
     k["t_refine" + s] = c.t_refine;
-    k["t_first_round" + s] = c.t_first_round;
+    k["t_setup" + s] = c.t_setup;
     k["t_refactor" + s] = c.t_refactor;
     k["t_step" + s] = c.step();
     if(c.t_solve > 0)

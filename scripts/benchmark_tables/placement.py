@@ -181,9 +181,11 @@ def controlled_refinement_table(rows, lines):
                  "feature pins' kind); the same faces guided towards them (`guided_faces`, as the program's "
                  "`--align-curvature`). Each refinement runs three times: a first call with `maximum_trials(0)`, which "
                  "factors the system again with the links after `set_constraints()` (`refactor.`: what it takes more "
-                 "than the third), to a local minimum, and again with `maximum_trials(0)` (`first round`: set-up, "
-                 "first solve, first round and final solve); a step is the difference of the last two over the trials "
-                 "(a round's pricing and its trial solve), `step / none` its ratio to the step without control, and "
+                 "than the third), to a local minimum, and again with `maximum_trials(0)`, which prices no round "
+                 "(`set-up`: the entries of M^-1, the free integers' columns, the first solve); a step is the difference "
+                 "of the last two over the trials (a round's pricing and its trial solve, every round's pricing counted, "
+                 "the first one's, where most columns of G are made, and the last one's, which finds no move), "
+                 "`step / none` its ratio to the step without control, and "
                  "`whole / none` that of the whole refinements, the factorization again included. Trials, energy before → after, whether a local minimum was reached. "
                  "`solve`: one `solve()` of the start under each control once its links are factored in (median of 3), "
                  "and `step / solve` a step in such solves: the links are rows of the system (and fill in its factor), "
@@ -191,7 +193,7 @@ def controlled_refinement_table(rows, lines):
     lines.append("")
     head = ["mesh", "backend", "faces"]
     for c in CONTROLS:
-        head += [f"{c}: trials, energy", f"{c}: refactor., first round", f"{c}: step"]
+        head += [f"{c}: trials, energy", f"{c}: refactor., set-up", f"{c}: step"]
     head += ["constrained: step / none (whole / none)", "guided: step / none (whole / none)",
              "solve: none, constrained, guided", "step / solve: none, constrained, guided", "reps"]
     table_head(lines, head)
@@ -206,7 +208,7 @@ def controlled_refinement_table(rows, lines):
             cells += [f"{g('trials') or 0:.0f}, {fmt_num(g('energy_before'), 5)} → {fmt_num(g('energy_after'), 5)}"
                       + minimum,
                       f"{fmt_time(g('t_refactor')) if (g('t_refactor') or 0) > 1e-3 else '0'}, "
-                      f"{fmt_time(g('t_first_round'))}",
+                      f"{fmt_time(g('t_setup'))}",
                       fmt_time(g("t_step")) if (g("t_step") or -1) >= 0 else "–"]
         def whole(k):
             return fmt_num(c.get(f"r_whole_{k}"))
@@ -232,14 +234,14 @@ def boundary_refinement_table(rows, lines):
                  "step of one without), the bordered meshes of the table above, n = 4, from the same start (the "
                  "curvature-aligned placement): the solver without control (`none`, as above) and a second solver "
                  "built with `align_with_boundary(true, symmetry_order(4))`, every face with a border edge linked to "
-                 "the boundary's direction (`boundary faces`). The same three runs as above; `set-up` is what the "
-                 "aligned solver's construction takes more than the one without (its links factored in), counted in "
+                 "the boundary's direction (`boundary faces`). The same three runs as above; `construction` is what "
+                 "the aligned solver's construction takes more than the one without (its links factored in), counted in "
                  "`whole / none`; `solve` is one `solve()` of the start on each solver (median of 3), and `step / "
                  "solve` a step in such solves: the aligned system is larger (the links' rows and fill in its "
                  "factor), so a step there costs more by what a solve costs more.")
     lines.append("")
     head = ["mesh", "backend", "faces", "boundary faces", "none: trials, energy", "none: step",
-            "aligned: trials, energy", "aligned: set-up, first round", "aligned: step",
+            "aligned: trials, energy", "aligned: construction, set-up", "aligned: step",
             "aligned: step / none (whole / none)", "solve: none, aligned", "step / solve: none, aligned", "reps"]
     table_head(lines, head)
     for b, mesh, e in rows:
@@ -254,7 +256,7 @@ def boundary_refinement_table(rows, lines):
                          + minimum)
             if k == "boundary":
                 cells.append(f"{fmt_time(g('t_refactor')) if (g('t_refactor') or 0) > 1e-3 else '0'}, "
-                             f"{fmt_time(g('t_first_round'))}")
+                             f"{fmt_time(g('t_setup'))}")
             cells.append(fmt_time(g("t_step")) if (g("t_step") or -1) >= 0 else "–")
         cells += [f"{fmt_num(c.get('r_step_boundary'))} ({fmt_num(c.get('r_whole_boundary'))})",
                   f"{fmt_time(c.get('t_solve_none'))}, {fmt_time(c.get('t_solve_boundary'))}",

@@ -465,6 +465,40 @@ TEST(Refinement, moves_two_close_singularities_on_a_sphere_apart_without_raising
   check_connection(view, solver, end, 1, x, r.report);
 }
 
+TEST(Refinement, a_budget_of_no_trial_returns_the_start_solved)
+{
+  // maximum_trials(0) prices no round: the starting set comes back with its own connection, whether or not a move
+  // would lower its energy (here one would: the two singularities are close)
+  const Surface_mesh tm = to_surface_mesh(icosphere_soup(3));
+  const Mesh_view<Surface_mesh> view(tm);
+  Solver solver(tm);
+  const int a = nearest_interior_vertex(view, V3{{0, 0, 1}});
+  int b = -1;
+  for(int v = 0; v < view.nv(); ++v)
+    if(b < 0 && v != a && norm(view.P[v] - view.P[a]) > 0.25 && norm(view.P[v] - view.P[a]) < 0.45)
+      b = v;
+  ASSERT_GE(b, 0);
+  const Singularities start = {{a, Index(1)}, {b, Index(1)}};
+  std::vector<double> x;
+  const auto r = TC::refine_singularities(solver, descriptors(view, start), view.halfedge_map(x),
+                                          TC::parameters::maximum_trials(std::size_t(0), TC::parameters::symmetry_order(1)));
+  EXPECT_EQ(r.stop, TC::Refinement_stop::maximum_trials);
+  EXPECT_FALSE(r.local_minimum);
+  EXPECT_EQ(r.trials, 0u);
+  EXPECT_EQ(r.rounds, 0u);
+  EXPECT_TRUE(r.moves.empty());
+  EXPECT_EQ(r.column_solves, 0u);
+  EXPECT_EQ(r.energy_after, r.energy_before);
+  Singularities sorted = start; // the report's are by increasing vertex index
+  std::sort(sorted.begin(), sorted.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+  EXPECT_EQ(numbered(view, r.singularities), sorted);
+  check_connection(view, solver, start, 1, x, r.report);
+  // with a budget, the same start is refined
+  const auto refined = TC::refine_singularities(solver, descriptors(view, start), view.halfedge_map(x),
+                                                TC::parameters::symmetry_order(1));
+  EXPECT_LT(refined.energy_after, r.energy_before);
+}
+
 TEST(Refinement, keeps_fixed_vertices_and_cancels_pairs_when_asked)
 {
   const Surface_mesh tm = to_surface_mesh(icosphere_soup(3));

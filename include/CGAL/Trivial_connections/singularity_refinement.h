@@ -139,7 +139,9 @@ Poincare-Hopf is kept: a move keeps every component's index sum.
     \cgalParamType{`bool`} \cgalParamDefault{`false`}
   \cgalParamNEnd
   \cgalParamNBegin{maximum_trials}
-    \cgalParamDescription{a budget of solves after the first; the refinement otherwise runs to a local minimum}
+    \cgalParamDescription{a budget of solves after the first; the refinement otherwise runs to a local minimum.
+      With 0, no round is priced: the starting set is solved and returned (`stop` is `maximum_trials`, the start
+      not checked for a local minimum)}
     \cgalParamType{`std::size_t`} \cgalParamDefault{no budget}
   \cgalParamNEnd
 \cgalNamedParamsEnd
@@ -329,6 +331,11 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   std::size_t round_size = unlimited; // the most moves a round tries at once
   result.stop = Refinement_stop::local_minimum;
   for(int round = 0;; ++round) {
+    if(budget == 0) {
+      // no trial may follow: a round's pricing would be spent for nothing (the start is not checked for a minimum)
+      result.stop = Refinement_stop::maximum_trials;
+      break;
+    }
     // changes below this are rounding: no cycling on ties
     const double tolerance = 1e-10 * (std::max)(energy, 1e-300);
     // the rows this round reads (singular vertices, where they may move): paths, and the columns kept on them

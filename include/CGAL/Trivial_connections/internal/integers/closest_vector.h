@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace CGAL {
@@ -270,7 +271,8 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
                                             const Eigen::VectorXd& c,
                                             const std::vector<std::vector<std::int64_t>>& candidates,
                                             double work_budget = 2e6,
-                                            double wanted_below = std::numeric_limits<double>::infinity())
+                                            double wanted_below = std::numeric_limits<double>::infinity(),
+                                            const Enumeration_cost* lattice_cost = nullptr)
 {
   const Eigen::Index k = c.size();
   Closest_vector_result best;
@@ -328,7 +330,8 @@ inline Closest_vector_result closest_vector(const Reduced_lattice& lattice, cons
   // 1. complete passes in growing balls, for the lower bound (and the optimum when the ball of the best value
   // fits), with half the budget: the first in the ball whose expected work is an eighth of it, each next one
   // in a ball of about twice the expected work, until a pass runs out or proves the optimum
-  const Enumeration_cost cost(R);
+  std::optional<Enumeration_cost> own_cost;
+  const Enumeration_cost& cost = lattice_cost ? *lattice_cost : own_cost.emplace(R);
   double rho = e.best_value;
   if(cost.log_work(rho) > std::log(budget / 2))
     rho = cost.radius_for(budget / 8, e.best_value);

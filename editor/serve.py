@@ -47,9 +47,8 @@ bundle and the mesh, POST on the rest.
                          the number used. The rays are cut (to maximum_faces_per_ray faces, at least 8), then seeds
                          left out, so that all of them cross at most {RAY_STEPS} faces: about half a second at most
                          on 100k faces
-  POST /api/quads        {SOLVE, quad_size? | target_faces?, feature_threshold?, scale_smoothness?} -> header {n,
-                         energy, report,
-                         timings}; arrays points <f4 (k, 3), quads <u4 (q, 4) (vertex numbers into points,
+  POST /api/quads        {SOLVE, quad_size? | target_faces?, feature_threshold?, scale_smoothness?,
+                         move_off_features?} -> header {n, energy, report, timings, moved_off_features?}; arrays points <f4 (k, 3), quads <u4 (q, 4) (vertex numbers into points,
                          counter-clockwise): the quad mesh of the request's cross field (the module's
                          Solver.quad_mesh()), n = 4 only (422 invalid_symmetry_order otherwise). quad_size H (a
                          number; not positive or finite: 422 invalid_argument) or target_faces (an integer from 1
@@ -61,7 +60,13 @@ bundle and the mesh, POST on the rest.
                          feature_curves() at that angle go on iso-lines, so that quad edges follow them (the field
                          must follow them, as the features' pins make it; otherwise a 422 that names the edge).
                          scale_smoothness S (a number, default 0): the field's length first scaled per face towards a
-                         gradient (the program's --quad-scale-smoothness; negative: 422 invalid_argument)
+                         gradient (the program's --quad-scale-smoothness; negative: 422 invalid_argument).
+                         move_off_features (true or false, default false; needs feature_threshold): the
+                         singularities closer than H to a sharp edge, but not on one, moved to the nearest vertex at
+                         least H from every sharp edge, the field solved again with them, then the quads (the
+                         module's move_singularities_off_features(), as the program does with --auto
+                         --align-features); the request's singularities are not changed: moved_off_features is the
+                         module's report (moves, stuck, on_features, quad_size) and the quads' singularities
   POST /api/save         {kind, path, overwrite?, SOLVE, seeds?}: solves, then writes (completely or not at all)
                          `path` in the folder -> header {saved: the path relative to the folder, bytes}. kind:
                          "singularities", "constraints" (lines "f x y z"), "field" (the program's field file, path

@@ -61,6 +61,19 @@ class Quads:
         except OverflowError:  # an integer of hundreds of digits: not finite, as the library says it
             return math.inf
 
+    @staticmethod
+    def move_off_features(request, features):
+        """the request's move_off_features (true or false, default false): the singularities closer than the quad
+        size H to a sharp edge, but not on one, moved to the nearest vertex at least H from every sharp edge before
+        the quads (the module's move_singularities_off_features(), the program's step before --quad-mesh with
+        --auto --align-features); it needs feature_threshold, whose sharp edges it moves away from"""
+        move = request.get("move_off_features", False)
+        if type(move) is not bool:
+            raise ValueError(f"move_off_features must be true or false, got {shown(move)}")
+        if move and features is None:
+            raise ValueError("move_off_features needs feature_threshold: the sharp edges to move away from")
+        return move
+
     def quads_frame(self, request):
         p = self.problem(request)
         if p.n != 4:  # before the solve: the library would refuse it after
@@ -68,10 +81,22 @@ class Quads:
         sizes = self.quad_sizes(request)
         scale = self.scale_smoothness(request)
         features = self.feature_edges(request)
+        move = self.move_off_features(request, features)
         result, solver = self.solve(p)
         start = time.perf_counter()
+        moved = None
+        if move:
+            # the quads of the moved set, solved again (the request's own singularities are not changed: the
+            # header says where the quads' ones went)
+            singularities, moved = solver.move_singularities_off_features(p.singularities, features, **sizes)
+            if moved["moves"]:
+                p = p._replace(singularities=singularities)
+                result, solver = self.solve(p)
+            moved["singularities"] = [[int(v), str(k)] for v, k in sorted(singularities.items())]
         points, quads, report = solver.quad_mesh(result, p.singularities, max_quads=MAX_QUADS,
                                                  feature_edges=features, scale_smoothness=scale, **sizes)
         header = {"n": p.n, "energy": result.energy, "report": json_safe(report),
                   "timings": dict(result.timings, quads=time.perf_counter() - start)}
+        if moved is not None:
+            header["moved_off_features"] = json_safe(moved)
         return frame(header, [("points", points, "<f4"), ("quads", quads, "<u4")])

@@ -39,6 +39,7 @@ $("display").onchange = e => showAs(e.target.value);
 $("quads").onchange = e => showQuadMesh(e.target.checked);
 $("quad-size").onchange = () => { if ($("quads").checked) showQuadMesh(true); };
 $("quad-scale").onchange = () => { if ($("quads").checked) showQuadMesh(true); };
+$("quad-off-features").onchange = () => { if ($("quads").checked) showQuadMesh(true); };
 // the name's extension follows the kind of file
 $("kind").onchange = e => {
   const path = $("path").value, old = Object.values(EXTENSIONS).sort((a, b) => b.length - a.length)

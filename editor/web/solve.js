@@ -65,6 +65,8 @@ async function quadMesh() {
   const scale = Number($("quad-scale").value); // the field scaled per face first (empty: not scaled)
   if ($("quad-scale").value.trim() !== "" && Number.isFinite(scale)) body.scale_smoothness = scale;
   if (state.features) body.feature_threshold = state.features.threshold; // the sharp edges on iso-lines too
+  // the singularities near the sharp edges moved off them for these quads (the user's own are not changed)
+  if (state.features && $("quad-off-features").checked) body.move_off_features = true;
   const e = window.__editor;
   quadBusy = true;
   try {
@@ -74,9 +76,11 @@ async function quadMesh() {
       e.quadSegments = drawQuads(arrays.points, arrays.quads);
       e.quadReport = r;
       e.quadScale = body.scale_smoothness ?? 0; // the scale these quads were made with
+      e.quadMoved = h.moved_off_features ? h.moved_off_features.moves.length : null; // null: not asked
       draw();
+      const moved = e.quadMoved === null ? "" : `, ${e.quadMoved} singularities moved off the sharp features`;
       say(`${solvedText} · quad mesh (H = ${r.quad_size.toPrecision(3)}): ${r.quads} quads, ` +
-          `${r.folded_triangles} folded triangles, ${r.valence_errors} valence errors`);
+          `${r.folded_triangles} folded triangles, ${r.valence_errors} valence errors${moved}`);
     }
   } catch (error) {
     if (asked === quadRequests) {

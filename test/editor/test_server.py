@@ -1170,6 +1170,46 @@ def test_quads_follow_the_sharp_edges_with_a_feature_threshold(box):
     assert header["report"]["feature_edges"] == 0
 
 
+def test_quads_with_the_singularities_moved_off_the_sharp_edges(box):
+    # the cube of 5 x 5 squares per face, its corners +1/4 (on the sharp edges: they stay) and a +1/4 / -1/4 pair on
+    # its top face one square from an edge: with H = 0.4 both move to vertices at least H from every sharp edge,
+    # the quads are those of the moved set, and the request's own singularities are not changed
+    port, folder = box
+    V, F = mesh_of(port)
+    before = tree(str(folder))
+    pins, _ = answer(port, "/api/features", {"n": 4})
+    at = lambda p: int(np.argmin(np.linalg.norm(V - np.array(p), axis=1)))
+    plus, minus = at([0.2, 0.4, 1]), at([0.2, 0.6, 1])
+    corners = [[v, "1/4"] for v in corners_of(V)]
+    body = {"n": 4, "singularities": corners + [[plus, "1/4"], [minus, "-1/4"]], "constraints": pins["constraints"],
+            "quad_size": 0.4, "feature_threshold": 30}
+    header, arrays = answer(port, "/api/quads", dict(body, move_off_features=True))
+    moved = header["moved_off_features"]
+    assert sorted(m["from"] for m in moved["moves"]) == sorted([plus, minus]), moved
+    assert abs(moved["quad_size"] - 0.4) < 1e-12
+    for m in moved["moves"]:
+        assert m["distance_before"] < 0.4 <= m["distance_after"] + 1e-9, m
+        assert min(np.min(np.abs(V[m["to"]])), np.min(np.abs(V[m["to"]] - 1)[:2])) >= 0.4 - 1e-6  # off every edge (V: float32)
+    ends = {m["from"]: m["to"] for m in moved["moves"]}
+    assert sorted(map(tuple, moved["singularities"])) == sorted(
+        [tuple(c) for c in corners] + [(ends[plus], "1/4"), (ends[minus], "-1/4")])
+    assert header["report"]["quads"] == len(arrays["quads"]) > 0 and header["report"]["feature_edges"] == 60
+    # the quads' field is that of the moved set: its energy is the plain solve's of those singularities
+    solved, _ = answer(port, "/api/solve", dict(body, singularities=moved["singularities"]))
+    assert abs(solved["energy"] - header["energy"]) <= 1e-9 * (1 + solved["energy"])
+    unmoved, _ = answer(port, "/api/quads", body)  # not asked: nothing moved, no such header
+    assert "moved_off_features" not in unmoved and unmoved["energy"] != header["energy"]
+    for bad, part in [({"move_off_features": "yes"}, b"move_off_features must be true or false"),
+                      ({"move_off_features": 1}, b"move_off_features must be true or false"),
+                      ({"move_off_features": True, "feature_threshold": None}, b"needs feature_threshold")]:
+        request_body = dict(body, **bad)
+        if request_body.get("feature_threshold", 0) is None:
+            del request_body["feature_threshold"]
+        status, data = post(port, "/api/quads", request_body)
+        assert status == 400 and part in data, (bad, status, data)
+    assert tree(str(folder)) == before  # nothing written
+
+
 def test_quads_on_a_bordered_mesh_need_the_field_along_the_boundary(disk):
     port, mesh, folder, _ = disk
     with open(mesh, "rb") as f:

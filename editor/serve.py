@@ -48,8 +48,9 @@ bundle and the mesh, POST on the rest.
                          left out, so that all of them cross at most {RAY_STEPS} faces: about half a second at most
                          on 100k faces
   POST /api/quads        {SOLVE, quad_size? | target_faces?, feature_threshold?, scale_smoothness?,
-                         move_off_features?} -> header {n, energy, report, timings, moved_off_features?}; arrays points <f4 (k, 3), quads <u4 (q, 4) (vertex numbers into points,
-                         counter-clockwise): the quad mesh of the request's cross field (the module's
+                         move_off_features?} -> header {n, energy, report, timings, moved_off_features?}; arrays
+                         points <f4 (k, 3), quads <u4 (q, 4) (vertex numbers into points, counter-clockwise): the
+                         quad mesh of the request's cross field (the module's
                          Solver.quad_mesh()), n = 4 only (422 invalid_symmetry_order otherwise). quad_size H (a
                          number; not positive or finite: 422 invalid_argument) or target_faces (an integer from 1
                          to {MAX_QUADS}), not both; neither: H = {QUAD_SIZE_EDGES} mean edge lengths. More than about

@@ -329,13 +329,9 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   internal::Second_thread second_thread;          // half of each round's pair pricing
   const std::size_t unlimited = (std::numeric_limits<std::size_t>::max)();
   std::size_t round_size = unlimited; // the most moves a round tries at once
-  result.stop = Refinement_stop::local_minimum;
-  for(int round = 0;; ++round) {
-    if(budget == 0) {
-      // no trial may follow: a round's pricing would be spent for nothing (the start is not checked for a minimum)
-      result.stop = Refinement_stop::maximum_trials;
-      break;
-    }
+  // with no trial to follow, a round's pricing would be spent for nothing (the start is not checked for a minimum)
+  result.stop = budget == 0 ? Refinement_stop::maximum_trials : Refinement_stop::local_minimum;
+  for(int round = 0; budget > 0; ++round) {
     // changes below this are rounding: no cycling on ties
     const double tolerance = 1e-10 * (std::max)(energy, 1e-300);
     // the rows this round reads (singular vertices, where they may move): paths, and the columns kept on them

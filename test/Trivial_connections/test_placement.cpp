@@ -432,17 +432,22 @@ TEST(Placement, energy_gradient_is_the_exact_central_difference)
   EXPECT_GT(plus + minus - 2 * e0, 0); // the second-order term is positive
 }
 
+// on the level-3 icosphere: the vertex nearest the north pole and one two rings away from it (-1: none found)
+std::pair<int, int> two_close_vertices(const Mesh_view<Surface_mesh>& view)
+{
+  const int a = nearest_interior_vertex(view, V3{{0, 0, 1}});
+  for(int v = 0; v < view.nv(); ++v)
+    if(v != a && norm(view.P[v] - view.P[a]) > 0.25 && norm(view.P[v] - view.P[a]) < 0.45)
+      return {a, v};
+  return {a, -1};
+}
+
 TEST(Refinement, moves_two_close_singularities_on_a_sphere_apart_without_raising_the_energy)
 {
   const Surface_mesh tm = to_surface_mesh(icosphere_soup(3));
   const Mesh_view<Surface_mesh> view(tm);
   Solver solver(tm);
-  const int a = nearest_interior_vertex(view, V3{{0, 0, 1}});
-  // a vertex two rings away from a
-  int b = -1;
-  for(int v = 0; v < view.nv(); ++v)
-    if(b < 0 && v != a && norm(view.P[v] - view.P[a]) > 0.25 && norm(view.P[v] - view.P[a]) < 0.45)
-      b = v;
+  const auto [a, b] = two_close_vertices(view);
   ASSERT_GE(b, 0);
   const Singularities start = {{a, Index(1)}, {b, Index(1)}};
   std::vector<double> x;
@@ -472,11 +477,7 @@ TEST(Refinement, a_budget_of_no_trial_returns_the_start_solved)
   const Surface_mesh tm = to_surface_mesh(icosphere_soup(3));
   const Mesh_view<Surface_mesh> view(tm);
   Solver solver(tm);
-  const int a = nearest_interior_vertex(view, V3{{0, 0, 1}});
-  int b = -1;
-  for(int v = 0; v < view.nv(); ++v)
-    if(b < 0 && v != a && norm(view.P[v] - view.P[a]) > 0.25 && norm(view.P[v] - view.P[a]) < 0.45)
-      b = v;
+  const auto [a, b] = two_close_vertices(view);
   ASSERT_GE(b, 0);
   const Singularities start = {{a, Index(1)}, {b, Index(1)}};
   std::vector<double> x;

@@ -928,6 +928,66 @@ TEST(Constraint_system, assembly_is_A_W_inverse_A_transpose)
   }
 }
 
+// With the boundary aligned (n = 4), the decided fans of the boundary vertices are rows of the factor, each placed
+// right after the last of its nodes that are not free rows. A boundary loop's node is a free row, last in the
+// factor: were the rows anchored at it, every fan of the boundary would sit at the top of the elimination tree,
+// on the path of every vertex (holes.off: four times the work per path).
+TEST(Constraint_system, decided_fan_rows_follow_their_last_node_not_the_boundary_loop)
+{
+  const Surface_mesh mesh = annulus(1, 2, 6, 60);
+  TCI::Mesh_arrays<Surface_mesh> arrays(mesh, get(CGAL::vertex_point, mesh), K());
+  TCI::Mesh_geometry geometry(arrays, TC::Weighting::hodge_star);
+  TCI::Mesh_topology topology(arrays);
+  topology.build_trees(arrays, geometry.edge_of_corner, geometry.edge_corner);
+  geometry.compute_angles(arrays);
+  TCI::Constraint_links links(arrays, topology, {}, {}, true, 1., {}, 4, 4);
+  const TCI::Constraint_rows rows(arrays, geometry, topology, links);
+  std::vector<char> is_free(std::size_t(rows.rows), 0);
+  for(int r : rows.free_rows)
+    is_free[std::size_t(r)] = 1;
+  // the node order a factorization hands back (Prefactored_system::node_order()): the free rows' nodes last
+  std::vector<int> node_order(std::size_t(topology.number_of_nodes));
+  std::iota(node_order.begin(), node_order.end(), 0);
+  std::stable_partition(node_order.begin(), node_order.end(), [&](int node) {
+    const int r = rows.row_of_node[std::size_t(node)];
+    return r < 0 || !is_free[std::size_t(r)];
+  });
+  const TCI::Row_permutation P = TCI::loop_rows_last(rows, node_order);
+  std::vector<int> row_at(std::size_t(rows.rows));
+  for(int r = 0; r < int(rows.rows); ++r)
+    row_at[std::size_t(P.indices()[r])] = r;
+  std::vector<char> is_decided(std::size_t(rows.rows), 0);
+  for(int l : rows.decided_slots)
+    if(rows.row_of_slot[std::size_t(l)] >= 0)
+      is_decided[std::size_t(rows.row_of_slot[std::size_t(l)])] = 1;
+  const int first_free = int(rows.rows) - int(rows.free_rows.size());
+  std::size_t d = 0, checked = 0;
+  for(int l : rows.decided_slots) {
+    const int r = rows.row_of_slot[std::size_t(l)];
+    if(r < 0)
+      continue;
+    int last = -1; // the position of its last node row that is not free
+    bool touches_the_boundary = false;
+    for(int p = rows.decided_row_node_start[d]; p < rows.decided_row_node_start[d + 1]; ++p) {
+      const int node_row = rows.row_of_node[std::size_t(rows.decided_row_nodes[std::size_t(p)])];
+      if(node_row >= 0 && is_free[std::size_t(node_row)])
+        touches_the_boundary = true;
+      else if(node_row >= 0)
+        last = (std::max)(last, P.indices()[node_row]);
+    }
+    ++d;
+    const int position = P.indices()[r];
+    EXPECT_LT(position, first_free);
+    EXPECT_GT(position, last);
+    for(int q = last + 1; q < position; ++q)
+      EXPECT_TRUE(is_decided[std::size_t(row_at[std::size_t(q)])]) << "only decided rows between row " << r
+                                                                    << " and its last node";
+    checked += touches_the_boundary;
+  }
+  // one circle's node is the pinned node (no row); the other's 60 fans, but those left free
+  EXPECT_GE(checked, 50u) << "the fans of the boundary circle with a row";
+}
+
 // The prefactored system's split solve (forward, then the integers, then backward) gives the multipliers of
 // the full system M lambda = b with the integers added to b on the free rows; checked against a dense solve.
 TEST(Prefactored_system, split_solve_matches_a_dense_solve)

@@ -45,8 +45,9 @@ struct Constraint_sums
   edge it has no row: the rounding fixes x_e there, and that edge leaves the system: its column of A is dropped
   (`inverse_weight` 0), and the fixed x_e moves to the right-hand side. M keeps its pattern (the entries become
   0), so the fill-reducing order of the node rows holds whatever the pins. Through a vertex's fan it is a row
-  with a prescribed integer, placed in the factor right after the last of the nodes it touches: their columns
-  already join its neighbours, so it adds one short column and no fill elsewhere.
+  with a prescribed integer, placed in the factor right after the last of the nodes it touches (a boundary loop's
+  node aside: its row is free, last): their columns already join its neighbours, so it adds one short column and
+  no fill elsewhere.
   Reads the geometry, the topology and the links it was built from, which must outlive it.
 */
 class Constraint_rows

@@ -187,7 +187,9 @@ def controlled_refinement_table(rows, lines):
                  "the first one's, where most columns of G are made, and the last one's, which finds no move), "
                  "`step / none` its ratio to the step without control, and "
                  "`whole / none` that of the whole refinements, the factorization again included. Trials, energy before → after, whether a local minimum was reached. "
-                 "`solve`: one `solve()` of the start under each control once its links are factored in (median of 3), "
+                 "`solve`: one `solve()` of the start under each control once its links are factored in, as the "
+                 "refinement's trials make it (residuals refined from 1e-11, the other choices of integers decided "
+                 "by rounding not bounded; median of 3), "
                  "and `step / solve` a step in such solves: the links are rows of the system (and fill in its factor), "
                  "so every solve under a control costs more, the refinement's trials included.")
     lines.append("")
@@ -236,7 +238,8 @@ def boundary_refinement_table(rows, lines):
                  "built with `align_with_boundary(true, symmetry_order(4))`, every face with a border edge linked to "
                  "the boundary's direction (`boundary faces`). The same three runs as above; `construction` is what "
                  "the aligned solver's construction takes more than the one without (its links factored in), counted in "
-                 "`whole / none`; `solve` is one `solve()` of the start on each solver (median of 3), and `step / "
+                 "`whole / none`; `solve` is one `solve()` of the start on each solver as a trial makes it (median "
+                 "of 3), and `step / "
                  "solve` a step in such solves: the aligned system is larger (the links' rows and fill in its "
                  "factor), so a step there costs more by what a solve costs more.")
     lines.append("")

@@ -275,8 +275,7 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
         // one solve() of the start, the median of 3 (what a trial is made of), once the links are factored in
         auto median_solve = [&](Solver& on) {
           // as a trial: the bound of the decided integers' other choices is a solve more, which trials skip
-          Access::refine_residuals_above(on, 1e-11);
-          Access::bound_decided_choices(on, false);
+          const TC::internal::Trial_accuracy<Solver> as_a_trial(on);
           std::vector<double> times;
           for(int i = 0; i < 3; ++i) {
             t0 = Clock::now();
@@ -284,8 +283,6 @@ void placement(benchmark::State& state, const Mesh_spec& spec)
               on.solve(placed_aligned, x, P::face_directions(guide, P::symmetry_order(symmetry))).energy);
             times.push_back(seconds_since(t0));
           }
-          Access::refine_residuals_above(on, TC::internal::refine_residuals_above);
-          Access::bound_decided_choices(on, true);
           return median(times);
         };
         // a refinement with maximum_trials(0), one to a local minimum (c.t_refine, c.report), one with

@@ -32,6 +32,38 @@
 namespace CGAL {
 namespace Trivial_connections {
 
+namespace internal {
+
+/*
+  The accuracy of the refinement's trial solves, set on `solver` for the lifetime of this object. They refine their
+  connection only from a relative residual of 1e-11 (the promise is 1e-9): on a large mesh the first residual is
+  barely above the rounding level that solve() refines down to (cheese_loop3: 1.0e-13 to 2.2e-13 of 1 + |b|), and
+  that refinement is a second back-substitution per trial. Nor do they bound the other choices of the links decided
+  by rounding (touching pins, an aligned boundary): a solve more per trial for the report alone (holes.off with its
+  boundary aligned: a third of a trial). The connection returned is solved again at full accuracy, with its bound,
+  as is the first (so energy_after <= energy_before). The placement benchmark times its trial solves with it.
+*/
+template <class Solver>
+struct Trial_accuracy
+{
+  using Access = Solver_access<Solver>;
+  Solver& s;
+  explicit Trial_accuracy(Solver& solver) : s(solver)
+  {
+    Access::refine_residuals_above(s, 1e-11);
+    Access::bound_decided_choices(s, false);
+  }
+  ~Trial_accuracy()
+  {
+    Access::refine_residuals_above(s, refine_residuals_above);
+    Access::bound_decided_choices(s, true);
+  }
+  Trial_accuracy(const Trial_accuracy&) = delete;
+  Trial_accuracy& operator=(const Trial_accuracy&) = delete;
+};
+
+} // namespace internal
+
 /*!
 \ingroup PkgTrivialConnectionsRef
 One accepted move of `refine_singularities()`: `index` went from `from` to `to` (a whole singularity to a
@@ -198,27 +230,7 @@ refine_singularities(Solver& solver, const SingularityRange& start, HalfedgeAngl
   // to one back-substitution per vertex: factored in first
   Access::factor_bordered_links(solver);
 
-  // The trial solves refine their connection only from a relative residual of 1e-11 (the promise is 1e-9): on a
-  // large mesh the first residual is barely above the rounding level that solve() refines down to (cheese_loop3:
-  // 1.0e-13 to 2.2e-13 of 1 + |b|), and that refinement is a second back-substitution per trial. Nor do they bound
-  // the other choices of the links decided by rounding (touching pins, an aligned boundary): a solve more per trial
-  // for the report alone (holes.off with its boundary aligned: a third of a trial). The connection returned is
-  // solved again at full accuracy, with its bound, as is the first (so energy_after <= energy_before).
-  struct Trial_accuracy
-  {
-    Solver& s;
-    explicit Trial_accuracy(Solver& solver) : s(solver)
-    {
-      Access::refine_residuals_above(s, 1e-11);
-      Access::bound_decided_choices(s, false);
-    }
-    ~Trial_accuracy()
-    {
-      Access::refine_residuals_above(s, internal::refine_residuals_above);
-      Access::bound_decided_choices(s, true);
-    }
-  };
-  std::optional<Trial_accuracy> trial_accuracy;
+  std::optional<internal::Trial_accuracy<Solver>> trial_accuracy; // set after the first solve (see there)
 
   Refinement_report<vertex_descriptor> result;
   double energy = 0;

@@ -97,8 +97,9 @@ public:
     m_paths_usable = use_paths && std::all_of(m_factor_storage.d.begin(), m_factor_storage.d.end(), [](double d) { return d > 0; });
     // The paths made grow with the moves (the new neighbours of every singularity moved): chosen by the vertices
     // wanted first, they may cost more than the inversion in the end (cheese_loop3, N = 2: 616 singularities, 5,460
-    // moves, half of the refinement in paths). Past the rule's own break-even the inversion takes over, where the
-    // factor as read is the one to invert, or, when it had explicit zeros to keep its pattern chordal (CHOLMOD's
+    // moves, half of the refinement in paths). Once the paths made have cost about what the inversion would, it
+    // takes over (rent or buy: then about twice the better of the two at most, whatever the moves still to come), where
+    // the factor as read is the one to invert, or, when it had explicit zeros to keep its pattern chordal (CHOLMOD's
     // supernodes), the factor read again (cheese_loop3, N = 2: paths to the end were 1.6 x the placement).
     m_zeros_dropped = padded.n > 0;
     if(m_paths_usable && choice == Entries::automatic && (!m_zeros_dropped || m_read_again)) {
@@ -245,7 +246,10 @@ public:
         work += m_path_cost.empty() ? 0. : m_path_cost[std::size_t(m_position[r])];
       }
     }
-    if(!m_path_cost.empty() && 2 * (m_path_work + work) >= 3 * m_inversion_cost) {
+    // Equal cost is at twice the inversion's predicted work: a unit of it took 1.5-3.4 times a unit of path
+    // (timed on armadillo, turbine_loop1, holes, bunny00, refined_elephant, ldlt). At 1.5 times, as in the first
+    // choice, the inversion came too early: turbine_loop1 refined 1.3-1.4 x slower, holes' aligned boundary 1.15 x.
+    if(!m_path_cost.empty() && m_path_work + work >= 2 * m_inversion_cost) {
       if(!m_zeros_dropped) // the factor goes to the inversion, kept there for the columns
         m_inverse.reset(new Selected_inverse(std::move(m_factor_storage), true));
       else {

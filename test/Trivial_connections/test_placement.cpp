@@ -897,7 +897,7 @@ TEST(Refinement, columns_asked_for_stay_past_the_budget)
 }
 
 // Chosen for the few vertices wanted first, the paths give way to the selected inversion once the paths asked for
-// would cost more than it (the automatic choice's own break-even); the entries stay those of M^-1.
+// would cost about what it does (twice its predicted work); the entries stay those of M^-1.
 TEST(Refinement, paths_give_way_to_the_inversion_when_they_grow)
 {
   Factored_grid grid(30);

@@ -49,6 +49,8 @@ py::dict feature_report_dict(const TC::Feature_alignment_report& r)
   d["dropped_edges"] = r.dropped_edges;
   d["number_of_pinned_faces"] = r.number_of_pinned_faces;
   d["faces_with_several_edges"] = r.faces_with_several_edges;
+  d["number_of_cusps"] = r.number_of_cusps;
+  d["sector_rule_faces"] = r.sector_rule_faces;
   d["neighbouring_pairs"] = r.neighbouring_pairs;
   d["disagreeing_pairs"] = r.disagreeing_pairs;
   d["max_disagreement_degrees"] = r.max_disagreement_degrees;
@@ -124,7 +126,8 @@ Give faces as constrained_faces and directions as solve(directions={face: vector
 Solver(align_features=...), which does it, as the program's --align-features). Faces on the boundary are included:
 drop them when the solver aligns with the boundary (it refuses targets there).
 report: threshold_degrees, number_of_sharp_edges, number_of_curves, dropped_curves, dropped_edges,
-number_of_pinned_faces, faces_with_several_edges, neighbouring_pairs (pinned faces sharing an edge),
+number_of_pinned_faces, faces_with_several_edges, number_of_cusps and sector_rule_faces (n = 4: a crease turning
+back, and the faces pinned there to put one quad corner between its arms), neighbouring_pairs (pinned faces sharing an edge),
 disagreeing_pairs (those whose directions, moved across the edge, differ by more than 5 degrees modulo 2 pi / n)
 and max_disagreement_degrees. A mesh without sharp edges gives no face and a report of zeros.
 Raises InvalidInput (a ValueError): invalid_argument for a threshold that is negative, over 180 or NaN or

@@ -43,6 +43,7 @@ py::dict quad_report_dict(const TC::Quad_mesh_report& r)
   d["solves"] = r.solves;
   d["factorizations"] = r.factorizations;
   d["rounding_seconds"] = r.rounding_seconds;
+  d["naive_rounding_fallback"] = r.naive_rounding_fallback;
   return d;
 }
 
@@ -214,7 +215,8 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
              "quad_size, quads, vertices, integer_points, valence_histogram, valence_errors, border_corners, "
              "feature_edges, folded_triangles, degenerate_triangles, rejected_polygons, open_edges, dangling_edges, "
              "flipped_quads, concave_quads, hausdorff_distance (and its two one-sided parts), split_vertices, "
-             "continuous_energy, rounded_energy, solves, factorizations, rounding_seconds). Errors raise InvalidInput "
+             "continuous_energy, rounded_energy, solves, factorizations, rounding_seconds, naive_rounding_fallback: the "
+             "greedy rounding's integers contradicted each other and the naive one made the map). Errors raise InvalidInput "
              "(a ValueError).");
   solver.def("move_singularities_off_features", &Python_solver::move_singularities_off_features,
              py::arg("singularities"), py::arg("feature_edges"), py::arg("quad_size") = py::none(),

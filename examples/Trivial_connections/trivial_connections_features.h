@@ -167,6 +167,9 @@ inline std::string feature_report_line(const Options& o, const Feature_pins& f)
     s << " (" << r.dropped_curves << " isolated short ones dropped, " << r.dropped_edges << " edges)";
   s << "; " << r.number_of_pinned_faces << " faces beside them (" << r.faces_with_several_edges
     << " beside several), " << f.pinned << " pinned";
+  if(r.number_of_cusps > 0)
+    s << " (" << r.number_of_cusps << (r.number_of_cusps == 1 ? " cusp" : " cusps") << ": " << r.sector_rule_faces
+      << " faces by the sector rule)";
   if(f.named_by_user > 0)
     s << ", " << f.named_by_user << " left to " << o.constraints;
   if(f.on_guided_faces > 0)

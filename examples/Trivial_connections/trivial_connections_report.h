@@ -249,6 +249,8 @@ inline void print_quads(std::ostream& out, const Options& o, const Quads& quads)
       << " H (quads to input " << fixed(r.hausdorff_quads_to_input / r.quad_size, 3) << " H, input to quads "
       << fixed(r.hausdorff_input_to_quads / r.quad_size, 3) << " H); on iso-lines: " << r.feature_edges
       << " feature edges, border corners " << r.border_corners;
+  if(r.naive_rounding_fallback)
+    out << "; rounding: naive (the greedy rounding's integers contradicted each other)";
   if(quads.flaws_unscaled > 0)
     out << "; the field scaled per face (quad scale smoothness " << quads.scale_smoothness << "): without it "
         << quads.flaws_unscaled << " folded and degenerate triangles and valence errors";

@@ -3,9 +3,9 @@
 #  - fandisk (CGAL's data) with --align-features --n 4 --auto: the connection and field pass the independent checker
 #    (../shared/tools/check_connection.py) with the singularities the program used, and every pin it used
 #    (--write-constraints) is followed: check_constraints.py's angle residual <= 1e-9, and the weighted divergence
-#    vanishes on every other face; every pinned face is beside an edge sharper than 30 degrees (recomputed here), and
-#    every face beside one is pinned but those of the dropped edges the report counts; the feature lines file holds
-#    the kept sharp edges;
+#    vanishes on every other face; every pinned face is beside an edge sharper than 30 degrees (recomputed here) but
+#    the inner faces of its cusp's tongue (the sector rule, counted by the report), and every face beside one is
+#    pinned but those of the dropped edges the report counts; the feature lines file holds the kept sharp edges;
 #  - the user's constraint file wins on the faces it names; --refine and --singularities combine;
 #  - a bad threshold is a usage error (status 2); a mesh without sharp edge gets a note and no pin.
 # Exits 77 (skipped) when CGAL's data is absent.
@@ -99,9 +99,14 @@ dropped_edges = int(dropped.group(2)) if dropped else 0
 pins = check_outputs("auto")
 beside, sharp = sharp_faces(mesh, 30)
 check(int(m.group(1)) == sharp, f"the report's sharp edges ({m.group(1)}) are those recomputed here ({sharp})")
-check(set(pins) <= beside, "every pinned face is beside a sharp edge")
-check(len(beside) - len(pins) <= 2 * dropped_edges,
-      f"every face beside a sharp edge is pinned ({len(pins)} of {len(beside)}, {dropped_edges} edges dropped)")
+sector = re.search(r"\((\d+) cusps?: (\d+) faces by the sector rule\)", line)
+sector_faces = int(sector.group(2)) if sector else 0
+check(sector is not None and sector.group(1) == "1", "fandisk's one cusp is reported (a crease turning back)")
+check(0 < len(set(pins) - beside) <= sector_faces,
+      f"every pinned face is beside a sharp edge but faces of the cusp's tongue ({len(set(pins) - beside)}, at most "
+      f"the {sector_faces} faces of the sector rule)")
+check(len(beside - set(pins)) <= 2 * dropped_edges,
+      f"every face beside a sharp edge is pinned ({len(set(pins) & beside)} of {len(beside)}, {dropped_edges} edges dropped)")
 check(len(pins) == int(m.group(4)), "--write-constraints holds the pinned faces of the report")
 lines = open(f"{d}/lines.vtk").read()
 check(re.search(rf"^LINES {sharp - dropped_edges} {3 * (sharp - dropped_edges)}$", lines, re.M) is not None,

@@ -267,6 +267,75 @@ TEST(Feature_alignment, zigzag_crease_is_one_curve_and_its_fitted_directions_agr
   EXPECT_LT(fitted.report.max_disagreement_degrees, 5.);
 }
 
+/// A crease that turns back: the plane z = 0 in the wedge |phi| <= 10 degrees (polar angle about the apex at the
+/// origin), and z = the distance to the wedge outside it (two planes at 45 degrees beside its rays, a cone behind
+/// the apex). A polar mesh of R rings, rays every 20 degrees from 10: the wedge's two rays are chains of sharp edges
+/// that leave the apex 20 degrees apart, and the wedge's first face is the apex's sector between them.
+Soup turning_back_crease(int R)
+{
+  Soup s;
+  const int rays = 18;
+  s.points.push_back(Point(0, 0, 0));
+  for(int i = 1; i <= R; ++i)
+    for(int j = 0; j < rays; ++j) {
+      const double phi = (10. + 20. * j) * pi / 180, off = std::abs(std::remainder(phi, two_pi)) - pi / 18;
+      const double z = off <= 0 ? 0. : off <= pi / 2 ? i * std::sin(off) : double(i);
+      s.points.push_back(Point(i * std::cos(phi), i * std::sin(phi), z));
+    }
+  auto at = [&](int i, int j) { return 1 + (i - 1) * rays + (j % rays); };
+  for(int j = 0; j < rays; ++j)
+    s.faces.push_back({{0, at(1, j), at(1, j + 1)}});
+  for(int i = 1; i < R; ++i)
+    for(int j = 0; j < rays; ++j) {
+      s.faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
+      s.faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
+    }
+  return s;
+}
+
+// The sector rule at a cusp: the two rays are two curves (the apex is a corner, though its sharp edges lie along
+// one line to a covariance), and for n = 4 the apex's sector face is pinned half way along the turn of 90 - 20
+// degrees that puts one quad corner in the sector (35 degrees from each ray's cross), not along the short way (10
+// degrees from each, the bisector), which n = 2 keeps.
+TEST(Feature_alignment, crease_turning_back_is_a_corner_with_a_quad_corner_in_its_sector)
+{
+  const Surface_mesh m = to_surface_mesh(turning_back_crease(6));
+  const TC::Feature_curves<Surface_mesh> curves = TC::feature_curves(m);
+  ASSERT_EQ(curves.number_of_sharp_edges, 12u);
+  ASSERT_EQ(curves.curves.size(), 2u);
+  EXPECT_EQ(curves.curves[0].halfedges.size(), 6u);
+  const V3 ray_a{{std::cos(pi / 18), std::sin(pi / 18), 0.}}, ray_b{{std::cos(pi / 18), -std::sin(pi / 18), 0.}};
+  Surface_mesh::Face_index tip;
+  for(auto f : faces(m)) {
+    bool at_apex = false, beside_wedge = true;
+    for(auto v : CGAL::vertices_around_face(m.halfedge(f), m)) {
+      at_apex = at_apex || v == Surface_mesh::Vertex_index(0);
+      beside_wedge = beside_wedge && std::abs(m.point(v).z()) < 1e-12;
+    }
+    if(at_apex && beside_wedge)
+      tip = f;
+  }
+  ASSERT_NE(tip, Surface_mesh::null_face());
+  const Pins cross = pins_of(m, 30., TC::parameters::symmetry_order(4));
+  ASSERT_EQ(cross.direction.count(tip), 1u);
+  EXPECT_NEAR(angle_mod(cross.direction.at(tip), ray_a, 4) * 180 / pi, 35., 1e-6);
+  EXPECT_NEAR(angle_mod(cross.direction.at(tip), ray_b, 4) * 180 / pi, 35., 1e-6);
+  // the faces beside one ray follow it
+  for(auto f : cross.faces) {
+    if(f == tip)
+      continue;
+    double best = pi;
+    for(const V3& ray : {ray_a, ray_b}) {
+      const V3 N = normal_of(m, f), t = unit(ray - dot(ray, N) * N);
+      best = std::min(best, angle_mod(cross.direction.at(f), t, 4));
+    }
+    EXPECT_LT(best * 180 / pi, 1e-6) << "face " << f;
+  }
+  const Pins line = pins_of(m, 30., TC::parameters::symmetry_order(2));
+  EXPECT_NEAR(angle_mod(line.direction.at(tip), ray_a, 2) * 180 / pi, 10., 1e-6);
+  EXPECT_NEAR(angle_mod(line.direction.at(tip), ray_b, 2) * 180 / pi, 10., 1e-6);
+}
+
 TEST(Feature_alignment, independent_of_vertex_and_face_numbering)
 {
   for(const Soup& soup : {jittered_cube(4, 0.3, 3), zigzag_roof(16, 3, 0.25)}) {

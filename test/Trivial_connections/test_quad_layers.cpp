@@ -1735,7 +1735,8 @@ TEST(QuadFeatures, Fandisk)
               << quad.degenerate_triangles << " degenerate triangles, " << followed << " runs along feature edges; "
               << param.constraint_count()
               << " constraint rows, " << param.feature_lines().size() << " lines; built " << built << " s, solved "
-              << solved - built << " s, greedy rounding (" << r.integer_unknowns << " unknowns, " << r.solves
+              << solved - built << " s, greedy rounding" << (r.naive_fallback ? " (contradicted: the naive one)" : "")
+              << " (" << r.integer_unknowns << " unknowns, " << r.solves
               << " solves on " << r.factorizations << " factorizations, " << r.shifted_unknowns << " shifted) "
               << rounded - solved << " s, energy "
               << r.continuous_energy << " -> " << r.map.energy << "\n";

@@ -127,6 +127,8 @@ struct Feature_alignment_report
   std::size_t dropped_edges = 0;             ///< the sharp edges of the dropped curves
   std::size_t number_of_pinned_faces = 0;    ///< faces written: those beside an edge of a kept curve
   std::size_t faces_with_several_edges = 0;  ///< pinned faces beside two or three curve edges
+  std::size_t number_of_cusps = 0;           ///< cusps whose sector got the sector rule (n = 4; see below)
+  std::size_t sector_rule_faces = 0;         ///< the faces pinned by it (in the cusps' sectors and tongues)
   std::size_t neighbouring_pairs = 0;        ///< pairs of pinned faces that share an interior edge
   std::size_t disagreeing_pairs = 0;         ///< those whose directions differ by more than 5 degrees (see below)
   double max_disagreement_degrees = 0;       ///< the largest difference over the pairs, in [0, 180 / n]
@@ -172,7 +174,9 @@ greater than `threshold_degrees` (border edges never are). A curve is a set of s
 vertices that are not corners. A corner is a vertex around which the sharp edges do not lie along one line: the
 vertices on the sharp edges within 3 sharp edges of it have a covariance whose second eigenvalue exceeds 0.3 times
 the first, the largest such ratio among those vertices (one corner where three creases meet, or where a crease
-turns by more than about 60 degrees). Chains through the vertices with exactly two sharp edges, broken at the
+turns by more than about 60 degrees). A crease that turns back at a vertex (a cusp: two sharp edges whose arms,
+each a smooth chain of at least 3 sharp edges, leave the vertex less than 60 degrees apart) lies along one line to
+that covariance, and is a corner too. Chains through the vertices with exactly two sharp edges, broken at the
 others, would cut a crease that crosses triangles into single edges: the band of sharp edges along it (zigzags
 and the rungs between them) stays one curve this way. An isolated short curve is dropped: one that touches no
 corner, with fewer than `feature_minimum_edges` edges and shorter than `feature_minimum_length_factor` mean edge
@@ -230,6 +234,15 @@ onto the other exactly. A face beside two or three curve edges takes the mean of
 directions weighted by the edges' lengths (for n = 4, perpendicular edges agree), nearest to the direction of its
 longest such edge, or that direction itself when they cancel. Faces on the boundary are written like the others
 (drop them when the solver aligns the field with the boundary: it refuses targets there).
+
+For n = 4 a cusp (see `feature_curves()`) whose sector between the arms is narrower than 45 degrees gets the
+sector rule of quad meshing: a sector of angle theta between two features holds k = max(1, round(theta / 90
+degrees)) quad corners, so the cross field turns by theta - k 90 degrees across it, not by theta (the short way,
+which would give both arms one iso-line and fold the quads between them). The faces of that sector take that turn
+linearly in the angle about the cusp (one face: half of it on either side), and so do the faces between the arms
+(the tongue) up to where they are 50 degrees apart, with the turn taken linearly in the distances to the two arms;
+their vertex then gets index -1/4 from the solve (one corner inside, four outside). The report counts the cusps and
+these faces, which are written with the others (a tongue's inner faces are not beside a sharp edge).
 
 The report also says how well the pins agree: for each interior edge between two pinned faces, the angle between
 the direction of one moved across the edge by Levi-Civita transport and the other's, modulo `2 pi / n` (how far
@@ -297,6 +310,8 @@ Feature_alignment_report feature_aligned_faces(const TriangleMesh& tm, double th
   r.dropped_edges = set.dropped_edges;
   r.number_of_pinned_faces = pins.faces.size();
   r.faces_with_several_edges = pins.faces_with_several_edges;
+  r.number_of_cusps = pins.cusps;
+  r.sector_rule_faces = pins.sector_faces;
   r.neighbouring_pairs = d.pairs;
   r.disagreeing_pairs = d.over;
   r.max_disagreement_degrees = d.max_radians * 180 / CGAL_PI;

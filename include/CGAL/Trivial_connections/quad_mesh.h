@@ -37,7 +37,9 @@ vertices and the translations across the cut).
 */
 enum class Quad_rounding {
   /// the unknown closest to an integer first, fixed, then a new solve, and so on (each solve an update of a kept
-  /// factorization: a back-substitution per fixed unknown, a new factorization every few hundred)
+  /// factorization: a back-substitution per fixed unknown, a new factorization every few hundred). When its
+  /// integers contradict each other (an unknown that a singular vertex's closure ties to them implied at a half),
+  /// the naive rounding makes the map (`Quad_mesh_report::naive_rounding_fallback`)
   greedy,
   naive   ///< all rounded at once from the continuous solution, then one more solve (fast, more distortion)
 };
@@ -83,6 +85,9 @@ struct Quad_mesh_report
   /// few hundred fixed integers
   std::size_t factorizations = 0;
   double rounding_seconds = 0;             ///< the rounding's wall time (seconds)
+  /// the greedy rounding's integers contradicted each other (an unknown implied at a half) and the naive rounding
+  /// made the map (see `Quad_rounding`); false with `Quad_rounding::naive` asked
+  bool naive_rounding_fallback = false;
 
   /// the Hausdorff distance: the larger of the two one-sided distances
   /// \returns `max(hausdorff_quads_to_input, hausdorff_input_to_quads)`
@@ -152,7 +157,9 @@ the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided d
   \cgalParamNBegin{edge_is_constrained_map} \cgalParamType{a readable property map `edge_descriptor -> bool`}
     \cgalParamDescription{the feature edges (e.g. the sharp edges of `feature_curves()`): each is put on an integer
     iso-line, so that quad edges follow it. The field must be aligned with them (as `feature_aligned_faces()`
-    pins it), within 20 degrees on both faces; a feature curve keeps one iso-value along it}
+    pins it), within 20 degrees on both faces, but for a face inside a sector of less than 45 degrees between two
+    consecutive feature edges around a vertex (a cusp: the field turns across it, see `feature_aligned_faces()`),
+    checked on its other face only; a feature curve keeps one iso-value along it}
     \cgalParamDefault{no feature edge} \cgalParamNEnd
   \cgalParamNBegin{symmetry_order} \cgalParamType{`int`} \cgalParamDefault{4, the only value accepted} \cgalParamNEnd
   \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, tm)`} \cgalParamNEnd
@@ -264,6 +271,7 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   report.solves = std::size_t(made.solves);
   report.factorizations = std::size_t(made.factorizations);
   report.rounding_seconds = made.rounding_seconds;
+  report.naive_rounding_fallback = made.naive_fallback;
   report.feature_edges = feature_edges;
 
   // the soup: the integer points in some quad, in the extraction's order

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <complex>
 #include <cstddef>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -58,6 +59,7 @@ struct Sharp_graph
   std::vector<int> edges;                  // per sharp edge: its corner halfedge of smaller index
   std::vector<std::vector<int>> at_vertex; // per vertex: its sharp edges
   std::vector<char> corner;                // per vertex: a corner (where curves meet, or a curve turns)
+  std::vector<char> cusp;                  // per vertex: a corner where a crease turns back (see detect_curves())
   double mean_edge_length = 0;
 };
 
@@ -167,6 +169,7 @@ Curve_set detect_curves(const Mesh& m, const std::vector<Vec3>& N, double thresh
   Sharp_graph& g = out.graph;
   g.at_vertex.assign(std::size_t(m.nv), {});
   g.corner.assign(std::size_t(m.nv), 0);
+  g.cusp.assign(std::size_t(m.nv), 0);
   double total_length = 0;
   std::size_t edges = 0;
   for(int c = 0; c < 3 * m.nf; ++c) {
@@ -203,6 +206,43 @@ Curve_set detect_curves(const Mesh& m, const std::vector<Vec3>& N, double thresh
     for(int w : near)
       maximum = maximum && (w == v || ratio[w] < ratio[v] || (ratio[w] == ratio[v] && v < w));
     g.corner[v] = maximum;
+  }
+
+  // cusps: a crease that turns back on itself at a vertex lies along one line to the covariance (its two arms
+  // leave the vertex in nearly the same direction: fandisk's vertex 112, 19 degrees apart). A vertex of two sharp
+  // edges is a corner, and a cusp, when each arm is a smooth chain for corner_hops edges (through vertices of two
+  // sharp edges, turning by less than 30 degrees at each) and the arms, the mean offsets of their vertices from
+  // it, leave it less than 60 degrees apart. The chains keep out the zigzags of noisy creases (the 30 degree
+  // sharp edges of a scan turn back all the time, over an edge or two).
+  for(int v : on_sharp) {
+    if(g.corner[v] || g.at_vertex[v].size() != 2)
+      continue;
+    std::array<Vec3, 2> arm;
+    bool chains = true;
+    for(int side = 0; side < 2 && chains; ++side) {
+      int previous = v, current = other_end(m, g.edges[g.at_vertex[v][side]], v);
+      Vec3 sum = sub(m.points[current], m.points[v]);
+      for(int h = 1; h < corner_hops && chains; ++h) {
+        int next = -1;
+        if(g.at_vertex[current].size() == 2)
+          for(int e : g.at_vertex[current])
+            if(other_end(m, g.edges[e], current) != previous)
+              next = other_end(m, g.edges[e], current);
+        chains = next >= 0 && next != v &&
+                 angle_between(sub(m.points[current], m.points[previous]), sub(m.points[next], m.points[current])) <
+                   CGAL_PI / 6;
+        if(!chains)
+          break;
+        sum = add(sum, sub(m.points[next], m.points[v]));
+        previous = current;
+        current = next;
+      }
+      arm[std::size_t(side)] = unit(sum);
+    }
+    if(chains && dot(arm[0], arm[1]) > 0.5) {
+      g.corner[v] = 1;
+      g.cusp[v] = 1;
+    }
   }
 
   // curves: connected through the vertices that are not corners
@@ -332,11 +372,170 @@ inline Vec3 combine_proposals(const std::vector<Proposal>& p, const Vec3& normal
   return add(scaled(r, std::cos(theta)), scaled(s, std::sin(theta)));
 }
 
+inline Vec3 rotated_about(const Vec3& d, const Vec3& normal, double a)
+{
+  return add(scaled(d, std::cos(a)), scaled(cross(normal, d), std::sin(a)));
+}
+
+/*
+  The sector rule at a cusp, for cross fields (n = 4): a crease turning back at vertex v leaves a sector of angle
+  theta < 45 degrees between its two arms. A quad mesh that follows both arms puts one quad corner in it (a sector
+  of angle theta gets k = max(1, round(theta / 90 degrees)) corners, as in MIQ's feature corners), so the field
+  turns by theta - 90 degrees across the sector, not by theta (the short way, k = 0, which gives both arms the
+  same iso-line and folds the quads between them). Each face of the sector gets the direction of that turn at the
+  middle of its angle (linear in the angle from the first arm): with one face, half the turn on each of its two
+  arm edges, so that the links on either side take it. Appends (face, direction) for the faces of every such
+  sector.
+*/
+template <class Mesh>
+std::size_t cusp_sector_directions(const Mesh& m, const std::vector<Vec3>& N, const Sharp_graph& g,
+                                   const std::vector<char>& kept_edge, std::vector<std::pair<int, Vec3>>& out)
+{
+  std::size_t cusps = 0;
+  std::vector<int> sector[2];
+  double angle[2];
+  std::vector<char> sharp_corner(std::size_t(3 * m.nf), 0), in_tongue(std::size_t(m.nf), 0);
+  for(int c : g.edges) {
+    sharp_corner[std::size_t(c)] = 1;
+    sharp_corner[std::size_t(m.opposite_corner[c])] = 1;
+  }
+  for(int v = 0; v < m.nv; ++v) {
+    if(!g.cusp[v] || g.at_vertex[v].size() != 2 || !kept_edge[g.at_vertex[v][0]] || !kept_edge[g.at_vertex[v][1]])
+      continue;
+    int leaving[2], end[2];
+    for(int s = 0; s < 2; ++s) {
+      const int c = g.edges[g.at_vertex[v][s]];
+      leaving[s] = m.source_of(c) == v ? c : m.opposite_corner[c];
+      end[s] = m.target_of(leaving[s]);
+    }
+    // counter-clockwise from the arm s to the other: the corners entering v, face by face
+    bool closed = true;
+    for(int s = 0; s < 2 && closed; ++s) {
+      sector[s].clear();
+      angle[s] = 0;
+      int c = Mesh::prev_corner(leaving[s]);
+      closed = false;
+      for(int guard = 0; guard <= 3 * m.nf; ++guard) {
+        sector[s].push_back(c);
+        angle[s] += angle_between(sub(m.points[m.target_of(Mesh::next_corner(c))], m.points[v]),
+                                  sub(m.points[m.source_of(c)], m.points[v]));
+        if(m.source_of(c) == end[1 - s]) {
+          closed = true;
+          break;
+        }
+        if(m.opposite_corner[c] < 0)
+          break;
+        c = Mesh::prev_corner(m.opposite_corner[c]);
+      }
+    }
+    if(!closed)
+      continue;
+    const int s = angle[0] <= angle[1] ? 0 : 1;
+    const double theta = angle[s];
+    if(!(theta < CGAL_PI / 4) || !(theta > 0))
+      continue;
+    const double turn = theta - CGAL_PI / 2; // over the sector, counter-clockwise from arm s
+    ++cusps;
+    double position = 0;
+    std::vector<int> tongue;
+    for(int c : sector[s]) {
+      const int f = Mesh::face_of(c);
+      const Vec3 first = sub(m.points[m.target_of(Mesh::next_corner(c))], m.points[v]);
+      const double width = angle_between(first, sub(m.points[m.source_of(c)], m.points[v]));
+      const double middle = position + width / 2;
+      out.push_back({f, rotated_about(unit(first), N[f], middle * turn / theta - position)});
+      in_tongue[std::size_t(f)] = 1;
+      tongue.push_back(f);
+      position += width;
+    }
+    // the arms, as chains from v (s first), while their vertices have two sharp edges
+    std::array<std::vector<int>, 2> arm;
+    for(int a = 0; a < 2; ++a) {
+      const int side = a == 0 ? s : 1 - s;
+      arm[a] = {v, end[side]};
+      while(arm[a].size() < 65) {
+        const int current = arm[a].back(), previous = arm[a][arm[a].size() - 2];
+        if(g.at_vertex[current].size() != 2 || g.corner[current])
+          break;
+        int next = -1;
+        for(int e : g.at_vertex[current])
+          if(other_end(m, g.edges[e], current) != previous)
+            next = other_end(m, g.edges[e], current);
+        if(next < 0 || next == v)
+          break;
+        arm[a].push_back(next);
+      }
+    }
+    // the tongue: between the arms, from v to where they are 50 degrees apart (the short way gives one quad
+    // corner beyond, as the sector rule does)
+    std::size_t reach = std::min(arm[0].size(), arm[1].size()) - 1;
+    for(std::size_t i = 1; i <= reach; ++i)
+      if(angle_between(sub(m.points[arm[0][i]], m.points[arm[0][i - 1]]),
+                       sub(m.points[arm[1][i]], m.points[arm[1][i - 1]])) >= 50 * CGAL_PI / 180) {
+        reach = i;
+        break;
+      }
+    const double radius = std::min(norm(sub(m.points[arm[0][reach]], m.points[v])),
+                                   norm(sub(m.points[arm[1][reach]], m.points[v])));
+    auto within = [&](int f) {
+      for(int k = 0; k < 3; ++k)
+        if(norm(sub(m.points[m.corner_vertex[3 * f + k]], m.points[v])) > radius)
+          return false;
+      return true;
+    };
+    // the nearest segment of an arm (up to reach) to a point: its distance and unit direction away from v
+    auto nearest = [&](int a, const Vec3& x, double& distance, Vec3& direction) {
+      distance = std::numeric_limits<double>::infinity();
+      for(std::size_t i = 1; i <= reach && i < arm[a].size(); ++i) {
+        const Vec3 p = m.points[arm[a][i - 1]], d = sub(m.points[arm[a][i]], p);
+        const double t = std::clamp(dot(sub(x, p), d) / dot(d, d), 0., 1.);
+        const double dist = norm(sub(x, add(p, scaled(d, t))));
+        if(dist < distance) {
+          distance = dist;
+          direction = unit(d);
+        }
+      }
+    };
+    for(std::size_t q = 0; q < tongue.size(); ++q) {
+      const int f = tongue[q];
+      if(q >= sector[s].size()) {
+        bool beside_arm = false;
+        for(int k = 0; k < 3; ++k)
+          beside_arm = beside_arm || sharp_corner[std::size_t(3 * f + k)];
+        if(!beside_arm) {
+          const Vec3 x = scaled(add(add(m.points[m.corner_vertex[3 * f]], m.points[m.corner_vertex[3 * f + 1]]),
+                                    m.points[m.corner_vertex[3 * f + 2]]), 1. / 3);
+          double dF, dS;
+          Vec3 tF, tS;
+          nearest(0, x, dF, tF);
+          nearest(1, x, dS, tS);
+          tF = unit(sub(tF, scaled(N[f], dot(tF, N[f]))));
+          tS = unit(sub(tS, scaled(N[f], dot(tS, N[f]))));
+          const double alpha = std::atan2(dot(N[f], cross(tF, tS)), dot(tF, tS));
+          if(alpha > 0 && alpha < CGAL_PI / 2 && dF + dS > 0)
+            out.push_back({f, rotated_about(tF, N[f], dF / (dF + dS) * (alpha - CGAL_PI / 2))});
+        }
+      }
+      for(int k = 0; k < 3; ++k) {
+        const int o = m.opposite_corner[3 * f + k];
+        if(o < 0 || sharp_corner[std::size_t(3 * f + k)] || in_tongue[std::size_t(Mesh::face_of(o))] ||
+           !within(Mesh::face_of(o)))
+          continue;
+        in_tongue[std::size_t(Mesh::face_of(o))] = 1;
+        tongue.push_back(Mesh::face_of(o));
+      }
+    }
+  }
+  return cusps;
+}
+
 struct Face_pins
 {
   std::vector<int> faces;       // increasing face index
   std::vector<Vec3> directions; // unit, tangent to the face
   std::size_t faces_with_several_edges = 0;
+  std::size_t cusps = 0;        // cusps whose sector the sector rule pinned (n = 4)
+  std::size_t sector_faces = 0; // faces pinned by the sector rule (a cusp's sector, the inner faces of its tongue)
 };
 
 template <class Mesh>
@@ -359,11 +558,31 @@ Face_pins pin_faces(const Mesh& m, const std::vector<Vec3>& N, const Sharp_graph
       weight_by_corner[o / 3][o % 3] = length;
     }
   Face_pins out;
+  std::vector<char> in_sector(std::size_t(m.nf), 0);
+  std::vector<Vec3> sector_direction(std::size_t(m.nf));
+  if(n == 4) {
+    std::vector<char> kept_edge(g.edges.size(), 0);
+    for(const Curve& curve : curves)
+      for(int e : curve.edges)
+        kept_edge[std::size_t(e)] = 1;
+    std::vector<std::pair<int, Vec3>> sectors;
+    out.cusps = cusp_sector_directions(m, N, g, kept_edge, sectors);
+    out.sector_faces = sectors.size();
+    for(const auto& fd : sectors) {
+      in_sector[std::size_t(fd.first)] = 1;
+      sector_direction[std::size_t(fd.first)] = fd.second;
+    }
+  }
   for(int f = 0; f < m.nf; ++f) {
     std::vector<Proposal> p;
     for(int k = 0; k < 3; ++k)
       if(weight_by_corner[f][k] > 0)
         p.push_back({by_corner[f][k], weight_by_corner[f][k]});
+    if(in_sector[std::size_t(f)]) {
+      out.faces.push_back(f);
+      out.directions.push_back(sector_direction[std::size_t(f)]);
+      continue;
+    }
     if(p.empty())
       continue;
     if(p.size() > 1)

@@ -101,6 +101,7 @@ struct Integer_rounding_result
   int factorizations = 0;            // sparse factorizations of the normal equations behind them (and the map's)
   int back_substitutions = 0;        // with the kept factor, one per fix
   double seconds = 0;                // the rounding's wall time
+  bool naive_fallback = false;       // greedy asked, its integers contradicted each other: the naive ones (below)
 };
 
 class Integer_rounding
@@ -147,9 +148,33 @@ public:
   // integer_candidates: how many integers, nearest first, may be tried for an unknown (see fix below; 1: the
   // nearest only, the plain schemes)
   // max_block: the greedy scheme's fixes between two factorizations (see Kept_factor_fixing; 0: one per solve)
+  //
+  // The greedy scheme re-solves between its fixes, and the later values can leave an unknown that a closure ties
+  // to the earlier integers at a half (a feature line through a singular vertex): then its integers contradict
+  // each other where the naive ones, all from the continuous map in the same order, need not (fandisk with the
+  // sector rule at its cusp: at the diagonal / 40 with the placed singularities, at / 50 and / 80 with them moved
+  // off the features). So a contradiction of the greedy scheme is followed by the naive one (naive_fallback), whose
+  // own contradiction is thrown.
   Integer_rounding_result round(Rounding_scheme scheme, Rounding_order order = Rounding_order::roots_first,
                                 double batch_distance = 0, int integer_candidates = 5,
                                 int max_block = default_rounding_block)
+  {
+    if(scheme != Rounding_scheme::greedy)
+      return round_once(scheme, order, batch_distance, integer_candidates, max_block);
+    try {
+      return round_once(scheme, order, batch_distance, integer_candidates, max_block);
+    } catch(const Invalid_input& e) {
+      if(e.code() != Error_code::invalid_argument) // a failed solve (solver_failure) is not a contradiction
+        throw;
+    }
+    Integer_rounding_result r = round_once(Rounding_scheme::naive, order, batch_distance, integer_candidates, max_block);
+    r.naive_fallback = true;
+    return r;
+  }
+
+private:
+  Integer_rounding_result round_once(Rounding_scheme scheme, Rounding_order order, double batch_distance,
+                                     int integer_candidates, int max_block)
   {
     CGAL_precondition(batch_distance >= 0 && integer_candidates >= 1 && max_block >= 0);
     const auto start = std::chrono::steady_clock::now();

@@ -73,6 +73,7 @@ struct Quad_pipeline_result
   double continuous_energy = 0, rounded_energy = 0;
   int integer_unknowns = 0, solves = 0, factorizations = 0, arcs = 0;
   double rounding_seconds = 0;
+  bool naive_fallback = false; // the greedy rounding was infeasible and the naive one made the map
 };
 
 // singular: the singular vertices (array numbering), each once; H > 0 the quad size; max_quads the bound of
@@ -108,6 +109,7 @@ Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, cons
   result.solves = rounded.solves;
   result.factorizations = rounded.factorizations;
   result.rounding_seconds = rounded.seconds;
+  result.naive_fallback = rounded.naive_fallback;
   result.arcs = int(cut.arcs.size());
   return result;
 }

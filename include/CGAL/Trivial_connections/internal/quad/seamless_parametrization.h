@@ -54,8 +54,10 @@ namespace internal {
   no constraint is substituted, not added as a row: G grows with the constraints, not with the fixed values.
 
   Feature curves on iso-lines (optional: a flag per edge of the cut graph's numbering, border edges included).
-  In the chart of the face of its canonical corner, a flagged edge must run along the field's u or v direction
-  (within `alignment_tolerance` radians, on both its faces; otherwise an Invalid_input names it), and the other
+  In the chart of the face of its canonical corner (of its other face when the canonical one is inside an acute
+  sector, acute_sector_faces()), a flagged edge must run along the field's u or v direction (within
+  `alignment_tolerance` radians, on both its faces but those in acute sectors; otherwise an Invalid_input names
+  it), and the other
   coordinate is constant along it: w_source[k] = w_target[k]. Each side is (a sign) times a root coordinate plus
   integer combinations of translations (the wedges' expressions), so every such equation identifies two root
   coordinates up to sign and translations. They are merged by a union-find whose links carry that affine
@@ -99,7 +101,7 @@ public:
   };
   const std::vector<Feature_line>& feature_lines() const { return m_feature_lines; }
   // per flagged edge (cut graph numbering, -1 elsewhere): the coordinate (0: u, 1: v) constant along it in the
-  // chart of its canonical corner's face
+  // chart of its equation's face (its canonical corner's, but see acute_sector_faces())
   const std::vector<int>& feature_coordinate() const { return m_feature_coordinate; }
   // a root coordinate eliminated by a feature line (its value follows from the line's and the translations)
   bool is_eliminated(int j) const { return !m_eliminated.empty() && m_eliminated[j]; }
@@ -534,6 +536,79 @@ private:
     return out;
   }
 
+  /*
+    The faces inside a sector of less than 45 degrees between two consecutive flagged edges around a vertex (a
+    crease turning back, fandisk's cusp): a quad mesh puts one quad corner there, so the field turns by 90 degrees
+    less the sector's angle across it (the sector rule: feature_curves.h, cusp_sector_directions()) and is aligned
+    with neither edge. Their alignment is not checked, and a flagged edge takes its coordinate from its other face.
+  */
+  template <class TriangleMesh>
+  static std::vector<char> acute_sector_faces(const Mesh_arrays<TriangleMesh>& m, const Cut_graph& cut,
+                                              const std::vector<char>& feature_edges)
+  {
+    using MA = Mesh_arrays<TriangleMesh>;
+    std::vector<char> acute(std::size_t(m.nf), 0);
+    if(feature_edges.empty())
+      return acute;
+    std::vector<char> flagged(std::size_t(3 * m.nf), 0); // per corner: its edge is flagged
+    std::vector<int> flags_at(std::size_t(m.nv), 0);
+    for(std::size_t e = 0; e < feature_edges.size(); ++e)
+      if(feature_edges[e]) {
+        const int i = cut.edge_corner[e], o = m.opposite_corner[i];
+        flagged[std::size_t(i)] = 1;
+        if(o >= 0)
+          flagged[std::size_t(o)] = 1;
+        ++flags_at[std::size_t(m.source_of(i))];
+        ++flags_at[std::size_t(m.target_of(i))];
+      }
+    std::vector<char> done(std::size_t(m.nv), 0);
+    std::vector<int> fan;
+    for(int c0 = 0; c0 < 3 * m.nf; ++c0) {
+      const int v = m.target_of(c0); // c0 enters v
+      if(done[std::size_t(v)] || flags_at[std::size_t(v)] < 2)
+        continue;
+      done[std::size_t(v)] = 1;
+      // the fan of v counter-clockwise, as the corners entering it, from a border when it is open
+      int c = c0;
+      while(m.opposite_corner[MA::next_corner(c)] >= 0 && m.opposite_corner[MA::next_corner(c)] != c0)
+        c = m.opposite_corner[MA::next_corner(c)];
+      const bool open = m.opposite_corner[MA::next_corner(c)] < 0;
+      fan.clear();
+      const int first = c;
+      do {
+        fan.push_back(c);
+        const int o = m.opposite_corner[c];
+        if(o < 0)
+          break;
+        c = MA::prev_corner(o);
+      } while(c != first);
+      // a sector starts at a face whose first edge (leaving v) is flagged; a border edge counts as flagged
+      const std::size_t count = fan.size();
+      std::size_t begin = count;
+      for(std::size_t j = 0; j < count && begin == count; ++j)
+        if(flagged[std::size_t(MA::next_corner(fan[j]))] || (open && j == 0))
+          begin = j;
+      if(begin == count)
+        continue;
+      for(std::size_t a = 0; a < count;) {
+        double theta = 0;
+        std::size_t b = a;
+        do {
+          const int corner = fan[(begin + b) % count];
+          theta += angle_between(sub(m.points[m.target_of(MA::next_corner(corner))], m.points[v]),
+                                 sub(m.points[m.source_of(corner)], m.points[v]));
+          ++b;
+        } while(b < count && !flagged[std::size_t(MA::next_corner(fan[(begin + b) % count]))]);
+        // the sector ends at a flagged edge (the next sector's first, or the open fan's last border)
+        if(theta < CGAL_PI / 4 && (b < count || open || a > 0))
+          for(std::size_t j = a; j < b; ++j)
+            acute[std::size_t(MA::face_of(fan[(begin + j) % count]))] = 1;
+        a = b;
+      }
+    }
+    return acute;
+  }
+
   template <class TriangleMesh>
   void build_feature_lines(const Mesh_arrays<TriangleMesh>& m, const Cut_graph& cut, const std::vector<double>& angle,
                            const std::vector<char>& feature_edges, double tolerance)
@@ -545,11 +620,17 @@ private:
     std::vector<Eigen::Triplet<double>> loop_rows;
     int loops = 0;
     m_feature_coordinate.assign(cut.edge_corner.size(), -1);
+    m_feature_corner.assign(cut.edge_corner.size(), -1);
     const double quarter = CGAL_PI / 2;
+    const std::vector<char> acute = acute_sector_faces(m, cut, feature_edges);
     for(std::size_t e = 0; e < feature_edges.size(); ++e) {
       if(!feature_edges[e])
         continue;
-      const int i = cut.edge_corner[e];
+      // the equation is written in the chart of the canonical corner's face, or of the other face when the
+      // canonical one is inside an acute sector (aligned with neither of its feature edges) and the other is not
+      const int o = m.opposite_corner[cut.edge_corner[e]];
+      const int i = o >= 0 && acute[MA::face_of(cut.edge_corner[e])] && !acute[MA::face_of(o)] ? o : cut.edge_corner[e];
+      m_feature_corner[e] = i;
       const int a = m.source_of(i), b = m.target_of(i);
       const Vec3 d = sub(m.points[b], m.points[a]);
       int k = -1;
@@ -562,7 +643,7 @@ private:
         Mesh_geometry::frame(m, f, ex, ey);
         const double turns = (std::atan2(dot(d, ey), dot(d, ex)) - angle[f] - cut.combing[f] * quarter) / quarter;
         const double off = std::abs(turns - std::round(turns)) * quarter;
-        if(!(off <= tolerance))
+        if(!acute[f] && !(off <= tolerance)) // inside an acute sector the field turns: not checked there
           throw Invalid_input(Error_code::invalid_argument,
                               std::string("the cross field is not aligned with the ") +
                                 (m.opposite_corner[i] < 0 ? "border" : "feature") + " edge from vertex " + std::to_string(a) +
@@ -657,7 +738,7 @@ private:
     }
     for(std::size_t e = 0; e < feature_edges.size(); ++e)
       if(feature_edges[e]) {
-        const int i = cut.edge_corner[e];
+        const int i = m_feature_corner[e];
         const Link l = find(links, corner_coordinate(m.source_of(i), i, m_feature_coordinate[e]).variable);
         Feature_line& line = m_feature_lines[line_of[l.parent]];
         if(line.edge < 0)
@@ -851,6 +932,7 @@ private:
   std::vector<char> m_eliminated;
   std::vector<Feature_line> m_feature_lines;
   std::vector<int> m_feature_coordinate;
+  std::vector<int> m_feature_corner; // per flagged edge: the corner whose face's chart its equation is written in
   struct Face_pair { int f, g; double weight; };
   std::vector<Face_pair> m_face_pairs; // interior edges, for reduce_curl()
   std::vector<double> m_face_area;

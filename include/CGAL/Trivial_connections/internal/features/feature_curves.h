@@ -380,12 +380,16 @@ inline Vec3 rotated_about(const Vec3& d, const Vec3& normal, double a)
 /*
   The sector rule at a cusp, for cross fields (n = 4): a crease turning back at vertex v leaves a sector of angle
   theta < 45 degrees between its two arms. A quad mesh that follows both arms puts one quad corner in it (a sector
-  of angle theta gets k = max(1, round(theta / 90 degrees)) corners, as in MIQ's feature corners), so the field
-  turns by theta - 90 degrees across the sector, not by theta (the short way, k = 0, which gives both arms the
-  same iso-line and folds the quads between them). Each face of the sector gets the direction of that turn at the
-  middle of its angle (linear in the angle from the first arm): with one face, half the turn on each of its two
-  arm edges, so that the links on either side take it. Appends (face, direction) for the faces of every such
-  sector.
+  of angle theta gets k = max(1, round(theta / 90 degrees)) corners, the sector rule of integer-grid maps at
+  feature vertices), so the field turns by theta - 90 degrees across the sector, not by theta (the short way,
+  k = 0, which gives both arms the same iso-line and folds the quads between them). Each face of the sector gets
+  the direction of that turn at the middle of its angle (linear in the angle from the first arm): with one face,
+  half the turn on each of its two arm edges, so that the links on either side take it. So do the faces between
+  the arms beside no sharp edge (the tongue, reached from the sector without crossing a sharp edge, within the
+  distance from v where the arms are 50 degrees apart: beyond, the short way is the turn), with the turn taken
+  linearly in their distances to the two arms: with the sector alone pinned, the tongue's touching pins were
+  still linked the short way and the placement undid the cusp's -1/4 with a +1/4 beside it. Appends (face,
+  direction) for these faces; returns the number of cusps so treated.
 */
 template <class Mesh>
 std::size_t cusp_sector_directions(const Mesh& m, const std::vector<Vec3>& N, const Sharp_graph& g,

@@ -102,6 +102,20 @@ int other_end(const Mesh& m, int corner, int v)
   return m.source_of(corner) == v ? m.target_of(corner) : m.source_of(corner);
 }
 
+// Along a chain of sharp edges, the vertex after `current` coming from `previous`: -1 unless `current` has exactly
+// two sharp edges.
+template <class Mesh>
+int next_on_chain(const Mesh& m, const std::vector<std::vector<int>>& at_vertex, const std::vector<int>& edges,
+                  int current, int previous)
+{
+  if(at_vertex[current].size() != 2)
+    return -1;
+  for(int e : at_vertex[current])
+    if(other_end(m, edges[e], current) != previous)
+      return other_end(m, edges[e], current);
+  return -1;
+}
+
 // The vertices on sharp edges within `hops` sharp edges of `seeds` (the seeds included), not going on through a
 // corner when `stop_at_corners`. `mark` is all 0 on entry and on exit.
 template <class Mesh>
@@ -223,11 +237,7 @@ Curve_set detect_curves(const Mesh& m, const std::vector<Vec3>& N, double thresh
       int previous = v, current = other_end(m, g.edges[g.at_vertex[v][side]], v);
       Vec3 sum = sub(m.points[current], m.points[v]);
       for(int h = 1; h < corner_hops && chains; ++h) {
-        int next = -1;
-        if(g.at_vertex[current].size() == 2)
-          for(int e : g.at_vertex[current])
-            if(other_end(m, g.edges[e], current) != previous)
-              next = other_end(m, g.edges[e], current);
+        const int next = next_on_chain(m, g.at_vertex, g.edges, current, previous);
         chains = next >= 0 && next != v &&
                  angle_between(sub(m.points[current], m.points[previous]), sub(m.points[next], m.points[current])) <
                    CGAL_PI / 6;
@@ -397,6 +407,7 @@ std::size_t cusp_sector_directions(const Mesh& m, const std::vector<Vec3>& N, co
 {
   std::size_t cusps = 0;
   std::vector<int> sector[2];
+  std::vector<double> width[2]; // per corner of sector[s]: its face's angle at v
   double angle[2];
   std::vector<char> sharp_corner(std::size_t(3 * m.nf), 0), in_tongue(std::size_t(m.nf), 0);
   for(int c : g.edges) {
@@ -416,13 +427,15 @@ std::size_t cusp_sector_directions(const Mesh& m, const std::vector<Vec3>& N, co
     bool closed = true;
     for(int s = 0; s < 2 && closed; ++s) {
       sector[s].clear();
+      width[s].clear();
       angle[s] = 0;
       int c = Mesh::prev_corner(leaving[s]);
       closed = false;
       for(int guard = 0; guard <= 3 * m.nf; ++guard) {
         sector[s].push_back(c);
-        angle[s] += angle_between(sub(m.points[m.target_of(Mesh::next_corner(c))], m.points[v]),
-                                  sub(m.points[m.source_of(c)], m.points[v]));
+        width[s].push_back(angle_between(sub(m.points[m.target_of(Mesh::next_corner(c))], m.points[v]),
+                                         sub(m.points[m.source_of(c)], m.points[v])));
+        angle[s] += width[s].back();
         if(m.source_of(c) == end[1 - s]) {
           closed = true;
           break;
@@ -442,15 +455,14 @@ std::size_t cusp_sector_directions(const Mesh& m, const std::vector<Vec3>& N, co
     ++cusps;
     double position = 0;
     std::vector<int> tongue;
-    for(int c : sector[s]) {
-      const int f = Mesh::face_of(c);
+    for(std::size_t j = 0; j < sector[s].size(); ++j) {
+      const int c = sector[s][j], f = Mesh::face_of(c);
       const Vec3 first = sub(m.points[m.target_of(Mesh::next_corner(c))], m.points[v]);
-      const double width = angle_between(first, sub(m.points[m.source_of(c)], m.points[v]));
-      const double middle = position + width / 2;
+      const double middle = position + width[s][j] / 2;
       out.push_back({f, rotated_about(unit(first), N[f], middle * turn / theta - position)});
       in_tongue[std::size_t(f)] = 1;
       tongue.push_back(f);
-      position += width;
+      position += width[s][j];
     }
     // the arms, as chains from v (s first), while their vertices have two sharp edges
     std::array<std::vector<int>, 2> arm;
@@ -459,12 +471,7 @@ std::size_t cusp_sector_directions(const Mesh& m, const std::vector<Vec3>& N, co
       arm[a] = {v, end[side]};
       while(arm[a].size() < 65) {
         const int current = arm[a].back(), previous = arm[a][arm[a].size() - 2];
-        if(g.at_vertex[current].size() != 2 || g.corner[current])
-          break;
-        int next = -1;
-        for(int e : g.at_vertex[current])
-          if(other_end(m, g.edges[e], current) != previous)
-            next = other_end(m, g.edges[e], current);
+        const int next = g.corner[current] ? -1 : next_on_chain(m, g.at_vertex, g.edges, current, previous);
         if(next < 0 || next == v)
           break;
         arm[a].push_back(next);
@@ -578,15 +585,15 @@ Face_pins pin_faces(const Mesh& m, const std::vector<Vec3>& N, const Sharp_graph
     }
   }
   for(int f = 0; f < m.nf; ++f) {
-    std::vector<Proposal> p;
-    for(int k = 0; k < 3; ++k)
-      if(weight_by_corner[f][k] > 0)
-        p.push_back({by_corner[f][k], weight_by_corner[f][k]});
     if(in_sector[std::size_t(f)]) {
       out.faces.push_back(f);
       out.directions.push_back(sector_direction[std::size_t(f)]);
       continue;
     }
+    std::vector<Proposal> p;
+    for(int k = 0; k < 3; ++k)
+      if(weight_by_corner[f][k] > 0)
+        p.push_back({by_corner[f][k], weight_by_corner[f][k]});
     if(p.empty())
       continue;
     if(p.size() > 1)

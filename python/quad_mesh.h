@@ -44,6 +44,10 @@ py::dict quad_report_dict(const TC::Quad_mesh_report& r)
   d["factorizations"] = r.factorizations;
   d["rounding_seconds"] = r.rounding_seconds;
   d["naive_rounding_fallback"] = r.naive_rounding_fallback;
+  d["inverted_before_untangling"] = r.inverted_before_untangling;
+  d["untangled"] = r.untangled;
+  d["untangled_energy"] = r.untangled_energy;
+  d["untangling_seconds"] = r.untangling_seconds;
   return d;
 }
 
@@ -86,7 +90,7 @@ std::vector<char> feature_edges_of(const Mesh& mesh, const py::object& pairs)
 // the quads of the cross field of `result` (with its singularities): (vertices (k, 3), quads (q, 4), report)
 py::tuple Python_solver::quad_mesh(const Result& result, const py::object& singularities, const py::object& quad_size,
                                    const py::object& target_faces, const std::string& rounding, double max_quads,
-                                   const py::object& feature_edges, double scale_smoothness)
+                                   const py::object& feature_edges, double scale_smoothness, bool untangle)
 {
   const Singularities s = singularities_of(singularities);
   const auto singular = vertex_descriptors(*m_mesh, s);
@@ -118,9 +122,10 @@ py::tuple Python_solver::quad_mesh(const Result& result, const py::object& singu
       [&features](edge_descriptor e) { return features[std::size_t(e)] != 0; });
     namespace P = TC::parameters;
     // (a negative or non-finite S is refused by compute_quad_mesh(): invalid_argument)
-    const auto common = P::quad_scale_smoothness(
-                          scale_smoothness, P::max_quads(max_quads, P::quad_rounding(scheme, P::symmetry_order(n))))
-                          .edge_is_constrained_map(feature_map);
+    const auto common =
+      P::quad_untangling(untangle, P::quad_scale_smoothness(scale_smoothness,
+                                                            P::max_quads(max_quads, P::quad_rounding(scheme, P::symmetry_order(n)))))
+        .edge_is_constrained_map(feature_map);
     return N > 0 ? TC::compute_quad_mesh(*m_mesh, x_map, field_map, singular, quads,
                                          P::target_faces(std::size_t(N), common))
                  : TC::compute_quad_mesh(*m_mesh, x_map, field_map, singular, quads, P::quad_size(H, common));
@@ -202,6 +207,7 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
   solver.def("quad_mesh", &Python_solver::quad_mesh, py::arg("result"), py::arg("singularities"),
              py::arg("quad_size") = py::none(), py::arg("target_faces") = py::none(), py::arg("rounding") = "greedy",
              py::arg("max_quads") = 1e7, py::arg("feature_edges") = py::none(), py::arg("scale_smoothness") = 0.,
+             py::arg("untangle") = true,
              "The quad mesh of result's cross field (n = 4) with its singularities: quad_size H (the quads' edge "
              "length) or target_faces N (H = sqrt(area / N)), one of them; rounding \"greedy\" or \"naive\"; more "
              "than max_quads quads is refused. feature_edges: edges put on integer iso-lines so that quad edges "
@@ -210,13 +216,17 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
              "Border edges are always put on iso-lines: the field must follow the border (align_boundary=True), "
              "otherwise the call is refused. scale_smoothness S > 0: the field's length is first scaled per face to "
              "make it closer to a gradient (C++ quad_scale_smoothness, the program's --quad-scale-smoothness; 0: "
-             "not scaled; the program tries 0.1 by itself when its quads have flaws, this call does not). Returns "
+             "not scaled; the program tries 0.1 by itself when its quads have flaws, this call does not). untangle: a "
+             "rounded map with folded or degenerate triangles is moved out of them, its integers kept (C++ "
+             "quad_untangling; False: the rounded map as it is). Returns "
              "(vertices (k, 3), quads (q, 4) counter-clockwise, report dict: "
              "quad_size, quads, vertices, integer_points, valence_histogram, valence_errors, border_corners, "
              "feature_edges, folded_triangles, degenerate_triangles, rejected_polygons, open_edges, dangling_edges, "
              "flipped_quads, concave_quads, hausdorff_distance (and its two one-sided parts), split_vertices, "
              "continuous_energy, rounded_energy, solves, factorizations, rounding_seconds, naive_rounding_fallback: the "
-             "greedy rounding's integers contradicted each other and the naive one made the map). Errors raise InvalidInput "
+             "greedy rounding's integers contradicted each other and the naive one made the map, "
+             "inverted_before_untangling (the rounded map's folded and degenerate triangles), untangled (the quads "
+             "come from the untangled map), untangled_energy, untangling_seconds). Errors raise InvalidInput "
              "(a ValueError).");
   solver.def("move_singularities_off_features", &Python_solver::move_singularities_off_features,
              py::arg("singularities"), py::arg("feature_edges"), py::arg("quad_size") = py::none(),

@@ -158,6 +158,7 @@ class Solver:
         max_quads: float = 1e7,
         feature_edges: Optional[Union[npt.ArrayLike, Sequence[Tuple[int, int]]]] = None,
         scale_smoothness: float = 0.0,
+        untangle: bool = True,
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Dict[str, Any]]: ...
     def move_singularities_off_features(
         self,

@@ -53,7 +53,8 @@ inline const char* const usage_text =
   "                           [--auto] [--no-refine] [--align-curvature] [--alignment-strength S]\n"
   "                           [--refine] [--cancel-pairs] [--write-singularities OUT]\n"
   "                           [--quad-mesh OUT.obj (--quad-size H | --target-faces N)\n"
-  "                            [--quad-scale-smoothness S]] [--progress] [--error-codes] [--help] [--version]\n"
+  "                            [--quad-scale-smoothness S] [--no-untangle]] [--progress] [--error-codes]\n"
+  "                           [--help] [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
   "singularity indices at vertices, and the n-direction field it defines.\n"
@@ -146,6 +147,9 @@ inline const char* const usage_text =
   "                        singularities on fine organic meshes). Not given: when the quads have flaws\n"
   "                        (folded or degenerate triangles, valence errors), they are made again with\n"
   "                        S = 0.1 and kept if they have fewer (reported). 0: never scaled\n"
+  "  --no-untangle         (with --quad-mesh) keep the rounded map as it is: by default a map with\n"
+  "                        folded or degenerate triangles is moved out of them, its integers kept\n"
+  "                        (a barrier energy; kept when it has fewer; reported)\n"
   "  --error-codes         the error line names the error code: 'trivial_connections: error [CODE]: ...'\n"
   "                        (CODE: an error code of the library, usage_error, out_of_memory or internal_error)\n"
   "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
@@ -213,6 +217,7 @@ struct Options
   double quad_size = 0;      // --quad-size H (0: not given)
   std::size_t target_faces = 0; // --target-faces N (0: not given)
   double quad_scale_smoothness = -1; // --quad-scale-smoothness S (-1: not given)
+  bool no_untangle = false;  // --no-untangle
 };
 
 using String_field = std::string Options::*;
@@ -437,7 +442,7 @@ inline Options parse_arguments(int argc, char** argv)
     }
     if(a == "--triangulate" || a == "--align-boundary" || a == "--auto" || a == "--no-refine" ||
        a == "--align-curvature" || a == "--refine" || a == "--cancel-pairs" || a == "--repair" ||
-       a == "--error-codes") {
+       a == "--error-codes" || a == "--no-untangle") {
       bool& flag = a == "--triangulate"       ? o.triangulate
                    : a == "--repair"          ? o.repair
                    : a == "--error-codes"     ? o.error_codes
@@ -446,6 +451,7 @@ inline Options parse_arguments(int argc, char** argv)
                    : a == "--no-refine"       ? o.no_refine
                    : a == "--align-curvature" ? o.align_curvature
                    : a == "--refine"          ? o.refine
+                   : a == "--no-untangle"     ? o.no_untangle
                                               : o.cancel_pairs;
       if(flag)
         throw Usage_error("option " + a + " given twice");
@@ -494,6 +500,8 @@ inline Options parse_arguments(int argc, char** argv)
     throw Usage_error(std::string(o.quad_size > 0 ? "--quad-size" : "--target-faces") + " is an option of --quad-mesh");
   if(o.quad_mesh.empty() && o.quad_scale_smoothness >= 0)
     throw Usage_error("--quad-scale-smoothness is an option of --quad-mesh");
+  if(o.quad_mesh.empty() && o.no_untangle)
+    throw Usage_error("--no-untangle is an option of --quad-mesh");
   if(!o.quad_mesh.empty() && o.n != 4)
     throw Usage_error("--quad-mesh needs a cross field: --n 4 (got --n " + std::to_string(o.n) + ")");
   if(!o.quad_mesh.empty() && (o.quad_size > 0) == (o.target_faces > 0))

@@ -251,6 +251,10 @@ inline void print_quads(std::ostream& out, const Options& o, const Quads& quads)
       << " feature edges, border corners " << r.border_corners;
   if(r.naive_rounding_fallback)
     out << "; rounding: naive (the greedy rounding's integers contradicted each other)";
+  if(r.inverted_before_untangling > 0 && !o.no_untangle)
+    out << "; untangling: " << r.inverted_before_untangling << " folded and degenerate triangles in the rounded map"
+        << (r.untangled ? ", " + std::to_string(r.folded_triangles + r.degenerate_triangles) + " after it"
+                        : std::string(", kept (no fewer after it)"));
   if(quads.flaws_unscaled > 0)
     out << "; the field scaled per face (quad scale smoothness " << quads.scale_smoothness << "): without it "
         << quads.flaws_unscaled << " folded and degenerate triangles and valence errors";

@@ -15,6 +15,7 @@
 #include <CGAL/Trivial_connections/internal/quad/cut_graph.h>
 #include <CGAL/Trivial_connections/internal/quad/integer_rounding.h>
 #include <CGAL/Trivial_connections/internal/quad/kept_factor_fixing.h>
+#include <CGAL/Trivial_connections/internal/quad/map_untangling.h>
 #include <CGAL/Trivial_connections/internal/quad/quad_extraction.h>
 #include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
 #include <CGAL/Trivial_connections/feature_alignment.h>
@@ -1742,6 +1743,100 @@ TEST(QuadFeatures, Fandisk)
               << r.continuous_energy << " -> " << r.map.energy << "\n";
   }
   EXPECT_GT(flagged, 100);
+}
+
+
+// ---- Between layers 3 and 4: the untangling ----
+
+// The untangled map of a greedy rounding, checked from the definitions: the same integers (every singular corner
+// the same integer point, the same roots and translations), still an integer-grid map across every cut edge, the
+// feature edges still on their iso-lines, no closer to the field than the rounded map (the least-squares minimiser
+// over exactly these maps: lower would mean it left them), and fewer folded and degenerate triangles, counted by
+// the extraction itself. Returns the quad mesh of the untangled map.
+TCI::Quad_mesh check_untangling(const Quad_case& q, double H, const std::string& name,
+                                const std::vector<char>& features = {})
+{
+  TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H, features);
+  TCI::Integer_rounding rounding(param, q.cut);
+  const TCI::Integer_rounding_result rounded = rounding.round(TCI::Rounding_scheme::greedy);
+  const TCI::Quad_mesh before = TCI::extract_quad_mesh(q.arrays, q.cut, rounded.map);
+  const TCI::Untangling_result u = TCI::Map_untangling(param).untangle(rounded.map);
+  EXPECT_EQ(u.inverted_before, before.folded_triangles + before.degenerate_triangles) << name;
+  const TCI::Quad_mesh after = TCI::extract_quad_mesh(q.arrays, q.cut, u.map);
+  EXPECT_EQ(u.inverted_after, after.folded_triangles + after.degenerate_triangles) << name;
+  std::cout << name << ": " << u.inverted_before << " folded and degenerate triangles -> " << u.inverted_after
+            << " (" << u.rounds << " rounds, " << u.iterations << " iterations, " << u.seconds << " s), energy "
+            << rounded.map.energy << " -> " << u.map.energy << "; other polygons " << before.non_quads << " -> "
+            << after.non_quads << ", open edges " << before.open_edges << " -> " << after.open_edges << "\n";
+  if(u.inverted_before == 0) {
+    EXPECT_FALSE(u.applied) << name;
+    return after;
+  }
+  EXPECT_TRUE(u.applied) << name;
+  EXPECT_LT(u.inverted_after, u.inverted_before) << name;
+  EXPECT_LT(integer_grid_error(q, u.map), 1e-7) << name;
+  EXPECT_LT(transition_error(q, u.map), 1e-7) << name;
+  EXPECT_GE(u.map.energy, rounded.map.energy * (1 - 1e-9)) << name;
+  EXPECT_NEAR(independent_energy(q, H, u.map.corner_uv), u.map.energy, 1e-9 * (1 + u.map.energy)) << name;
+  for(std::size_t v = 0; v < rounded.map.root_uv.size(); ++v)
+    if(q.cut.is_singular[v] || q.cut.holonomy[v] != 0)
+      for(int k = 0; k < 2; ++k)
+        EXPECT_NEAR(u.map.root_uv[v][k], rounded.map.root_uv[v][k], 1e-9) << name << ": root of vertex " << v;
+  for(std::size_t a = 0; a < rounded.map.translation.size(); ++a)
+    for(int k = 0; k < 2; ++k)
+      EXPECT_NEAR(u.map.translation[a][k], rounded.map.translation[a][k], 1e-9) << name << ": arc " << a;
+  // each feature edge on an integer iso-line in the chart of one of its faces (the other one inside an acute
+  // sector), as in the rounded map
+  for(std::size_t e = 0; e < features.size(); ++e) {
+    if(!features[e])
+      continue;
+    bool on_line = false;
+    for(int i : {q.cut.edge_corner[e], q.arrays.opposite_corner[q.cut.edge_corner[e]]}) {
+      if(i < 0)
+        continue;
+      const auto& a = u.map.corner_uv[i];
+      const auto& b = u.map.corner_uv[TCI::Mesh_arrays<Surface_mesh>::next_corner(i)];
+      for(int k = 0; k < 2; ++k)
+        on_line = on_line || (std::abs(a[k] - b[k]) < 1e-9 && std::abs(a[k] - std::round(a[k])) < 1e-9);
+    }
+    EXPECT_TRUE(on_line) << name << ": feature edge " << e << " is not on an integer iso-line";
+  }
+  return after;
+}
+
+// The rounded maps of the layers' meshes that fold (a singular root moved to an integer point drags only its
+// nearest triangles along) and fandisk's with its feature lines: fewer folds, the same integer-grid map.
+TEST(QuadUntangling, FoldsOfRoundedMaps)
+{
+  {
+    const Quad_case q(warped(torus_soup(3, 1, 24, 12)), {{5, Index(1, 4)}, {150, Index(-1, 4)}});
+    const TCI::Quad_mesh quad = check_untangling(q, 0.3, "warped torus, +1/4 and -1/4");
+    EXPECT_EQ(quad.folded_triangles + quad.degenerate_triangles, 0);
+  }
+  {
+    const Soup soup = genus2_soup(3);
+    const int nv = int(soup.points.size());
+    std::vector<int> v;
+    for(int j = 0; j < 8; ++j)
+      v.push_back(j * nv / 8 + 3);
+    const Quad_case q(soup, quarters(v, -1));
+    const TCI::Quad_mesh quad = check_untangling(q, 0.2, "genus 2, eight -1/4");
+    EXPECT_EQ(quad.folded_triangles + quad.degenerate_triangles, 0);
+  }
+  {
+    Surface_mesh tm;
+    TC_READ_CGAL_MESH_OR_SKIP("fandisk.off", tm);
+    Pinned_design design;
+    const Quad_case q(tm, std::ref(design));
+    const std::vector<char> features = sharp_edge_flags(q, design.threshold);
+    V3 lo = V3(q.arrays.points[0]), hi = lo;
+    for(const auto& a : q.arrays.points)
+      for(int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], a[k]);
+        hi[k] = std::max(hi[k], a[k]);
+      }
+    check_untangling(q, norm(hi - lo) / 40, "fandisk, sharp edges", features);
+  }
 }
 
 } // namespace

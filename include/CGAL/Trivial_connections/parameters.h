@@ -47,6 +47,7 @@ enum target_faces_t { target_faces };
 enum quad_rounding_t { quad_rounding };
 enum max_quads_t { max_quads };
 enum quad_scale_smoothness_t { quad_scale_smoothness };
+enum quad_untangling_t { quad_untangling };
 } // namespace tc_np
 
 /*!
@@ -208,6 +209,11 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(max_quads)
 /// \param value S, non-negative and finite
 /// \returns a sequence of named parameters holding `value`
 CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(quad_scale_smoothness)
+/// `bool`, default true: `compute_quad_mesh()` moves a rounded map that has folded or degenerate triangles out of
+/// them where its integers allow it (a barrier energy minimised over the maps with the same integers)
+/// \param value false keeps the rounded map as it is
+/// \returns a sequence of named parameters holding `value`
+CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(quad_untangling)
 
 #undef CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER
 } // namespace parameters

@@ -88,6 +88,12 @@ struct Quad_mesh_report
   /// the greedy rounding's integers contradicted each other (an unknown implied at a half) and the naive rounding
   /// made the map (see `Quad_rounding`); false with `Quad_rounding::naive` asked
   bool naive_rounding_fallback = false;
+  /// folded and degenerate triangles of the rounded map, before the untangling (`quad_untangling`): those of
+  /// the map the quads come from are `folded_triangles` and `degenerate_triangles`
+  std::size_t inverted_before_untangling = 0;
+  bool untangled = false;                  ///< the quads come from the untangled map (fewer inverted triangles)
+  double untangled_energy = 0;             ///< the parametrisation's energy of that map (`rounded_energy` if not)
+  double untangling_seconds = 0;           ///< the untangling's wall time (seconds)
 
   /// the Hausdorff distance: the larger of the two one-sided distances
   /// \returns `max(hausdorff_quads_to_input, hausdorff_input_to_quads)`
@@ -109,6 +115,9 @@ singularities, seamless parametrisation, integer rounding, extraction of the qua
   quarter turn), with transitions across the cut that are quarter turns plus translations;
 - the (u, v) of the singular vertices and the translations made integers (`quad_rounding`), so that the integer
   iso-lines are continuous across the cut;
+- where that map has folded or degenerate triangles, the map moved out of them with the same integers
+  (`quad_untangling`): a map whose gradients are the field's exactly has none, but a singular vertex moved to an
+  integer point by up to 0.7 H drags only its nearest triangles along;
 - the quads: the cells those iso-lines cut the surface into. Triangles whose map is folded or degenerate are
   skipped and counted; the cells that are not quads around them are left out (holes in the output) and counted.
 
@@ -154,6 +163,10 @@ the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided d
     log-scale together, whose variation costs S times its Dirichlet energy: it varies over about sqrt(S) H), the
     mean quad size staying H; 0.1 removes the folds near singularities on bunny00 (see the manual)}
     \cgalParamDefault{0: off} \cgalParamNEnd
+  \cgalParamNBegin{quad_untangling} \cgalParamType{`bool`} \cgalParamDescription{a rounded map with folded or
+    degenerate triangles is moved, keeping its integers, to a minimiser of a barrier energy on the triangles'
+    Jacobians (Garanzha et al. 2021), kept when it has fewer of them; the report gives both counts}
+    \cgalParamDefault{true} \cgalParamNEnd
   \cgalParamNBegin{edge_is_constrained_map} \cgalParamType{a readable property map `edge_descriptor -> bool`}
     \cgalParamDescription{the feature edges (e.g. the sharp edges of `feature_curves()`): each is put on an integer
     iso-line, so that quad edges follow it. The field must be aligned with them (as `feature_aligned_faces()`
@@ -183,6 +196,7 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
                         "a quad mesh needs a cross field (n = 4), not an n-direction field with n = " + std::to_string(n));
   const double max_quads = double(choose_parameter(get_parameter(np, tc_np::max_quads), 1e7));
   const double scale_smoothness = double(choose_parameter(get_parameter(np, tc_np::quad_scale_smoothness), 0.));
+  const bool untangle = choose_parameter(get_parameter(np, tc_np::quad_untangling), true);
   if(!(scale_smoothness >= 0) || !std::isfinite(scale_smoothness))
     throw Invalid_input(Error_code::invalid_argument, "quad_scale_smoothness must be a non-negative finite number");
   if(!(max_quads >= 1) || !std::isfinite(max_quads))
@@ -239,7 +253,7 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
       }
   }
   const internal::Quad_pipeline_result made =
-    internal::quad_mesh_pipeline(m, g, q, singular, H, scheme, max_quads, feature_corners, scale_smoothness);
+    internal::quad_mesh_pipeline(m, g, q, singular, H, scheme, max_quads, feature_corners, scale_smoothness, untangle);
   const internal::Quad_mesh& quads = made.mesh;
   const internal::Quad_measures measures = internal::measure_quad_mesh(m, quads, H / 4);
 
@@ -272,6 +286,10 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   report.factorizations = std::size_t(made.factorizations);
   report.rounding_seconds = made.rounding_seconds;
   report.naive_rounding_fallback = made.naive_fallback;
+  report.inverted_before_untangling = std::size_t(made.untangling.inverted_before);
+  report.untangled = made.untangling.applied;
+  report.untangled_energy = made.untangling.map.energy;
+  report.untangling_seconds = made.untangling.seconds;
   report.feature_edges = feature_edges;
 
   // the soup: the integer points in some quad, in the extraction's order

@@ -11,6 +11,7 @@
 #include <CGAL/Trivial_connections/internal/mesh/mesh_arrays.h>
 #include <CGAL/Trivial_connections/internal/quad/cut_graph.h>
 #include <CGAL/Trivial_connections/internal/quad/integer_rounding.h>
+#include <CGAL/Trivial_connections/internal/quad/map_untangling.h>
 #include <CGAL/Trivial_connections/internal/quad/quad_extraction.h>
 #include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
 
@@ -74,17 +75,20 @@ struct Quad_pipeline_result
   int integer_unknowns = 0, solves = 0, factorizations = 0, arcs = 0;
   double rounding_seconds = 0;
   bool naive_fallback = false; // the greedy rounding was infeasible and the naive one made the map
+  Untangling_result untangling; // the map the quads come from: the rounded one, or moved out of its folds
 };
 
 // singular: the singular vertices (array numbering), each once; H > 0 the quad size; max_quads the bound of
 // the extraction; feature_corners: empty, or per corner halfedge whether its edge is a feature edge, put on an
 // integer iso-line like every border edge; scale_smoothness > 0: the target scaled per face first
-// (Seamless_parametrization::reduce_curl()). Throws Invalid_input as the layers do.
+// (Seamless_parametrization::reduce_curl()); untangle: a rounded map with folded or degenerate triangles is moved
+// out of them where the integers allow it (Map_untangling). Throws Invalid_input as the layers do.
 template <class TriangleMesh>
 Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
                                         const Quad_field& field, const std::vector<int>& singular, double H,
                                         Rounding_scheme scheme, double max_quads,
-                                        const std::vector<char>& feature_corners = {}, double scale_smoothness = 0)
+                                        const std::vector<char>& feature_corners = {}, double scale_smoothness = 0,
+                                        bool untangle = true)
 {
   const std::vector<int> matching = cross_field_matching(m, g, field.angle, field.connection);
   const Cut_graph cut = build_cut_graph(m, g, matching, singular);
@@ -102,7 +106,13 @@ Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, cons
   Integer_rounding rounding(parametrization, cut);
   const Integer_rounding_result rounded = rounding.round(scheme);
   Quad_pipeline_result result;
-  result.mesh = extract_quad_mesh(m, cut, rounded.map, max_quads);
+  if(untangle) {
+    result.untangling = Map_untangling(parametrization).untangle(rounded.map);
+  } else {
+    result.untangling.map = rounded.map;
+    result.untangling.inverted_before = result.untangling.inverted_after = inverted_triangles(rounded.map);
+  }
+  result.mesh = extract_quad_mesh(m, cut, result.untangling.map, max_quads);
   result.continuous_energy = rounded.continuous_energy;
   result.rounded_energy = rounded.map.energy;
   result.integer_unknowns = rounded.integer_unknowns;

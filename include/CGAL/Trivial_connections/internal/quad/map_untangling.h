@@ -1,0 +1,290 @@
+// Copyright (c) 2026 CGAL Trivial Connections contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : CGAL Trivial Connections developers
+
+#ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_QUAD_MAP_UNTANGLING_H
+#define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_QUAD_MAP_UNTANGLING_H
+
+#include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
+
+#include <CGAL/assertions.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <vector>
+
+namespace CGAL {
+namespace Trivial_connections {
+namespace internal {
+
+/*
+  The layer between the rounding and the extraction of quad meshing (issue 43): the integer-grid map made free of
+  folds where the integers allow it. The least squares of the parametrisation do not see orientation: near a
+  singular vertex whose cone the target cannot follow, or where the integers pulled an iso-line across a thin
+  region, some triangles come out inverted, and the extraction skips them (their quads are missing or not quads).
+
+  The map is moved inside the set the integers left, the reduced unknowns y of the parametrisation's last factor()
+  (every transition, gauge, feature line and integer holds for every y), to a minimiser of the barrier energy of
+  Garanzha, Kaporin, Kudryavtseva, Protais, Ray and Sokolov ("Foldover-free maps in 50 lines of code", 2021):
+      E_eps(y) = sum_f area_f [ (1 - theta) |J_f|^2 + theta (det J_f^2 + 1) ] / (2 chi(det J_f, eps)),
+      chi(D, eps) = (D + sqrt(eps^2 + D^2)) / 2,
+  with J_f the map's Jacobian relative to the target (the field's frame scaled by 1 / H), so 1 at a perfect square
+  grid. chi is positive for every D and tends to max(D, 0) with eps: for a small eps the energy is a barrier that
+  no minimiser crosses from det > 0. Their schedule lowers eps from 1 as the minimum det rises; each eps is
+  minimised by L-BFGS preconditioned with the parametrisation's factored normal equations (the least squares'
+  Hessian, a good model of this energy near a map without folds: one back-substitution per iteration).
+
+  A triangle whose every map under the integers is inverted or flat (a corner squeezed between two feature lines)
+  keeps a non-positive det; the schedule then stops at its budget. The result is kept only when it has fewer
+  folded and degenerate triangles than the rounded map: the least squares' energy (the report's rounded_energy)
+  rises, as the map now trades closeness to the field for orientation.
+*/
+
+struct Untangling_result
+{
+  Seamless_parametrization::Map map;
+  int inverted_before = 0; // folded + degenerate triangles of the rounded map
+  int inverted_after = 0;  // of `map`
+  int iterations = 0;      // L-BFGS iterations, all rounds
+  int rounds = 0;          // values of eps
+  bool applied = false;    // map is the untangled one (fewer inverted triangles); else the rounded one
+  double seconds = 0;
+};
+
+// folded (negative (u, v) area) + degenerate (zero) triangles of a map, as extract_quad_mesh() counts them: after
+// snapping every corner coordinate within snap_tolerance of an integer to it
+inline int inverted_triangles(const Seamless_parametrization::Map& map, double snap_tolerance = 1e-6)
+{
+  auto snapped = [&](double x) { return std::abs(x - std::round(x)) <= snap_tolerance ? std::round(x) : x; };
+  int count = 0;
+  for(std::size_t f = 0; 3 * f + 2 < map.corner_uv.size(); ++f) {
+    std::array<std::array<double, 2>, 3> p;
+    for(int k = 0; k < 3; ++k)
+      p[k] = {{snapped(map.corner_uv[3 * f + k][0]), snapped(map.corner_uv[3 * f + k][1])}};
+    if(!((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]) > 0))
+      ++count;
+  }
+  return count;
+}
+
+class Map_untangling
+{
+public:
+  // param: factored with every integer fixed (after Integer_rounding::round(), whose map is untangle()'s input)
+  Map_untangling(const Seamless_parametrization& param, double theta = 0.5, double fidelity = 1)
+    : m_param(param), m_theta(theta), m_fidelity(fidelity)
+  {
+    CGAL_precondition(theta >= 0 && theta <= 1);
+    const Eigen::VectorXd& target = param.gradient_target();
+    const std::vector<double>& area = param.face_areas();
+    m_nf = int(target.size() / 4);
+    m_scale.resize(m_nf);
+    m_weight.resize(m_nf);
+    double total = 0;
+    for(int f = 0; f < m_nf; ++f)
+      total += area[f];
+    for(int f = 0; f < m_nf; ++f) {
+      // |target row| = sqrt(area) e^s / H: the gradient rows divided by it are J_f up to a rotation
+      m_scale[f] = 1 / std::hypot(target[4 * f], target[4 * f + 1]);
+      m_weight[f] = area[f] / total;
+    }
+    m_unit_target = target;
+    for(int f = 0; f < m_nf; ++f)
+      m_unit_target.segment<4>(4 * f) *= m_scale[f];
+  }
+
+  Untangling_result untangle(const Seamless_parametrization::Map& rounded, int max_rounds = 60,
+                             int max_iterations = 2000)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    Untangling_result result;
+    result.map = rounded;
+    result.inverted_before = result.inverted_after = inverted_triangles(rounded);
+    if(result.inverted_before == 0 || m_param.reduced_solution().size() == 0) {
+      result.seconds = seconds_since(start);
+      return result;
+    }
+    m_basis = m_param.gradients() * m_param.corner_basis();
+    m_offset = m_param.gradients() * m_param.corner_offset();
+    Eigen::VectorXd y = m_param.reduced_solution();
+    // the parametrisation must be the rounding's: its minimiser is the rounded map
+    const Seamless_parametrization::Map start_map = m_param.map_of(y);
+    for(std::size_t c = 0; c < rounded.corner_uv.size(); ++c)
+      for(int k = 0; k < 2; ++k)
+        CGAL_precondition(std::abs(start_map.corner_uv[c][k] - rounded.corner_uv[c][k]) <=
+                          1e-6 * (1 + std::abs(rounded.corner_uv[c][k])));
+    double eps = 1;
+    int iterations = 0;
+    for(int round = 0; round < max_rounds && iterations < max_iterations; ++round) {
+      const double before = evaluate(y, eps, nullptr);
+      iterations += minimise(y, eps, max_iterations - iterations);
+      const double after = evaluate(y, eps, nullptr);
+      ++result.rounds;
+      const double min_det = minimum_det(y);
+      if(min_det > 0 && std::abs(before - after) <= 1e-5 * after)
+        break;
+      // the paper's schedule: eps follows the minimum det, down to 1e-10 once it is positive
+      const double sigma = std::max(1 - after / before, 0.1);
+      const double mu = (1 - sigma) * chi(min_det, eps);
+      eps = min_det < mu ? 2 * std::sqrt(mu * (mu - min_det)) : 1e-10;
+    }
+    result.iterations = iterations;
+    Seamless_parametrization::Map untangled = m_param.map_of(y);
+    const int inverted = inverted_triangles(untangled);
+    if(inverted < result.inverted_before) {
+      result.map = std::move(untangled);
+      result.inverted_after = inverted;
+      result.applied = true;
+    }
+    result.seconds = seconds_since(start);
+    return result;
+  }
+
+private:
+  static double seconds_since(std::chrono::steady_clock::time_point start)
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  // chi(D, eps) without the cancellation of D + sqrt(eps^2 + D^2) for D << 0
+  static double chi(double D, double eps)
+  {
+    const double root = std::sqrt(eps * eps + D * D);
+    return D >= 0 ? (D + root) / 2 : eps * eps / (2 * (root - D));
+  }
+
+  // the relative Jacobians' entries, 4 per face
+  Eigen::VectorXd jacobians(const Eigen::VectorXd& y) const
+  {
+    Eigen::VectorXd a = m_basis * y + m_offset;
+    for(int f = 0; f < m_nf; ++f)
+      a.segment<4>(4 * f) *= m_scale[f];
+    return a;
+  }
+
+  double minimum_det(const Eigen::VectorXd& y) const
+  {
+    const Eigen::VectorXd a = jacobians(y);
+    double d = std::numeric_limits<double>::infinity();
+    for(int f = 0; f < m_nf; ++f)
+      d = std::min(d, a[4 * f] * a[4 * f + 3] - a[4 * f + 1] * a[4 * f + 2]);
+    return d;
+  }
+
+  // E_eps(y), and its gradient when asked
+  double evaluate(const Eigen::VectorXd& y, double eps, Eigen::VectorXd* gradient) const
+  {
+    const Eigen::VectorXd a = jacobians(y);
+    Eigen::VectorXd da;
+    if(gradient)
+      da.resize(a.size());
+    double energy = 0;
+    for(int f = 0; f < m_nf; ++f) {
+      const double a0 = a[4 * f], a1 = a[4 * f + 1], a2 = a[4 * f + 2], a3 = a[4 * f + 3];
+      const double S = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3, D = a0 * a3 - a1 * a2;
+      const double root = std::sqrt(eps * eps + D * D);
+      const double c = chi(D, eps);
+      const double value = ((1 - m_theta) * S + m_theta * (D * D + 1)) / (2 * c);
+      const Eigen::Vector4d off = a.segment<4>(4 * f) - m_unit_target.segment<4>(4 * f);
+      energy += m_weight[f] * (value + m_fidelity * off.squaredNorm());
+      if(gradient) {
+        // d chi / d D = chi / root; d D / d a = (a3, -a2, -a1, a0)
+        const double along_D = m_theta * D / c - value / root;
+        const double w = m_weight[f] * m_scale[f], s = (1 - m_theta) / c;
+        da[4 * f] = w * (s * a0 + along_D * a3);
+        da[4 * f + 1] = w * (s * a1 - along_D * a2);
+        da[4 * f + 2] = w * (s * a2 - along_D * a1);
+        da[4 * f + 3] = w * (s * a3 + along_D * a0);
+        da.segment<4>(4 * f) += (2 * w * m_fidelity) * off;
+      }
+    }
+    if(gradient)
+      *gradient = m_basis.transpose() * da;
+    return energy;
+  }
+
+  // L-BFGS on E_eps from y, at most `budget` iterations; returns the iterations made
+  int minimise(Eigen::VectorXd& y, double eps, int budget) const
+  {
+    constexpr int memory = 8;
+    std::deque<Eigen::VectorXd> s_list, g_list;
+    std::deque<double> rho_list;
+    Eigen::VectorXd gradient;
+    double energy = evaluate(y, eps, &gradient);
+    int iterations = 0;
+    for(; iterations < budget; ++iterations) {
+      // two-loop recursion, initial inverse Hessian gamma N^-1 (the least squares' normal matrix)
+      Eigen::VectorXd q = gradient;
+      std::vector<double> alpha(s_list.size());
+      for(int k = int(s_list.size()) - 1; k >= 0; --k) {
+        alpha[k] = rho_list[k] * s_list[k].dot(q);
+        q -= alpha[k] * g_list[k];
+      }
+      Eigen::VectorXd r = m_param.solve_normal(q);
+      if(!s_list.empty()) {
+        const Eigen::VectorXd Ng = m_param.solve_normal(g_list.back());
+        r *= s_list.back().dot(g_list.back()) / g_list.back().dot(Ng);
+      }
+      for(std::size_t k = 0; k < s_list.size(); ++k) {
+        const double beta = rho_list[k] * g_list[k].dot(r);
+        r += s_list[k] * (alpha[k] - beta);
+      }
+      Eigen::VectorXd direction = -r;
+      double slope = gradient.dot(direction);
+      if(!(slope < 0)) { // not a descent direction: the preconditioned gradient alone
+        s_list.clear(), g_list.clear(), rho_list.clear();
+        direction = -m_param.solve_normal(gradient);
+        slope = gradient.dot(direction);
+        if(!(slope < 0))
+          break;
+      }
+      // backtracking to the Armijo condition
+      double step = 1;
+      Eigen::VectorXd next, next_gradient;
+      double next_energy = energy;
+      bool found = false;
+      for(int k = 0; k < 40 && !found; ++k, step /= 2) {
+        next = y + step * direction;
+        next_energy = evaluate(next, eps, &next_gradient);
+        found = std::isfinite(next_energy) && next_energy <= energy + 1e-4 * step * slope;
+      }
+      if(!found)
+        break;
+      const Eigen::VectorXd s = next - y, g = next_gradient - gradient;
+      const double sg = s.dot(g);
+      if(sg > 1e-16 * s.norm() * g.norm()) {
+        s_list.push_back(s), g_list.push_back(g), rho_list.push_back(1 / sg);
+        if(int(s_list.size()) > memory)
+          s_list.pop_front(), g_list.pop_front(), rho_list.pop_front();
+      }
+      const double decrease = energy - next_energy;
+      y = next;
+      gradient = next_gradient;
+      energy = next_energy;
+      if(decrease <= 1e-12 * std::abs(energy))
+        break;
+    }
+    return iterations;
+  }
+
+  const Seamless_parametrization& m_param;
+  Eigen::SparseMatrix<double> m_basis;
+  double m_theta, m_fidelity;
+  Eigen::VectorXd m_unit_target; // per face the target's rows over their length: J_f's in the face's frame
+  int m_nf = 0;
+  std::vector<double> m_scale, m_weight;
+  Eigen::VectorXd m_offset;
+};
+
+} // namespace internal
+} // namespace Trivial_connections
+} // namespace CGAL
+
+#endif // CGAL_TRIVIAL_CONNECTIONS_INTERNAL_QUAD_MAP_UNTANGLING_H

@@ -95,6 +95,9 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
     std::ostringstream rounding;
     rounding << std::fixed << std::setprecision(2) << "rounding " << q.report->rounding_seconds << " s, "
              << q.report->solves << " solves on " << q.report->factorizations << " factorizations";
+    if(q.report->inverted_before_untangling > 0)
+      rounding << "; untangling " << q.report->untangling_seconds << " s, " << q.report->inverted_before_untangling
+               << " -> " << q.report->folded_triangles + q.report->degenerate_triangles << " folded and degenerate";
     progress.end("quad mesh", rounding.str());
   }
   return q;

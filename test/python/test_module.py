@@ -1148,6 +1148,23 @@ def test_quad_report_dict_has_every_field_of_the_report():
     assert sorted(report) == sorted([said.get(f, f) for f in fields] + accessors)
 
 
+def test_quad_mesh_untangle_argument():
+    # untangle=False keeps the rounded map: its inverted triangles are the quads' own; by default the quads' are at
+    # most as many (the untangled map is kept only with fewer)
+    V, F, corners = unit_cube(4)
+    solver = tc.Solver(V, F, align_features=True)
+    s = {c: fractions.Fraction(1, 4) for c in corners}
+    result = solver.solve(s, n=4)
+    _, _, kept = solver.quad_mesh(result, s, quad_size=0.3, untangle=False)
+    assert not kept["untangled"]
+    assert kept["inverted_before_untangling"] == kept["folded_triangles"] + kept["degenerate_triangles"]
+    _, _, made = solver.quad_mesh(result, s, quad_size=0.3)
+    assert made["inverted_before_untangling"] == kept["inverted_before_untangling"]
+    assert made["folded_triangles"] + made["degenerate_triangles"] <= made["inverted_before_untangling"]
+    assert made["untangled"] == (made["folded_triangles"] + made["degenerate_triangles"] < made["inverted_before_untangling"])
+    assert made["untangled_energy"] >= made["rounded_energy"] * (1 - 1e-9)
+
+
 def cube_edges_of(V, F):
     """The mesh edges (i, j), i < j, along the cube's twelve edges: both ends on the same two of the cube's planes."""
     on_planes = lambda p: {(a, round(p[a])) for a in range(3) if min(abs(p[a]), abs(p[a] - 1)) < 1e-12}

@@ -305,10 +305,9 @@ public:
   const Eigen::VectorXd& reduced_solution() const { return m_reduced_solution; }
   // For the untangling (Map_untangling): per face 4 rows, sqrt(area) times (grad u, grad v) in the face's frame
   // over the corners' (u, v), and the same rows of the target sqrt(area) (d, J d) e^s / H (s: reduce_curl()'s
-  // scale, 0 without it); the faces' areas
+  // scale, 0 without it)
   const Sparse& gradients() const { return m_gradients; }
   const Eigen::VectorXd& gradient_target() const { return m_target; }
-  const std::vector<double>& face_areas() const { return m_face_area; }
   // The linear constraints on z that hold whatever is fixed (closures around cut vertices, the gauges and the
   // feature lines' loops), as rows (row, unknown, coefficient) of G z = 0 with constraint_count() rows, over the
   // unknowns that are not eliminated: for the rounding layer, which must know which unknowns the integers it

@@ -1021,13 +1021,8 @@ TEST(QuadRounding, KeptFactorMinimisersAreTheFromScratchOnes)
 // Several unknowns fixed per solve (batch_distance): fewer solves, still an integer-grid map above the bound.
 TEST(QuadRounding, BatchedGreedy)
 {
-  const Quad_case q(genus2_soup(3), [] {
-    const int nv = int(genus2_soup(3).points.size());
-    std::vector<int> v;
-    for(int j = 0; j < 8; ++j)
-      v.push_back(j * nv / 8 + 3);
-    return quarters(v, -1);
-  }());
+  const Soup soup = genus2_soup(3);
+  const Quad_case q(soup, genus_two_singularities(soup));
   const double H = 0.2;
   TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H);
   TCI::Integer_rounding rounding(param, q.cut);
@@ -1365,11 +1360,7 @@ TEST(QuadExtraction, SingularSurfaces)
   }
   {
     const Soup soup = genus2_soup(3);
-    const int nv = int(soup.points.size());
-    std::vector<int> v;
-    for(int j = 0; j < 8; ++j)
-      v.push_back(j * nv / 8 + 3);
-    const Quad_case q(soup, quarters(v, -1));
+    const Quad_case q(soup, genus_two_singularities(soup));
     const Extraction_counts c = check_quad_mesh(q, 0.2, "genus 2, eight -1/4");
     if(c.folds == 0) {
       EXPECT_EQ(c.valence_5, 8);
@@ -1815,11 +1806,7 @@ TEST(QuadUntangling, FoldsOfRoundedMaps)
   }
   {
     const Soup soup = genus2_soup(3);
-    const int nv = int(soup.points.size());
-    std::vector<int> v;
-    for(int j = 0; j < 8; ++j)
-      v.push_back(j * nv / 8 + 3);
-    const Quad_case q(soup, quarters(v, -1));
+    const Quad_case q(soup, genus_two_singularities(soup));
     const TCI::Quad_mesh quad = check_untangling(q, 0.2, "genus 2, eight -1/4");
     EXPECT_EQ(quad.folded_triangles + quad.degenerate_triangles, 0);
   }

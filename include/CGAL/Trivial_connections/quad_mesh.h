@@ -164,8 +164,9 @@ the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided d
     mean quad size staying H; 0.1 removes the folds near singularities on bunny00 (see the manual)}
     \cgalParamDefault{0: off} \cgalParamNEnd
   \cgalParamNBegin{quad_untangling} \cgalParamType{`bool`} \cgalParamDescription{a rounded map with folded or
-    degenerate triangles is moved, keeping its integers, to a minimiser of a barrier energy on the triangles'
-    Jacobians (Garanzha et al. 2021), kept when it has fewer of them; the report gives both counts}
+    degenerate triangles is moved, keeping its integers, to a minimiser of its least squares plus a barrier energy
+    (Garanzha et al. 2021) on the triangles that are or were close to inverted, and kept when it has fewer of them;
+    the report gives both counts (see the manual, Untangling)}
     \cgalParamDefault{true} \cgalParamNEnd
   \cgalParamNBegin{edge_is_constrained_map} \cgalParamType{a readable property map `edge_descriptor -> bool`}
     \cgalParamDescription{the feature edges (e.g. the sharp edges of `feature_curves()`): each is put on an integer

@@ -53,10 +53,10 @@ namespace internal {
   stops at its budget. The result is kept only when it has fewer folded and degenerate triangles than the rounded
   map. Its least-squares energy is higher (the rounded map is that energy's minimiser over the same integers).
 
-  Not untangled: a fold-free map can still wind the wrong way around a singular vertex, when its root was rounded
-  further than its one-ring reaches (fandisk at the diagonal / 40: three -1/4 vertices whose one-rings cover a
-  quarter turn instead of five; the extraction then finds valence 1 or 2 there and cells that are not quads).
-  The barrier keeps that winding, as it keeps every orientation it starts from.
+  Not untangled: a fold-free map can still wind the wrong way around a singular vertex (fandisk at the diagonal
+  / 40: three -1/4 vertices whose one-rings cover a quarter turn instead of five; the extraction then finds
+  valence 1 or 2 there and cells that are not quads). The continuous map already winds so there, before any
+  rounding, and the barrier keeps that winding, as it keeps every orientation it starts from.
 */
 
 struct Untangling_result

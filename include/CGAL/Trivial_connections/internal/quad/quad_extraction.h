@@ -55,8 +55,8 @@ namespace internal {
   a simple quad (4 distinct integer points, only pass-through nodes of 2 pieces in between) is reported and
   kept apart, in rejected_polygons, never in faces: the faces are quads only. Where polygons were rejected the
   quad mesh has a hole, counted in open_edges. Nothing of this happens on a fold-free integer-grid map that winds
-  around each singular vertex by its cone angle (one that winds less, its root rounded beyond its one-ring, has
-  the wrong valence there and cells around it that are not quads: map_untangling.h).
+  around each singular vertex by its cone angle (one that winds less has the wrong valence there and cells around
+  it that are not quads: map_untangling.h).
 
   Surfaces with border: every border edge must lie on an integer iso-line of its face's chart (put there by the
   parametrisation's feature flags, for a field aligned with the border); a border that is not is refused with an

@@ -6,6 +6,7 @@
 #ifndef CGAL_TRIVIAL_CONNECTIONS_INTERNAL_QUAD_MAP_UNTANGLING_H
 #define CGAL_TRIVIAL_CONNECTIONS_INTERNAL_QUAD_MAP_UNTANGLING_H
 
+#include <CGAL/Trivial_connections/internal/quad/quad_extraction.h>
 #include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
 
 #include <CGAL/assertions.h>
@@ -13,7 +14,6 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -70,22 +70,6 @@ struct Untangling_result
   double seconds = 0;
 };
 
-// folded (negative (u, v) area) + degenerate (zero) triangles of a map, as extract_quad_mesh() counts them: after
-// snapping every corner coordinate within snap_tolerance of an integer to it
-inline int inverted_triangles(const Seamless_parametrization::Map& map, double snap_tolerance = 1e-6)
-{
-  auto snapped = [&](double x) { return std::abs(x - std::round(x)) <= snap_tolerance ? std::round(x) : x; };
-  int count = 0;
-  for(std::size_t f = 0; 3 * f + 2 < map.corner_uv.size(); ++f) {
-    std::array<std::array<double, 2>, 3> p;
-    for(int k = 0; k < 3; ++k)
-      p[k] = {{snapped(map.corner_uv[3 * f + k][0]), snapped(map.corner_uv[3 * f + k][1])}};
-    if(!((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]) > 0))
-      ++count;
-  }
-  return count;
-}
-
 class Map_untangling
 {
 public:
@@ -116,12 +100,14 @@ public:
     m_basis = m_param.gradients() * m_param.corner_basis();
     m_offset = m_param.gradients() * m_param.corner_offset();
     Eigen::VectorXd y = m_param.reduced_solution();
-    // the parametrisation must be the rounding's: its minimiser is the rounded map
+#ifndef CGAL_NO_PRECONDITIONS
+    // the parametrisation must be the rounding's: its minimiser is the rounded map (a map built for nothing else)
     const Seamless_parametrization::Map start_map = m_param.map_of(y);
     for(std::size_t c = 0; c < rounded.corner_uv.size(); ++c)
       for(int k = 0; k < 2; ++k)
         CGAL_precondition(std::abs(start_map.corner_uv[c][k] - rounded.corner_uv[c][k]) <=
                           1e-6 * (1 + std::abs(rounded.corner_uv[c][k])));
+#endif
     double eps = 1;
     int iterations = 0;
     m_is_active.assign(m_nf, 0);
@@ -174,12 +160,19 @@ private:
     return a;
   }
 
+  // det J_f from the 4 entries a of J_f (grad u, grad v)
+  template <class Entries>
+  static double det(const Entries& a)
+  {
+    return a[0] * a[3] - a[1] * a[2];
+  }
+
   double minimum_det(const Eigen::VectorXd& y) const
   {
     const Eigen::VectorXd a = jacobians(y);
     double d = std::numeric_limits<double>::infinity();
     for(int f = 0; f < m_nf; ++f)
-      d = std::min(d, a[4 * f] * a[4 * f + 3] - a[4 * f + 1] * a[4 * f + 2]);
+      d = std::min(d, det(a.segment<4>(4 * f)));
     return d;
   }
 
@@ -193,7 +186,7 @@ private:
     double energy = (g - m_target).squaredNorm();
     for(int f : m_active) {
       const Eigen::Vector4d a = g.segment<4>(4 * f) * m_scale[f];
-      const double S = a.squaredNorm(), D = a[0] * a[3] - a[1] * a[2];
+      const double S = a.squaredNorm(), D = det(a);
       const double root = std::sqrt(eps * eps + D * D);
       const double c = chi(D, eps);
       const double value = ((1 - m_theta) * S + m_theta * (D * D + 1)) / (2 * c);
@@ -218,7 +211,7 @@ private:
   {
     const Eigen::VectorXd a = jacobians(y);
     for(int f = 0; f < m_nf; ++f)
-      if(!m_is_active[f] && a[4 * f] * a[4 * f + 3] - a[4 * f + 1] * a[4 * f + 2] < active_det) {
+      if(!m_is_active[f] && det(a.segment<4>(4 * f)) < active_det) {
         m_is_active[f] = 1;
         m_active.push_back(f);
       }

@@ -107,6 +107,9 @@ struct Quad_mesh
   int open_edges = 0;            // quad edges in fewer than two faces (fewer than one on the border)
 };
 
+// every corner coordinate within it of an integer is that integer for the extraction (see above)
+inline constexpr double default_snap_tolerance = 1e-6;
+
 namespace quad_extraction_impl {
 
 using UV = Seamless_parametrization::UV;
@@ -145,6 +148,18 @@ struct Grid_map
 
 inline bool is_integer(double x) { return x == std::round(x); }
 
+// x set to the integer nearest to it when within snap_tolerance of it
+inline double snapped(double x, double snap_tolerance)
+{
+  return std::abs(x - std::round(x)) <= snap_tolerance ? std::round(x) : x;
+}
+
+// twice the signed (u, v) area of a triangle: > 0 counter-clockwise, < 0 folded, 0 degenerate
+inline double twice_uv_area(const UV& p, const UV& q, const UV& r)
+{
+  return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+}
+
 // the counter-clockwise angle from a to b, in [0, 2 pi)
 inline double ccw_angle(const UV& a, const UV& b)
 {
@@ -181,6 +196,22 @@ struct Piece
 
 } // namespace quad_extraction_impl
 
+// folded (negative (u, v) area) + degenerate (zero) triangles of a map, as extract_quad_mesh() counts them (after
+// its snapping), without building anything
+inline int inverted_triangles(const Seamless_parametrization::Map& map, double snap_tolerance = default_snap_tolerance)
+{
+  using namespace quad_extraction_impl;
+  int count = 0;
+  for(std::size_t f = 0; 3 * f + 2 < map.corner_uv.size(); ++f) {
+    std::array<UV, 3> p;
+    for(int k = 0; k < 3; ++k)
+      for(int j = 0; j < 2; ++j)
+        p[k][j] = snapped(map.corner_uv[3 * f + k][j], snap_tolerance);
+    count += !(twice_uv_area(p[0], p[1], p[2]) > 0);
+  }
+  return count;
+}
+
 /*
   The quad mesh of the integer-grid map `map` (corner_uv, translation) on the cut graph `cut` it was built on
   (layer 3's result). Throws Invalid_input when the map is not an integer-grid map (a transition that is not a
@@ -191,7 +222,7 @@ struct Piece
 template <class TriangleMesh>
 Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph& cut,
                             const Seamless_parametrization::Map& map, double max_quads = 1e7,
-                            double snap_tolerance = 1e-6)
+                            double snap_tolerance = default_snap_tolerance)
 {
   using namespace quad_extraction_impl;
   using MA = Mesh_arrays<TriangleMesh>;
@@ -207,7 +238,7 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
       const double x = map.corner_uv[c][k];
       if(!std::isfinite(x))
         throw Invalid_input(Error_code::invalid_argument, "the map is not finite at corner " + std::to_string(c));
-      uv[c][k] = std::abs(x - std::round(x)) <= snap_tolerance ? std::round(x) : x;
+      uv[c][k] = snapped(x, snap_tolerance);
     }
 
   // every border edge on an integer iso-line of its face's chart
@@ -231,8 +262,7 @@ Quad_mesh extract_quad_mesh(const Mesh_arrays<TriangleMesh>& m, const Cut_graph&
   std::vector<char> active(m.nf, 0);
   double total_area = 0;
   for(int f = 0; f < m.nf; ++f) {
-    const UV &p = uv[3 * f], &q = uv[3 * f + 1], &r = uv[3 * f + 2];
-    const double twice_area = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+    const double twice_area = twice_uv_area(uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]);
     total_area += std::abs(twice_area) / 2;
     if(twice_area > 0)
       active[f] = 1;

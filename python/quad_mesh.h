@@ -48,6 +48,8 @@ py::dict quad_report_dict(const TC::Quad_mesh_report& r)
   d["untangled"] = r.untangled;
   d["untangled_energy"] = r.untangled_energy;
   d["untangling_seconds"] = r.untangling_seconds;
+  d["wrongly_wound_singularities"] = r.wrongly_wound_singularities;
+  d["branch_points"] = r.branch_points;
   return d;
 }
 
@@ -226,7 +228,9 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
              "continuous_energy, rounded_energy, solves, factorizations, rounding_seconds, naive_rounding_fallback: the "
              "greedy rounding's integers contradicted each other and the naive one made the map, "
              "inverted_before_untangling (the rounded map's folded and degenerate triangles), untangled (the quads "
-             "come from the untangled map), untangled_energy, untangling_seconds). Errors raise InvalidInput "
+             "come from the untangled map), untangled_energy, untangling_seconds, wrongly_wound_singularities (singular "
+             "vertices the map winds around the wrong number of times: each a valence error), branch_points (regular "
+             "vertices it winds around more than once)). Errors raise InvalidInput "
              "(a ValueError).");
   solver.def("move_singularities_off_features", &Python_solver::move_singularities_off_features,
              py::arg("singularities"), py::arg("feature_edges"), py::arg("quad_size") = py::none(),

@@ -249,6 +249,9 @@ inline void print_quads(std::ostream& out, const Options& o, const Quads& quads)
       << " H (quads to input " << fixed(r.hausdorff_quads_to_input / r.quad_size, 3) << " H, input to quads "
       << fixed(r.hausdorff_input_to_quads / r.quad_size, 3) << " H); on iso-lines: " << r.feature_edges
       << " feature edges, border corners " << r.border_corners;
+  if(r.wrongly_wound_singularities + r.branch_points > 0)
+    out << "; wound the wrong number of times: " << r.wrongly_wound_singularities << " singular vertices, "
+        << r.branch_points << " branch points";
   if(r.naive_rounding_fallback)
     out << "; rounding: naive (the greedy rounding's integers contradicted each other)";
   if(r.inverted_before_untangling > 0 && !o.no_untangle)

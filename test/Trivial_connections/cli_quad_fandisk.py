@@ -15,6 +15,7 @@
 #  - the rounded map untangled (its 18 folded triangles at this H): the report says how many the rounded map had,
 #    and the quads' counts beat those of the rounded map (the program with --no-untangle: 18 folded, 6 valence
 #    errors, Hausdorff 0.974 H).
+#  - the singular vertices the map winds around the wrong number of times (reported) are among the valence errors.
 # What is left (issue 43): valence errors at singular vertices around which the map winds the wrong way (already
 # before rounding); the counts are measured, not zero.
 # Exits 77 (skipped) when CGAL's data is absent.
@@ -139,6 +140,10 @@ check(float(r.group(7)) < 1.064, f"Hausdorff input -> quads {r.group(7)} H < 1.0
 u = re.search(r"untangling: (\d+) folded and degenerate triangles in the rounded map, (\d+) after it", line.group(0))
 check(u is not None and int(u.group(2)) == folded + degenerate and int(u.group(1)) > folded + degenerate,
       f"the untangling is reported and removed folds: {u.group(0) if u else line.group(0)}")
+w = re.search(r"wound the wrong number of times: (\d+) singular vertices, (\d+) branch points", line.group(0))
+wound = int(w.group(1)) if w else 0
+check(wound <= valence_errors,
+      f"each singular vertex the map winds around the wrong number of times ({wound}) is a valence error ({valence_errors})")
 check(folded + degenerate < 18, f"folded triangles {folded} (degenerate {degenerate}) < 18, the rounded map's")
 check(valence_errors < 6, f"valence errors {valence_errors} < 6, the rounded map's")
 check(float(r.group(7)) < 0.974, f"Hausdorff input -> quads {r.group(7)} H < 0.974 H, the rounded map's")

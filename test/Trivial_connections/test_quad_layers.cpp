@@ -1739,6 +1739,45 @@ TEST(QuadFeatures, Fandisk)
 
 // ---- Between layers 3 and 4: the untangling ----
 
+// The winding around every interior vertex (uv_windings()): the (u, v) angles of its corners, folded triangles
+// counted negative, sum to the turning of its link, 2 pi (1 - k) plus whole turns (the quarter turns of the
+// transitions around it are -4k modulo 4), unless a degenerate triangle has a zero-length edge. On a closed surface
+// the whole turns add up to minus the folded triangles: the angles of all corners sum to pi (F+ - F-), those of
+// the indices to pi F (Poincare-Hopf, 3F = 2E), so a fold-free map that winds a turn less around one vertex winds
+// a turn more around another. A fold-free map that winds once around every vertex has only quads, of valence
+// 4 - 4 k at every integer point (the extraction's definition). Returns the vertices wound otherwise.
+int check_winding(const Quad_case& q, const TCI::Seamless_parametrization::Map& map, const TCI::Quad_mesh& quad,
+                  const std::string& name)
+{
+  const std::vector<long long> k4 = scaled_indices(q.view.nv(), q.singularities, 4);
+  const std::vector<double> sum = TCI::uv_windings(q.arrays, map).angle_sum;
+  int wrong = 0;
+  long total_turns = 0;
+  bool closed = true;
+  for(int v = 0; v < q.arrays.nv; ++v) {
+    if(q.geometry.on_boundary[std::size_t(v)]) {
+      closed = false;
+      continue;
+    }
+    const double turns = (sum[std::size_t(v)] - 2 * CGAL_PI * (1 - double(k4[std::size_t(v)]) / 4)) / (2 * CGAL_PI);
+    if(quad.degenerate_triangles == 0)
+      EXPECT_NEAR(turns, std::round(turns), 1e-9) << name << ": vertex " << v;
+    wrong += std::lround(turns) != 0;
+    total_turns += std::lround(turns);
+  }
+  if(closed && quad.degenerate_triangles == 0)
+    EXPECT_EQ(total_turns, -quad.folded_triangles) << name;
+  if(wrong == 0 && quad.folded_triangles + quad.degenerate_triangles == 0) {
+    EXPECT_EQ(quad.non_quads, 0) << name;
+    for(std::size_t p = 0; p < quad.valence.size(); ++p) {
+      const int v = quad.locations[p].mesh_vertex;
+      if(!quad.on_border[p])
+        EXPECT_EQ(quad.valence[p], 4 - (v >= 0 ? k4[std::size_t(v)] : 0)) << name << ": integer point " << p;
+    }
+  }
+  return wrong;
+}
+
 // The untangled map of a greedy rounding, checked from the definitions: the same integers (every singular corner
 // the same integer point, the same roots and translations), still an integer-grid map across every cut edge, the
 // feature edges still on their iso-lines, no closer to the field than the rounded map (the least-squares minimiser
@@ -1759,6 +1798,8 @@ TCI::Quad_mesh check_untangling(const Quad_case& q, double H, const std::string&
             << " (" << u.rounds << " rounds, " << u.iterations << " iterations, " << u.seconds << " s), energy "
             << rounded.map.energy << " -> " << u.map.energy << "; other polygons " << before.non_quads << " -> "
             << after.non_quads << ", open edges " << before.open_edges << " -> " << after.open_edges << "\n";
+  std::cout << name << ": vertices wound the wrong number of times: " << check_winding(q, rounded.map, before, name + " (rounded)")
+            << " in the rounded map, " << check_winding(q, u.map, after, name) << " in the untangled one\n";
   if(u.inverted_before == 0) {
     EXPECT_FALSE(u.applied) << name;
     return after;

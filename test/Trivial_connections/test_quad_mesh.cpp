@@ -197,6 +197,7 @@ void check_cube(const Solved& cube, int k, const std::string& name)
   EXPECT_EQ(r.number_of_quads, c.faces);
   EXPECT_EQ(r.number_of_vertices, c.vertices);
   EXPECT_EQ(r.valence_errors, 0u);
+  EXPECT_EQ(r.wrongly_wound_singularities, 0u);
   EXPECT_EQ(r.valence_histogram.at(3), 8u);
   EXPECT_EQ(r.folded_triangles + r.degenerate_triangles + r.rejected_polygons + r.open_edges, 0u);
   EXPECT_EQ(r.flipped_quads, 0u);
@@ -265,6 +266,7 @@ TEST(QuadMesh, TorusAllValenceFour)
     EXPECT_EQ(c.unpaired, 0u);
     EXPECT_EQ(c.euler, 0);
     EXPECT_EQ(r.valence_errors, 0u);
+    EXPECT_EQ(r.wrongly_wound_singularities, 0u);
     EXPECT_EQ(r.flipped_quads, 0u);
   }
   EXPECT_LE(r.hausdorff_distance(), H / 2);
@@ -288,6 +290,7 @@ TEST(QuadMesh, SphereEightValenceThree)
     EXPECT_EQ(c.unpaired, 0u);
     EXPECT_EQ(c.euler, 2);
     EXPECT_EQ(r.valence_errors, 0u);
+    EXPECT_EQ(r.wrongly_wound_singularities, 0u);
     EXPECT_EQ(r.flipped_quads, 0u);
     // every quad faces out: its vector area along the sphere's normal (the position) at its centre
     int inward = 0;

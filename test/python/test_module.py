@@ -1163,6 +1163,8 @@ def test_quad_mesh_untangle_argument():
     assert made["folded_triangles"] + made["degenerate_triangles"] <= made["inverted_before_untangling"]
     assert made["untangled"] == (made["folded_triangles"] + made["degenerate_triangles"] < made["inverted_before_untangling"])
     assert made["untangled_energy"] >= made["rounded_energy"] * (1 - 1e-9)
+    # a singular vertex the map winds around the wrong number of times cannot have its valence
+    assert 0 <= made["wrongly_wound_singularities"] <= made["valence_errors"]
 
 
 def cube_edges_of(V, F):

@@ -94,6 +94,16 @@ struct Quad_mesh_report
   bool untangled = false;                  ///< the quads come from the untangled map (fewer inverted triangles)
   double untangled_energy = 0;             ///< the parametrisation's energy of that map (`rounded_energy` if not)
   double untangling_seconds = 0;           ///< the untangling's wall time (seconds)
+  /// interior singular vertices, with no folded or degenerate triangle around them, that the map winds around
+  /// the wrong number of times: the (u, v) angles of their corners sum to 2 pi (1 - k), k their index, plus or
+  /// minus whole turns (fandisk: a quarter turn instead of five around some -1/4 vertices). The least squares
+  /// already wind so there, before any rounding, and the untangling keeps the winding it starts from. Each is a
+  /// valence error (manual, \ref TCQuadUntangling)
+  std::size_t wrongly_wound_singularities = 0;
+  /// interior regular vertices, with no folded or degenerate triangle around them, that the map winds around more
+  /// than once (their angles sum to 4 pi or more): where the missing turn of a wrongly wound singular vertex went.
+  /// The cells around them are not quads
+  std::size_t branch_points = 0;
 
   /// the Hausdorff distance: the larger of the two one-sided distances
   /// \returns `max(hausdorff_quads_to_input, hausdorff_input_to_quads)`
@@ -291,6 +301,17 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   report.untangled = made.untangling.applied;
   report.untangled_energy = made.untangling.map.energy;
   report.untangling_seconds = made.untangling.seconds;
+  {
+    const internal::Uv_windings winding = internal::uv_windings(m, made.untangling.map);
+    for(int v = 0; v < m.nv; ++v) {
+      if(g.on_boundary[std::size_t(v)] || winding.beside_inverted[std::size_t(v)])
+        continue;
+      const double k = double(k4[std::size_t(v)]) / 4;
+      const long turns = std::lround((winding.angle_sum[std::size_t(v)] - 2 * CGAL_PI * (1 - k)) / (2 * CGAL_PI));
+      if(turns != 0)
+        ++(k != 0 ? report.wrongly_wound_singularities : report.branch_points);
+    }
+  }
   report.feature_edges = feature_edges;
 
   // the soup: the integer points in some quad, in the extraction's order

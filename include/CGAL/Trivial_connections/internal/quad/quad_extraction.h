@@ -212,6 +212,46 @@ inline int inverted_triangles(const Seamless_parametrization::Map& map, double s
   return count;
 }
 
+// The winding of a map around each vertex: the sum of the (u, v) angles of its corners (signed: negative in a
+// folded triangle), after the extraction's snapping. It is the turning of the vertex's link, a whole number of
+// turns plus the quarter turns of the transitions around it: 2 pi (1 - k) plus whole turns at an interior vertex
+// of index k. A fold-free map winds once around each vertex, as its index says; one that winds a turn less
+// around a singular vertex (fandisk: a quarter turn instead of five around some -1/4) and a turn more around a
+// regular vertex nearby (a branch point: 4 pi) is fold-free too, but its iso-lines cannot make the valence 4 - 4 k
+// there (the quads have valence errors and cells that are not quads).
+struct Uv_windings
+{
+  std::vector<double> angle_sum;      // per vertex
+  std::vector<char> beside_inverted;  // per vertex: a corner in a folded or degenerate triangle (the sum then
+                                      // says nothing about the winding of the map's sheets)
+};
+
+template <class TriangleMesh>
+Uv_windings uv_windings(const Mesh_arrays<TriangleMesh>& m, const Seamless_parametrization::Map& map,
+                        double snap_tolerance = default_snap_tolerance)
+{
+  using namespace quad_extraction_impl;
+  CGAL_precondition(map.corner_uv.size() == std::size_t(3 * m.nf));
+  Uv_windings w;
+  w.angle_sum.assign(std::size_t(m.nv), 0.);
+  w.beside_inverted.assign(std::size_t(m.nv), 0);
+  for(int f = 0; f < m.nf; ++f) {
+    std::array<UV, 3> p;
+    for(int k = 0; k < 3; ++k)
+      for(int j = 0; j < 2; ++j)
+        p[k][j] = snapped(map.corner_uv[std::size_t(3 * f + k)][j], snap_tolerance);
+    const bool inverted = !(twice_uv_area(p[0], p[1], p[2]) > 0);
+    for(int k = 0; k < 3; ++k) {
+      const UV &o = p[k], &a = p[(k + 1) % 3], &b = p[(k + 2) % 3];
+      const double ax = a[0] - o[0], ay = a[1] - o[1], bx = b[0] - o[0], by = b[1] - o[1];
+      const std::size_t v = std::size_t(m.corner_vertex[3 * f + k]);
+      w.angle_sum[v] += std::atan2(ax * by - ay * bx, ax * bx + ay * by);
+      w.beside_inverted[v] = w.beside_inverted[v] || inverted;
+    }
+  }
+  return w;
+}
+
 /*
   The quad mesh of the integer-grid map `map` (corner_uv, translation) on the cut graph `cut` it was built on
   (layer 3's result). Throws Invalid_input when the map is not an integer-grid map (a transition that is not a

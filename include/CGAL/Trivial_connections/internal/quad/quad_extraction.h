@@ -154,6 +154,16 @@ inline double snapped(double x, double snap_tolerance)
   return std::abs(x - std::round(x)) <= snap_tolerance ? std::round(x) : x;
 }
 
+// the (u, v) of face f's three corners in `map`, each coordinate snapped
+inline std::array<UV, 3> snapped_face(const Seamless_parametrization::Map& map, std::size_t f, double snap_tolerance)
+{
+  std::array<UV, 3> p;
+  for(int k = 0; k < 3; ++k)
+    for(int j = 0; j < 2; ++j)
+      p[k][j] = snapped(map.corner_uv[3 * f + k][j], snap_tolerance);
+  return p;
+}
+
 // twice the signed (u, v) area of a triangle: > 0 counter-clockwise, < 0 folded, 0 degenerate
 inline double twice_uv_area(const UV& p, const UV& q, const UV& r)
 {
@@ -203,10 +213,7 @@ inline int inverted_triangles(const Seamless_parametrization::Map& map, double s
   using namespace quad_extraction_impl;
   int count = 0;
   for(std::size_t f = 0; 3 * f + 2 < map.corner_uv.size(); ++f) {
-    std::array<UV, 3> p;
-    for(int k = 0; k < 3; ++k)
-      for(int j = 0; j < 2; ++j)
-        p[k][j] = snapped(map.corner_uv[3 * f + k][j], snap_tolerance);
+    const std::array<UV, 3> p = snapped_face(map, f, snap_tolerance);
     count += !(twice_uv_area(p[0], p[1], p[2]) > 0);
   }
   return count;
@@ -236,10 +243,7 @@ Uv_windings uv_windings(const Mesh_arrays<TriangleMesh>& m, const Seamless_param
   w.angle_sum.assign(std::size_t(m.nv), 0.);
   w.beside_inverted.assign(std::size_t(m.nv), 0);
   for(int f = 0; f < m.nf; ++f) {
-    std::array<UV, 3> p;
-    for(int k = 0; k < 3; ++k)
-      for(int j = 0; j < 2; ++j)
-        p[k][j] = snapped(map.corner_uv[std::size_t(3 * f + k)][j], snap_tolerance);
+    const std::array<UV, 3> p = snapped_face(map, std::size_t(f), snap_tolerance);
     const bool inverted = !(twice_uv_area(p[0], p[1], p[2]) > 0);
     for(int k = 0; k < 3; ++k) {
       const UV &o = p[k], &a = p[(k + 1) % 3], &b = p[(k + 2) % 3];

@@ -56,7 +56,9 @@ namespace internal {
   Not untangled: a fold-free map can still wind the wrong way around a singular vertex (fandisk at the diagonal
   / 40: three -1/4 vertices whose one-rings cover a quarter turn instead of five; the extraction then finds
   valence 1 or 2 there and cells that are not quads). The continuous map already winds so there, before any
-  rounding, and the barrier keeps that winding, as it keeps every orientation it starts from.
+  rounding (its one-ring is dominated by the harmonic z^(-k) of finite energy, manual: Untangling). Nor does
+  the untangling hold a winding it starts from: only the active faces carry the barrier, and a face not yet active
+  can pass through det = 0 within a round (it joins the barrier at the next one).
 */
 
 struct Untangling_result

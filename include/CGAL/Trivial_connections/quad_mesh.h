@@ -97,7 +97,7 @@ struct Quad_mesh_report
   /// interior singular vertices, with no folded or degenerate triangle around them, that the map winds around
   /// the wrong number of times: the (u, v) angles of their corners sum to 2 pi (1 - k), k their index, plus or
   /// minus whole turns (fandisk: a quarter turn instead of five around some -1/4 vertices). The least squares
-  /// already wind so there, before any rounding, and the untangling keeps the winding it starts from. Each is a
+  /// already wind so there, before any rounding; the untangling winds some of them right, not all. Each is a
   /// valence error (manual, \ref TCQuadUntangling)
   std::size_t wrongly_wound_singularities = 0;
   /// interior regular vertices, with no folded or degenerate triangle around them, that the map winds around more

@@ -16,6 +16,7 @@
 #include <CGAL/Trivial_connections/internal/quad/integer_rounding.h>
 #include <CGAL/Trivial_connections/internal/quad/kept_factor_fixing.h>
 #include <CGAL/Trivial_connections/internal/quad/map_untangling.h>
+#include <CGAL/Trivial_connections/internal/quad/quad_mesh_pipeline.h>
 #include <CGAL/Trivial_connections/internal/quad/quad_extraction.h>
 #include <CGAL/Trivial_connections/internal/quad/seamless_parametrization.h>
 #include <CGAL/Trivial_connections/feature_alignment.h>
@@ -1834,6 +1835,58 @@ TCI::Quad_mesh check_untangling(const Quad_case& q, double H, const std::string&
     EXPECT_TRUE(on_line) << name << ": feature edge " << e << " is not on an integer iso-line";
   }
   return after;
+}
+
+// quad_cone_mode_weight (the pipeline's two stages): on the layers' warped torus and genus-2 surface the map of
+// the single stage winds a turn less around a -1/4 vertex (the least squares use its harmonic z^(1/4)). With the
+// cone modes penalised and the rightly wound one-rings held, every singular vertex is wound as its index asks
+// (the (u, v) angles of its corners, uv_windings(), from the definitions) and the map is still an integer-grid map.
+// On genus 2 the map is then fold-free and wound once around every vertex (check_winding()). On the warped torus,
+// whose triangles are larger than H, the continuous untangling keeps one fold beside vertex 150 that its held
+// one-ring blocks (without the hold it unfolds and winds 150 wrongly again): a limit of the stages, printed.
+TEST(QuadUntangling, ConeModes)
+{
+  auto run = [](const Quad_case& q, double H, double weight) {
+    std::vector<int> singular;
+    const std::vector<long long> k4 = scaled_indices(q.view.nv(), q.singularities, 4);
+    for(int v = 0; v < q.arrays.nv; ++v)
+      if(k4[std::size_t(v)] != 0)
+        singular.push_back(v);
+    TCI::Quad_field field{q.angle, q.connection};
+    return TCI::quad_mesh_pipeline(q.arrays, q.geometry, field, singular, k4, H, TCI::Rounding_scheme::greedy, 1e7,
+                                   {}, 0., true, weight);
+  };
+  const Quad_case torus(warped(torus_soup(3, 1, 24, 12)), {{5, Index(1, 4)}, {150, Index(-1, 4)}});
+  const Soup soup = genus2_soup(3);
+  const Quad_case genus2(soup, genus_two_singularities(soup));
+  for(const auto& [q, H, name] : {std::make_tuple(&torus, 0.3, std::string("warped torus")),
+                                  std::make_tuple(&genus2, 0.2, std::string("genus 2"))}) {
+    const TCI::Quad_pipeline_result plain = run(*q, H, 0);
+    const TCI::Quad_pipeline_result modes = run(*q, H, 30);
+    const int wrong_plain = check_winding(*q, plain.untangling.map, plain.mesh, name + " (single stage)");
+    const int wrong = check_winding(*q, modes.untangling.map, modes.mesh, name + " (cone modes)");
+    std::cout << name << ": wrongly wound vertices " << wrong_plain << " -> " << wrong << ", folded and degenerate "
+              << plain.mesh.folded_triangles + plain.mesh.degenerate_triangles << " -> "
+              << modes.mesh.folded_triangles + modes.mesh.degenerate_triangles << ", valence errors (non-quads) "
+              << plain.mesh.non_quads << " -> " << modes.mesh.non_quads << "\n";
+    EXPECT_GT(wrong_plain, 0) << name << ": the case no longer shows what the stages are for";
+    const std::vector<long long> k4 = scaled_indices(q->view.nv(), q->singularities, 4);
+    const TCI::Uv_windings winding = TCI::uv_windings(q->arrays, modes.untangling.map);
+    for(int v = 0; v < q->arrays.nv; ++v)
+      if(k4[std::size_t(v)] != 0) {
+        const double turns = (winding.angle_sum[std::size_t(v)] - 2 * CGAL_PI * (1 - double(k4[std::size_t(v)]) / 4)) /
+                             (2 * CGAL_PI);
+        EXPECT_FALSE(winding.beside_inverted[std::size_t(v)]) << name << ": singular vertex " << v;
+        EXPECT_NEAR(turns, 0., 1e-9) << name << ": singular vertex " << v;
+      }
+    if(name == "genus 2") {
+      EXPECT_EQ(wrong, 0) << name;
+      EXPECT_EQ(modes.mesh.folded_triangles + modes.mesh.degenerate_triangles, 0) << name;
+    }
+    EXPECT_TRUE(modes.cone_modes) << name;
+    EXPECT_LT(integer_grid_error(*q, modes.untangling.map), 1e-7) << name;
+    EXPECT_LT(transition_error(*q, modes.untangling.map), 1e-7) << name;
+  }
 }
 
 // The rounded maps of the layers' meshes that fold (a singular root moved to an integer point drags only its

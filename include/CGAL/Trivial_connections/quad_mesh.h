@@ -97,8 +97,8 @@ struct Quad_mesh_report
   /// interior singular vertices, with no folded or degenerate triangle around them, that the map winds around
   /// the wrong number of times: the (u, v) angles of their corners sum to 2 pi (1 - k), k their index, plus or
   /// minus whole turns (fandisk: a quarter turn instead of five around some -1/4 vertices). The least squares
-  /// already wind so there, before any rounding; the untangling winds some of them right, not all. Each is a
-  /// valence error (manual, \ref TCQuadUntangling)
+  /// already wind so there, before any rounding (`quad_cone_mode_weight` changes that); the untangling winds some of
+  /// them right, not all. Each is a valence error (manual, \ref TCQuadUntangling)
   std::size_t wrongly_wound_singularities = 0;
   /// interior regular vertices, with no folded or degenerate triangle around them, that the map winds around more
   /// than once (their angles sum to 4 pi or more): where the missing turn of a wrongly wound singular vertex went.
@@ -178,6 +178,13 @@ the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided d
     (Garanzha et al. 2021) on the triangles that are or were close to inverted, and kept when it has fewer of them;
     the report gives both counts (see the manual, Untangling)}
     \cgalParamDefault{true} \cgalParamNEnd
+  \cgalParamNBegin{quad_cone_mode_weight} \cgalParamType{`double`} \cgalParamDescription{W > 0: the map is made
+    to wind around every singular vertex as its index asks (the valence errors of `wrongly_wound_singularities`),
+    in two stages: the least squares penalise, with weight W, the harmonics of the singular vertices' one-rings
+    that wind a turn less or fold; the continuous map is untangled with the one-rings it winds right held by a
+    strict barrier; the integers are rounded against that map's gradients; the rounded map is untangled against
+    the field with its rightly wound one-rings held. Measured on fandisk and bunny00 in the manual (Untangling),
+    where 30 is used; the reported energies include the penalty} \cgalParamDefault{0: off} \cgalParamNEnd
   \cgalParamNBegin{edge_is_constrained_map} \cgalParamType{a readable property map `edge_descriptor -> bool`}
     \cgalParamDescription{the feature edges (e.g. the sharp edges of `feature_curves()`): each is put on an integer
     iso-line, so that quad edges follow it. The field must be aligned with them (as `feature_aligned_faces()`
@@ -208,6 +215,9 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   const double max_quads = double(choose_parameter(get_parameter(np, tc_np::max_quads), 1e7));
   const double scale_smoothness = double(choose_parameter(get_parameter(np, tc_np::quad_scale_smoothness), 0.));
   const bool untangle = choose_parameter(get_parameter(np, tc_np::quad_untangling), true);
+  const double cone_mode_weight = double(choose_parameter(get_parameter(np, tc_np::quad_cone_mode_weight), 0.));
+  if(!(cone_mode_weight >= 0) || !std::isfinite(cone_mode_weight))
+    throw Invalid_input(Error_code::invalid_argument, "quad_cone_mode_weight must be a non-negative finite number");
   if(!(scale_smoothness >= 0) || !std::isfinite(scale_smoothness))
     throw Invalid_input(Error_code::invalid_argument, "quad_scale_smoothness must be a non-negative finite number");
   if(!(max_quads >= 1) || !std::isfinite(max_quads))
@@ -264,7 +274,8 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
       }
   }
   const internal::Quad_pipeline_result made =
-    internal::quad_mesh_pipeline(m, g, q, singular, H, scheme, max_quads, feature_corners, scale_smoothness, untangle);
+    internal::quad_mesh_pipeline(m, g, q, singular, k4, H, scheme, max_quads, feature_corners, scale_smoothness,
+                                 untangle, cone_mode_weight);
   const internal::Quad_mesh& quads = made.mesh;
   const internal::Quad_measures measures = internal::measure_quad_mesh(m, quads, H / 4);
 

@@ -83,11 +83,25 @@ public:
   {
     CGAL_precondition(theta >= 0 && theta <= 1);
     const Eigen::VectorXd& target = param.gradient_target();
-    m_nf = int(target.size() / 4);
+    m_nf = param.number_of_faces(); // rows after the faces' (Seamless_parametrization::penalise_cone_modes()) have no Jacobian
     m_scale.resize(m_nf);
     for(int f = 0; f < m_nf; ++f) // |target row| = sqrt(area) e^s / H: the gradient rows over it are J_f, rotated
       m_scale[f] = 1 / std::hypot(target[4 * f], target[4 * f + 1]);
     m_target = target;
+  }
+
+  /*
+    The faces (of the one-rings of singular vertices the start winds right) whose winding must not change: they are
+    in the barrier from the start, with eps at most `eps` in every round (a strict barrier: no minimiser crosses
+    det = 0 from det > 0), while the others follow the schedule. Each must have a positive det in the start.
+  */
+  void hold(const std::vector<int>& faces, double eps = 1e-6)
+  {
+    CGAL_precondition(eps > 0);
+    m_held.assign(m_nf, 0);
+    for(int f : faces)
+      m_held[f] = 1;
+    m_held_eps = eps;
   }
 
   Untangling_result untangle(const Seamless_parametrization::Map& rounded, int max_rounds = 60,
@@ -116,6 +130,11 @@ public:
     int iterations = 0;
     m_is_active.assign(m_nf, 0);
     m_active.clear();
+    for(int f = 0; f < int(m_held.size()); ++f)
+      if(m_held[f]) {
+        m_is_active[f] = 1;
+        m_active.push_back(f);
+      }
     for(int round = 0; round < max_rounds && iterations < max_iterations; ++round) {
       activate(y);
       const double before = evaluate(y, eps, nullptr);
@@ -188,7 +207,9 @@ private:
     if(gradient)
       dg = 2 * (g - m_target);
     double energy = (g - m_target).squaredNorm();
+    const double schedule_eps = eps;
     for(int f : m_active) {
+      const double eps = !m_held.empty() && m_held[f] ? std::min(schedule_eps, m_held_eps) : schedule_eps;
       const Eigen::Vector4d a = g.segment<4>(4 * f) * m_scale[f];
       const double S = a.squaredNorm(), D = det(a);
       const double root = std::sqrt(eps * eps + D * D);
@@ -294,6 +315,8 @@ private:
   int m_nf = 0;
   std::vector<double> m_scale;
   Eigen::VectorXd m_offset;
+  std::vector<char> m_held; // per face: in hold()
+  double m_held_eps = 1;
 };
 
 } // namespace internal

@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -68,6 +69,24 @@ Quad_field quad_field(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g
   return q;
 }
 
+// The faces around the singular vertices that `map` winds around as their index asks (the (u, v) angles sum to
+// 2 pi (1 - k)) with no folded or degenerate triangle beside them: for Map_untangling::hold()
+template <class TriangleMesh>
+std::vector<int> rightly_wound_one_rings(const Mesh_arrays<TriangleMesh>& m, const std::vector<int>& singular,
+                                         const std::vector<long long>& k4, const Seamless_parametrization::Map& map)
+{
+  const Uv_windings w = uv_windings(m, map);
+  std::vector<char> right(std::size_t(m.nv), 0);
+  for(int v : singular)
+    right[std::size_t(v)] = !w.beside_inverted[std::size_t(v)] &&
+                            std::abs(w.angle_sum[std::size_t(v)] - 2 * CGAL_PI * (1 - double(k4[std::size_t(v)]) / 4)) < CGAL_PI;
+  std::vector<int> faces;
+  for(int c = 0; c < 3 * m.nf; ++c)
+    if(right[std::size_t(m.source_of(c))])
+      faces.push_back(c / 3);
+  return faces;
+}
+
 struct Quad_pipeline_result
 {
   Quad_mesh mesh;
@@ -75,20 +94,29 @@ struct Quad_pipeline_result
   int integer_unknowns = 0, solves = 0, factorizations = 0, arcs = 0;
   double rounding_seconds = 0;
   bool naive_fallback = false; // the greedy rounding was infeasible and the naive one made the map
+  bool cone_modes = false;      // the map of the cone-mode stages (cone_mode_weight > 0)
+  Untangling_result continuous_untangling; // with cone_mode_weight > 0: the continuous map's
   Untangling_result untangling; // the map the quads come from: the rounded one, or moved out of its folds
 };
 
-// singular: the singular vertices (array numbering), each once; H > 0 the quad size; max_quads the bound of
+// singular: the singular vertices (array numbering), each once, and k4 their indices times 4 (per vertex, 0
+// elsewhere); H > 0 the quad size; max_quads the bound of
 // the extraction; feature_corners: empty, or per corner halfedge whether its edge is a feature edge, put on an
 // integer iso-line like every border edge; scale_smoothness > 0: the target scaled per face first
 // (Seamless_parametrization::reduce_curl()); untangle: a rounded map with folded or degenerate triangles is moved
-// out of them where the integers allow it (Map_untangling). Throws Invalid_input as the layers do.
+// out of them where the integers allow it (Map_untangling); cone_mode_weight > 0: the map made to wind around every
+// singular vertex as its index asks, in two stages (manual: Untangling). The least squares penalise the one-rings'
+// harmonics that wind wrongly (Seamless_parametrization::penalise_cone_modes()); the continuous map is untangled,
+// its rightly wound singular one-rings held; the rounding fits that map's gradients, so that its integers are those
+// near a fold-free map; and the rounded map is untangled against the field again with its rightly wound one-rings
+// held. Throws Invalid_input as the layers do.
 template <class TriangleMesh>
 Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, const Mesh_geometry& g,
-                                        const Quad_field& field, const std::vector<int>& singular, double H,
-                                        Rounding_scheme scheme, double max_quads,
-                                        const std::vector<char>& feature_corners = {}, double scale_smoothness = 0,
-                                        bool untangle = true)
+                                        const Quad_field& field, const std::vector<int>& singular,
+                                        const std::vector<long long>& k4, double H, Rounding_scheme scheme,
+                                        double max_quads, const std::vector<char>& feature_corners = {},
+                                        double scale_smoothness = 0, bool untangle = true,
+                                        double cone_mode_weight = 0)
 {
   const std::vector<int> matching = cross_field_matching(m, g, field.angle, field.connection);
   const Cut_graph cut = build_cut_graph(m, g, matching, singular);
@@ -103,11 +131,41 @@ Quad_pipeline_result quad_mesh_pipeline(const Mesh_arrays<TriangleMesh>& m, cons
   Seamless_parametrization parametrization(m, cut, field.angle, H, any ? on_iso_line : std::vector<char>());
   if(scale_smoothness > 0)
     parametrization.reduce_curl(scale_smoothness);
-  Integer_rounding rounding(parametrization, cut);
-  const Integer_rounding_result rounded = rounding.round(scheme);
   Quad_pipeline_result result;
+  Eigen::VectorXd field_target; // the field's target and the cone modes' zeros
+  double continuous_energy = 0;
+  if(cone_mode_weight > 0) {
+    std::vector<std::pair<int, int>> cones;
+    for(int v : singular)
+      cones.emplace_back(v, int(k4[std::size_t(v)]));
+    parametrization.penalise_cone_modes(m, cones, cone_mode_weight);
+    field_target = parametrization.gradient_target();
+    parametrization.clear_fixed();
+    const Seamless_parametrization::Map continuous = parametrization.solve();
+    continuous_energy = continuous.energy;
+    Map_untangling stage(parametrization);
+    stage.hold(rightly_wound_one_rings(m, singular, k4, continuous));
+    result.continuous_untangling = stage.untangle(continuous);
+    Eigen::VectorXd corners(6 * std::size_t(m.nf));
+    for(int c = 0; c < 3 * m.nf; ++c)
+      for(int k = 0; k < 2; ++k)
+        corners[2 * c + k] = result.continuous_untangling.map.corner_uv[std::size_t(c)][std::size_t(k)];
+    parametrization.set_gradient_target(parametrization.gradients() * corners);
+    result.cone_modes = true;
+  }
+  Integer_rounding rounding(parametrization, cut);
+  Integer_rounding_result rounded = rounding.round(scheme);
+  if(cone_mode_weight > 0) {
+    // back to the field: the energies, and the untangling's, are the field's (with the cone modes') again
+    parametrization.set_gradient_target(field_target);
+    rounded.map.energy = parametrization.map_of(parametrization.reduced_solution()).energy;
+    rounded.continuous_energy = continuous_energy;
+  }
   if(untangle) {
-    result.untangling = Map_untangling(parametrization).untangle(rounded.map);
+    Map_untangling untangling(parametrization);
+    if(cone_mode_weight > 0)
+      untangling.hold(rightly_wound_one_rings(m, singular, k4, rounded.map));
+    result.untangling = untangling.untangle(rounded.map);
   } else {
     result.untangling.map = rounded.map;
     result.untangling.inverted_before = result.untangling.inverted_after = inverted_triangles(rounded.map);

@@ -244,7 +244,7 @@ public:
       for(int f = 0; f < m_nf; ++f)
         for(int i = 0; i < 4; ++i)
           t.emplace_back(4 * f + i, ny + f, -m_target[4 * f + i]);
-      int row = 4 * m_nf;
+      int row = int(M.rows()); // after the faces' rows those of penalise_cone_modes(), if any
       std::vector<double> rhs(r.data(), r.data() + r.size());
       for(const auto& p : m_face_pairs) {
         const double w = std::sqrt(smoothness * p.weight);
@@ -289,6 +289,125 @@ public:
         m_target[4 * f + i] = unscaled[4 * f + i] * scale[f];
     }
     return scale;
+  }
+
+  /*
+    Cone modes (manual: Untangling). Around an interior vertex v of index k, in the cone's coordinate
+    zeta = r e^{i phi} (phi the angle around v scaled to 2 pi), a map with v's transitions, written in the chart of
+    v's root relative to v's value (w = u + i v, the chart's quarter turn R = i), is a sum of harmonics
+    e^{i (j - k) phi} over integers j. The cone wanted, zeta^(1 - k), is j = 1. zeta^(-k) (j = 0) winds a turn less
+    and has finite energy for k < 0 although its gradient grows without bound at v; conj(zeta)^(1 + k) (j = -1)
+    folds at v. The least squares use them to follow the field's asymmetry around v.
+    cone_harmonic_rows(): rows (2 per harmonic j of `harmonics`, real then imaginary part, from first_row) over the
+    corners' (u, v) (the columns of gradients()): the one-ring's trapezoidal Fourier coefficient
+    (1 / 2 pi) sum over the ring of (w - w_v) e^{-i (j - k) phi} d phi, each ring value divided by
+    (|p - v| / mean)^((1 - k) 2 pi / angle sum) so that the samples of zeta^(1 - k) have one amplitude; times factor.
+    v must be an interior vertex.
+  */
+  template <class TriangleMesh>
+  void cone_harmonic_rows(const Mesh_arrays<TriangleMesh>& m, int v, int k4, const std::vector<int>& harmonics,
+                          int first_row, double factor, std::vector<Eigen::Triplet<double>>& out) const
+  {
+    using MA = Mesh_arrays<TriangleMesh>;
+    int first = -1;
+    for(int c = 0; c < 3 * m_nf && first < 0; ++c)
+      if(m.source_of(c) == v)
+        first = c;
+    CGAL_precondition(first >= 0);
+    std::vector<int> fan;
+    for(int c = first;;) {
+      fan.push_back(c);
+      const int next = m.opposite_corner[MA::prev_corner(c)];
+      CGAL_precondition(next >= 0);
+      if(next == first)
+        break;
+      c = next;
+    }
+    std::vector<double> angle(fan.size());
+    double total = 0, mean_radius = 0;
+    for(std::size_t t = 0; t < fan.size(); ++t) {
+      const Vec3 a = sub(m.points[m.target_of(fan[t])], m.points[v]);
+      const Vec3 b = sub(m.points[m.source_of(MA::prev_corner(fan[t]))], m.points[v]);
+      angle[t] = angle_between(a, b);
+      total += angle[t];
+      mean_radius += norm(a) / double(fan.size());
+    }
+    const double k = k4 / 4.;
+    const double exponent = (1 - k) * 2 * CGAL_PI / total;
+    for(std::size_t h = 0; h < harmonics.size(); ++h) {
+      const double nu = harmonics[h] - k;
+      const int row = first_row + 2 * int(h);
+      double phi = 0;
+      for(std::size_t t = 0; t < fan.size(); ++t) {
+        const int c = fan[t];
+        const int turns = m_wedge_expression[m_wedge_of_corner[c]].turns; // face chart = R^turns root chart
+        const double delta = 2 * CGAL_PI * angle[t] / total;
+        // the face's two ring corners: the halfedge's target at phi, the previous corner's source at phi + delta
+        const std::array<int, 2> ring = {{MA::next_corner(c), MA::prev_corner(c)}};
+        for(int s = 0; s < 2; ++s) {
+          const double r = norm(sub(m.points[m.source_of(ring[s])], m.points[v])) / mean_radius;
+          // beta = factor (delta / 2) e^{-i nu phi_s} i^{-turns} / (2 pi r^exponent): Re(beta w) = re u - im v,
+          // Im(beta w) = im u + re v, for the ring corner and, negated, for v's corner of the same face
+          const double magnitude = factor * delta / 2 / (2 * CGAL_PI * std::pow(r, exponent));
+          const double argument = -nu * (phi + s * delta) - turns * CGAL_PI / 2;
+          const double re = magnitude * std::cos(argument), im = magnitude * std::sin(argument);
+          for(const auto& [corner, sign] : {std::pair<int, double>(ring[s], 1.), std::pair<int, double>(c, -1.)}) {
+            out.emplace_back(row, 2 * corner, sign * re);
+            out.emplace_back(row, 2 * corner + 1, -sign * im);
+            out.emplace_back(row + 1, 2 * corner, sign * im);
+            out.emplace_back(row + 1, 2 * corner + 1, sign * re);
+          }
+        }
+        phi += delta;
+      }
+    }
+  }
+
+  /*
+    Appends to the least squares, per singular vertex (vertex, 4k) with 0 < |k| < 1, the rows of its wrongly
+    winding harmonics (j = 0, and j = -1 for k < 0) times sqrt(weight): every later solve(), rounding and
+    untangling sees them, and Map::energy includes them. Call before the first solve.
+  */
+  template <class TriangleMesh>
+  void penalise_cone_modes(const Mesh_arrays<TriangleMesh>& m, const std::vector<std::pair<int, int>>& cones,
+                           double weight)
+  {
+    CGAL_precondition(weight >= 0);
+    std::vector<Eigen::Triplet<double>> t;
+    for(int k = 0; k < m_gradients.outerSize(); ++k)
+      for(Sparse::InnerIterator it(m_gradients, k); it; ++it)
+        t.emplace_back(int(it.row()), int(it.col()), it.value());
+    int rows = int(m_gradients.rows());
+    for(const auto& [v, k4] : cones) {
+      if(k4 == 0 || k4 <= -4 || k4 >= 4)
+        continue;
+      const std::vector<int> harmonics = k4 < 0 ? std::vector<int>{0, -1} : std::vector<int>{0};
+      cone_harmonic_rows(m, v, k4, harmonics, rows, std::sqrt(weight), t);
+      rows += 2 * int(harmonics.size());
+    }
+    m_gradients.resize(rows, m_gradients.cols());
+    m_gradients.setFromTriplets(t.begin(), t.end());
+    const Eigen::VectorXd old = m_target;
+    m_target = Eigen::VectorXd::Zero(rows);
+    m_target.head(old.size()) = old;
+  }
+
+  int number_of_faces() const { return m_nf; }
+
+  /*
+    Replaces the target of the least squares (gradient_target(), all rows). The factor of the last factor() stays
+    valid (the normal matrix does not depend on the target) and so does reduced_solution() (the minimiser for the
+    old target: a map to start from); the right-hand side becomes the new target's, so that the energies of
+    map_of() and the next minimisers refer to it.
+  */
+  void set_gradient_target(const Eigen::VectorXd& target)
+  {
+    CGAL_precondition(target.size() == m_target.size());
+    m_target = target;
+    if(m_least_squares.cols() == 0 && m_least_squares.rows() == 0)
+      return; // not factored yet
+    m_least_squares_rhs = m_target - m_gradients * m_corner_offset;
+    m_normal_rhs = m_least_squares.transpose() * m_least_squares_rhs;
   }
 
   // After factor(): the kept unknowns z_kept = variable_basis() y + variable_offset() over the reduced unknowns y

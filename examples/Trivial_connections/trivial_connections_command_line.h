@@ -53,7 +53,8 @@ inline const char* const usage_text =
   "                           [--auto] [--no-refine] [--align-curvature] [--alignment-strength S]\n"
   "                           [--refine] [--cancel-pairs] [--write-singularities OUT]\n"
   "                           [--quad-mesh OUT.obj (--quad-size H | --target-faces N)\n"
-  "                            [--quad-scale-smoothness S] [--no-untangle]] [--progress] [--error-codes]\n"
+  "                            [--quad-scale-smoothness S] [--no-untangle] [--quad-cone-modes W]]\n"
+  "                            [--progress] [--error-codes]\n"
   "                           [--help] [--version]\n"
   "\n"
   "Computes the trivial connection closest to Levi-Civita on a triangle mesh, with the prescribed\n"
@@ -150,6 +151,10 @@ inline const char* const usage_text =
   "  --no-untangle         (with --quad-mesh) keep the rounded map as it is: by default a map with\n"
   "                        folded or degenerate triangles is moved out of them, its integers kept\n"
   "                        (a barrier energy; kept when it has fewer; reported)\n"
+  "  --quad-cone-modes W   (with --quad-mesh) W > 0: make the map wind around every singular vertex as\n"
+  "                        its index asks (quad_cone_mode_weight: the wrongly winding harmonics of the\n"
+  "                        singular one-rings penalised with weight W, the continuous map untangled\n"
+  "                        first and the integers rounded against it; 30 on fandisk). Default 0: off\n"
   "  --error-codes         the error line names the error code: 'trivial_connections: error [CODE]: ...'\n"
   "                        (CODE: an error code of the library, usage_error, out_of_memory or internal_error)\n"
   "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
@@ -218,6 +223,7 @@ struct Options
   std::size_t target_faces = 0; // --target-faces N (0: not given)
   double quad_scale_smoothness = -1; // --quad-scale-smoothness S (-1: not given)
   bool no_untangle = false;  // --no-untangle
+  double quad_cone_modes = 0; // --quad-cone-modes W
 };
 
 using String_field = std::string Options::*;
@@ -263,6 +269,14 @@ inline void parse_quad_scale_smoothness(Options& o, const std::string& text)
   if(text.empty() || end != text.c_str() + text.size() || !(o.quad_scale_smoothness >= 0) ||
      !std::isfinite(o.quad_scale_smoothness))
     throw Usage_error("--quad-scale-smoothness expects a non-negative finite number, got '" + text + "'");
+}
+
+inline void parse_quad_cone_modes(Options& o, const std::string& text)
+{
+  char* end = nullptr;
+  o.quad_cone_modes = std::strtod(text.c_str(), &end);
+  if(text.empty() || end != text.c_str() + text.size() || !(o.quad_cone_modes >= 0) || !std::isfinite(o.quad_cone_modes))
+    throw Usage_error("--quad-cone-modes expects a non-negative finite number, got '" + text + "'");
 }
 
 inline void parse_target_faces(Options& o, const std::string& text)
@@ -325,7 +339,7 @@ struct Valued_option
 };
 
 // The options that take a value. Each may be given once, as `--name value` or `--name=value`.
-inline const std::array<Valued_option, 23> valued_options = {{
+inline const std::array<Valued_option, 24> valued_options = {{
   {"--write-mesh", &Options::write_mesh, nullptr},
   {"--write-singularities", &Options::write_singularities, nullptr},
   {"--write-constraints", &Options::write_constraints, nullptr},
@@ -349,6 +363,7 @@ inline const std::array<Valued_option, 23> valued_options = {{
   {"--quad-size", nullptr, parse_quad_size},
   {"--target-faces", nullptr, parse_target_faces},
   {"--quad-scale-smoothness", nullptr, parse_quad_scale_smoothness},
+  {"--quad-cone-modes", nullptr, parse_quad_cone_modes},
 }};
 
 inline bool same_file(const std::string& a, const std::string& b)
@@ -502,6 +517,8 @@ inline Options parse_arguments(int argc, char** argv)
     throw Usage_error("--quad-scale-smoothness is an option of --quad-mesh");
   if(o.quad_mesh.empty() && o.no_untangle)
     throw Usage_error("--no-untangle is an option of --quad-mesh");
+  if(o.quad_mesh.empty() && o.quad_cone_modes > 0)
+    throw Usage_error("--quad-cone-modes is an option of --quad-mesh");
   if(!o.quad_mesh.empty() && o.n != 4)
     throw Usage_error("--quad-mesh needs a cross field: --n 4 (got --n " + std::to_string(o.n) + ")");
   if(!o.quad_mesh.empty() && (o.quad_size > 0) == (o.target_faces > 0))

@@ -88,9 +88,9 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
   q.scale_smoothness = scaling;
   q.report = o.quad_size > 0
                ? TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
-                                       P::quad_untangling(!o.no_untangle, P::quad_scale_smoothness(scaling, P::quad_size(o.quad_size).edge_is_constrained_map(features))))
+                                       P::quad_cone_mode_weight(o.quad_cone_modes, P::quad_untangling(!o.no_untangle, P::quad_scale_smoothness(scaling, P::quad_size(o.quad_size).edge_is_constrained_map(features)))))
                : TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
-                                       P::quad_untangling(!o.no_untangle, P::quad_scale_smoothness(scaling, P::target_faces(o.target_faces).edge_is_constrained_map(features))));
+                                       P::quad_cone_mode_weight(o.quad_cone_modes, P::quad_untangling(!o.no_untangle, P::quad_scale_smoothness(scaling, P::target_faces(o.target_faces).edge_is_constrained_map(features)))));
   {
     std::ostringstream rounding;
     rounding << std::fixed << std::setprecision(2) << "rounding " << q.report->rounding_seconds << " s, "

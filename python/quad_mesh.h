@@ -49,6 +49,7 @@ py::dict quad_report_dict(const TC::Quad_mesh_report& r)
   d["untangled_energy"] = r.untangled_energy;
   d["untangling_seconds"] = r.untangling_seconds;
   d["wrongly_wound_singularities"] = r.wrongly_wound_singularities;
+  d["cone_modes"] = r.cone_modes;
   d["branch_points"] = r.branch_points;
   return d;
 }
@@ -92,7 +93,8 @@ std::vector<char> feature_edges_of(const Mesh& mesh, const py::object& pairs)
 // the quads of the cross field of `result` (with its singularities): (vertices (k, 3), quads (q, 4), report)
 py::tuple Python_solver::quad_mesh(const Result& result, const py::object& singularities, const py::object& quad_size,
                                    const py::object& target_faces, const std::string& rounding, double max_quads,
-                                   const py::object& feature_edges, double scale_smoothness, bool untangle)
+                                   const py::object& feature_edges, double scale_smoothness, bool untangle,
+                                   double cone_mode_weight)
 {
   const Singularities s = singularities_of(singularities);
   const auto singular = vertex_descriptors(*m_mesh, s);
@@ -125,8 +127,9 @@ py::tuple Python_solver::quad_mesh(const Result& result, const py::object& singu
     namespace P = TC::parameters;
     // (a negative or non-finite S is refused by compute_quad_mesh(): invalid_argument)
     const auto common =
-      P::quad_untangling(untangle, P::quad_scale_smoothness(scale_smoothness,
-                                                            P::max_quads(max_quads, P::quad_rounding(scheme, P::symmetry_order(n)))))
+      P::quad_cone_mode_weight(cone_mode_weight,
+        P::quad_untangling(untangle, P::quad_scale_smoothness(scale_smoothness,
+                                                              P::max_quads(max_quads, P::quad_rounding(scheme, P::symmetry_order(n))))))
         .edge_is_constrained_map(feature_map);
     return N > 0 ? TC::compute_quad_mesh(*m_mesh, x_map, field_map, singular, quads,
                                          P::target_faces(std::size_t(N), common))
@@ -209,7 +212,7 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
   solver.def("quad_mesh", &Python_solver::quad_mesh, py::arg("result"), py::arg("singularities"),
              py::arg("quad_size") = py::none(), py::arg("target_faces") = py::none(), py::arg("rounding") = "greedy",
              py::arg("max_quads") = 1e7, py::arg("feature_edges") = py::none(), py::arg("scale_smoothness") = 0.,
-             py::arg("untangle") = true,
+             py::arg("untangle") = true, py::arg("cone_mode_weight") = 0.,
              "The quad mesh of result's cross field (n = 4) with its singularities: quad_size H (the quads' edge "
              "length) or target_faces N (H = sqrt(area / N)), one of them; rounding \"greedy\" or \"naive\"; more "
              "than max_quads quads is refused. feature_edges: edges put on integer iso-lines so that quad edges "
@@ -220,7 +223,9 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
              "make it closer to a gradient (C++ quad_scale_smoothness, the program's --quad-scale-smoothness; 0: "
              "not scaled; the program tries 0.1 by itself when its quads have flaws, this call does not). untangle: a "
              "rounded map with folded or degenerate triangles is moved out of them, its integers kept (C++ "
-             "quad_untangling; False: the rounded map as it is). Returns "
+             "quad_untangling; False: the rounded map as it is). cone_mode_weight W > 0: the map made to wind around "
+             "every singular vertex as its index asks, in two stages (C++ quad_cone_mode_weight, the program's "
+             "--quad-cone-modes; 0: off). Returns "
              "(vertices (k, 3), quads (q, 4) counter-clockwise, report dict: "
              "quad_size, quads, vertices, integer_points, valence_histogram, valence_errors, border_corners, "
              "feature_edges, folded_triangles, degenerate_triangles, rejected_polygons, open_edges, dangling_edges, "
@@ -230,7 +235,7 @@ void bind_quad_mesh(py::class_<Python_solver>& solver)
              "inverted_before_untangling (the rounded map's folded and degenerate triangles), untangled (the quads "
              "come from the untangled map), untangled_energy, untangling_seconds, wrongly_wound_singularities (singular "
              "vertices the map winds around the wrong number of times: each a valence error), branch_points (regular "
-             "vertices it winds around more than once)). Errors raise InvalidInput "
+             "vertices it winds around more than once), cone_modes (the map comes from those two stages)). Errors raise InvalidInput "
              "(a ValueError).");
   solver.def("move_singularities_off_features", &Python_solver::move_singularities_off_features,
              py::arg("singularities"), py::arg("feature_edges"), py::arg("quad_size") = py::none(),

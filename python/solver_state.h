@@ -55,7 +55,8 @@ public:
   // the quads of the cross field of `result`: (vertices, quads, report)
   py::tuple quad_mesh(const Result& result, const py::object& singularities, const py::object& quad_size,
                       const py::object& target_faces, const std::string& rounding, double max_quads,
-                      const py::object& feature_edges, double scale_smoothness, bool untangle);
+                      const py::object& feature_edges, double scale_smoothness, bool untangle,
+                      double cone_mode_weight);
   // the singularities closer than H to a feature edge moved H away: (singularities, report)
   py::tuple move_singularities_off_features(const py::object& singularities, const py::object& feature_edges,
                                             const py::object& quad_size, const py::object& target_faces,

@@ -252,6 +252,8 @@ inline void print_quads(std::ostream& out, const Options& o, const Quads& quads)
   if(r.wrongly_wound_singularities + r.branch_points > 0)
     out << "; wound the wrong number of times: " << r.wrongly_wound_singularities << " singular vertices, "
         << r.branch_points << " branch points";
+  if(r.cone_modes)
+    out << "; cone modes (weight " << o.quad_cone_modes << "): the continuous map untangled first";
   if(r.naive_rounding_fallback)
     out << "; rounding: naive (the greedy rounding's integers contradicted each other)";
   if(r.inverted_before_untangling > 0 && !o.no_untangle)

@@ -1165,6 +1165,13 @@ def test_quad_mesh_untangle_argument():
     assert made["untangled_energy"] >= made["rounded_energy"] * (1 - 1e-9)
     # a singular vertex the map winds around the wrong number of times cannot have its valence
     assert 0 <= made["wrongly_wound_singularities"] <= made["valence_errors"]
+    assert not made["cone_modes"]
+    # the two stages of cone_mode_weight: reported, and the cube's eight +1/4 corners wound as their index asks
+    _, _, staged = solver.quad_mesh(result, s, quad_size=0.3, cone_mode_weight=30)
+    assert staged["cone_modes"]
+    assert staged["wrongly_wound_singularities"] == 0
+    with pytest.raises(tc.InvalidInput):
+        solver.quad_mesh(result, s, quad_size=0.3, cone_mode_weight=-1)
 
 
 def cube_edges_of(V, F):

@@ -94,6 +94,9 @@ struct Quad_mesh_report
   bool untangled = false;                  ///< the quads come from the untangled map (fewer inverted triangles)
   double untangled_energy = 0;             ///< the parametrisation's energy of that map (`rounded_energy` if not)
   double untangling_seconds = 0;           ///< the untangling's wall time (seconds)
+  /// the map comes from the two stages of `quad_cone_mode_weight` (its untangling of the continuous map included
+  /// in `untangling_seconds`)
+  bool cone_modes = false;
   /// interior singular vertices, with no folded or degenerate triangle around them, that the map winds around
   /// the wrong number of times: the (u, v) angles of their corners sum to 2 pi (1 - k), k their index, plus or
   /// minus whole turns (fandisk: a quarter turn instead of five around some -1/4 vertices). The least squares
@@ -311,7 +314,8 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
   report.inverted_before_untangling = std::size_t(made.untangling.inverted_before);
   report.untangled = made.untangling.applied;
   report.untangled_energy = made.untangling.map.energy;
-  report.untangling_seconds = made.untangling.seconds;
+  report.untangling_seconds = made.untangling.seconds + made.continuous_untangling.seconds;
+  report.cone_modes = made.cone_modes;
   {
     const internal::Uv_windings winding = internal::uv_windings(m, made.untangling.map);
     for(int v = 0; v < m.nv; ++v) {

@@ -159,6 +159,7 @@ class Solver:
         feature_edges: Optional[Union[npt.ArrayLike, Sequence[Tuple[int, int]]]] = None,
         scale_smoothness: float = 0.0,
         untangle: bool = True,
+        cone_mode_weight: float = 0.0,
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Dict[str, Any]]: ...
     def move_singularities_off_features(
         self,

@@ -132,18 +132,35 @@ int run(const Options& o, Progress_printer& progress)
       solution = solve(o, in, solver, solver_progress, time);
     }
   }
+  if(o.quad_cone_modes < 0 && quads.report && quads.report->wrongly_wound_singularities > 0) {
+    // A singular vertex wound the wrong number of times is a valence error that the map's least squares already
+    // make (manual, Untangling): the map made to wind as the indices ask, kept when it has fewer flaws (elephant
+    // has more with it)
+    std::optional<Quads> wound;
+    try {
+      wound = make_quad_mesh(o, in, solution, progress, time, quads.scale_smoothness, automatic_quad_cone_mode_weight);
+    } catch(const TC::Invalid_input&) {
+      // a rounding fitted to another map can be infeasible where the first was not: the first quads stay
+    }
+    if(wound && quad_flaws(*wound) < quad_flaws(quads)) {
+      wound->flaws_without_cone_modes = quad_flaws(quads);
+      quads = std::move(*wound);
+    }
+  }
   if(o.quad_scale_smoothness < 0 && quad_flaws(quads) > 0) {
     // The folds around the singularities of fine organic meshes go with the field scaled per face (bunny00 at
     // 3,000 quads: 29 folded triangles -> 0), which elsewhere only makes the quads' sizes uneven (fandisk: the
     // Hausdorff distance 0.60 -> 0.75 H): tried when the quads have flaws, kept when it has fewer (the same field)
     std::optional<Quads> scaled;
     try {
-      scaled = make_quad_mesh(o, in, solution, progress, time, automatic_quad_scale_smoothness);
+      scaled = make_quad_mesh(o, in, solution, progress, time, automatic_quad_scale_smoothness,
+                              quads.cone_mode_weight);
     } catch(const TC::Invalid_input&) {
       // the rounding of the scaled map can be infeasible (fandisk with its feature lines at 6,000 quads)
     }
     if(scaled && quad_flaws(*scaled) < quad_flaws(quads)) {
       scaled->flaws_unscaled = quad_flaws(quads);
+      scaled->flaws_without_cone_modes = quads.flaws_without_cone_modes;
       quads = std::move(*scaled);
     }
   }

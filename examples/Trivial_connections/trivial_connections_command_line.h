@@ -154,7 +154,9 @@ inline const char* const usage_text =
   "  --quad-cone-modes W   (with --quad-mesh) W > 0: make the map wind around every singular vertex as\n"
   "                        its index asks (quad_cone_mode_weight: the wrongly winding harmonics of the\n"
   "                        singular one-rings penalised with weight W, the continuous map untangled\n"
-  "                        first and the integers rounded against it; 30 on fandisk). Default 0: off\n"
+  "                        first and the integers rounded against it). Not given: tried with W = 30\n"
+  "                        when the quads have wrongly wound singular vertices, kept if they have\n"
+  "                        fewer flaws (reported). 0: never\n"
   "  --error-codes         the error line names the error code: 'trivial_connections: error [CODE]: ...'\n"
   "                        (CODE: an error code of the library, usage_error, out_of_memory or internal_error)\n"
   "  --progress            print each phase and the elapsed time to stderr (the default when stderr\n"
@@ -223,7 +225,7 @@ struct Options
   std::size_t target_faces = 0; // --target-faces N (0: not given)
   double quad_scale_smoothness = -1; // --quad-scale-smoothness S (-1: not given)
   bool no_untangle = false;  // --no-untangle
-  double quad_cone_modes = 0; // --quad-cone-modes W
+  double quad_cone_modes = -1; // --quad-cone-modes W (-1: not given)
 };
 
 using String_field = std::string Options::*;
@@ -517,7 +519,7 @@ inline Options parse_arguments(int argc, char** argv)
     throw Usage_error("--quad-scale-smoothness is an option of --quad-mesh");
   if(o.quad_mesh.empty() && o.no_untangle)
     throw Usage_error("--no-untangle is an option of --quad-mesh");
-  if(o.quad_mesh.empty() && o.quad_cone_modes > 0)
+  if(o.quad_mesh.empty() && o.quad_cone_modes >= 0)
     throw Usage_error("--quad-cone-modes is an option of --quad-mesh");
   if(!o.quad_mesh.empty() && o.n != 4)
     throw Usage_error("--quad-mesh needs a cross field: --n 4 (got --n " + std::to_string(o.n) + ")");

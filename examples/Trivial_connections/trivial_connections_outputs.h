@@ -70,9 +70,10 @@ inline std::vector<face_descriptor> streamline_seeds(const Inputs& in, std::size
 }
 
 // --quad-mesh: the quads of the cross field, computed before any file is written (an error leaves no file)
-// scale_smoothness: quad_scale_smoothness (negative: --quad-scale-smoothness, off when not given)
+// scale_smoothness: quad_scale_smoothness, cone_mode_weight: quad_cone_mode_weight (negative: the option's, off
+// when not given)
 inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& s, Progress_printer& progress,
-                            Timings& time, double scale_smoothness = -1)
+                            Timings& time, double scale_smoothness = -1, double cone_mode_weight = -1)
 {
   Quads q;
   if(o.quad_mesh.empty())
@@ -86,11 +87,13 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
   const auto features = boost::make_iterator_property_map(sharp.begin(), get(boost::edge_index, in.mesh));
   const double scaling = (std::max)(scale_smoothness >= 0 ? scale_smoothness : o.quad_scale_smoothness, 0.);
   q.scale_smoothness = scaling;
+  const double cone_modes = (std::max)(cone_mode_weight >= 0 ? cone_mode_weight : o.quad_cone_modes, 0.);
+  q.cone_mode_weight = cone_modes;
   q.report = o.quad_size > 0
                ? TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
-                                       P::quad_cone_mode_weight(o.quad_cone_modes, P::quad_untangling(!o.no_untangle, P::quad_scale_smoothness(scaling, P::quad_size(o.quad_size).edge_is_constrained_map(features)))))
+                                       P::quad_cone_mode_weight(cone_modes, P::quad_untangling(!o.no_untangle, P::quad_scale_smoothness(scaling, P::quad_size(o.quad_size).edge_is_constrained_map(features)))))
                : TC::compute_quad_mesh(in.mesh, s.x, s.field, in.singularities, q.mesh,
-                                       P::quad_cone_mode_weight(o.quad_cone_modes, P::quad_untangling(!o.no_untangle, P::quad_scale_smoothness(scaling, P::target_faces(o.target_faces).edge_is_constrained_map(features)))));
+                                       P::quad_cone_mode_weight(cone_modes, P::quad_untangling(!o.no_untangle, P::quad_scale_smoothness(scaling, P::target_faces(o.target_faces).edge_is_constrained_map(features)))));
   {
     std::ostringstream rounding;
     rounding << std::fixed << std::setprecision(2) << "rounding " << q.report->rounding_seconds << " s, "
@@ -106,6 +109,10 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
 // the quad_scale_smoothness tried when the quads made without it have flaws and --quad-scale-smoothness is not given
 // (bunny00: 0.03 to 0.3 remove its 29 folded triangles at 3,000 quads, 1 leaves one, 3 six)
 inline constexpr double automatic_quad_scale_smoothness = 0.1;
+
+// the quad_cone_mode_weight tried when the quads made without it have wrongly wound singular vertices and
+// --quad-cone-modes is not given (fandisk with its feature lines, 8 quad sizes: 2 or 3 valence errors -> 0 or 1)
+inline constexpr double automatic_quad_cone_mode_weight = 30;
 
 // what the program counts against a quad mesh: folded and degenerate triangles of the map, valence errors
 inline std::size_t quad_flaws(const Quads& q)

@@ -253,7 +253,10 @@ inline void print_quads(std::ostream& out, const Options& o, const Quads& quads)
     out << "; wound the wrong number of times: " << r.wrongly_wound_singularities << " singular vertices, "
         << r.branch_points << " branch points";
   if(r.cone_modes)
-    out << "; cone modes (weight " << o.quad_cone_modes << "): the continuous map untangled first";
+    out << "; cone modes (weight " << quads.cone_mode_weight << "): the continuous map untangled first";
+  if(quads.flaws_without_cone_modes > 0)
+    out << "; without them " << quads.flaws_without_cone_modes
+        << " folded and degenerate triangles and valence errors";
   if(r.naive_rounding_fallback)
     out << "; rounding: naive (the greedy rounding's integers contradicted each other)";
   if(r.inverted_before_untangling > 0 && !o.no_untangle)

@@ -110,6 +110,8 @@ struct Quads
   Mesh mesh;
   double scale_smoothness = 0;     // the quad_scale_smoothness they were made with
   std::size_t flaws_unscaled = 0;  // when tried automatically: the flaws of the quads without the scale
+  double cone_mode_weight = 0;     // the quad_cone_mode_weight they were made with
+  std::size_t flaws_without_cone_modes = 0; // when tried automatically: the flaws of the quads without them
 };
 
 struct Timings

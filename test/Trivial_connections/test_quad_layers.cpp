@@ -23,6 +23,7 @@
 #include <CGAL/Trivial_connections/singularity_placement.h>
 
 #include <chrono>
+#include <complex>
 
 namespace {
 
@@ -1844,6 +1845,128 @@ TCI::Quad_mesh check_untangling(const Quad_case& q, double H, const std::string&
 // On genus 2 the map is then fold-free and wound once around every vertex (check_winding()). On the warped torus,
 // whose triangles are larger than H, the continuous untangling keeps one fold beside vertex 150 that its held
 // one-ring blocks (without the hold it unfolds and winds 150 wrongly again): a limit of the stages, printed.
+// The one-ring's Fourier coefficients (1 / 2 pi) sum of (w - w_v) e^{-i (j - k) phi} d phi (trapezoidal, each ring
+// value divided by (r / mean)^((1 - k) 2 pi / angle sum)), computed here from the corners' (u, v) alone: the ring
+// differences of each face brought into the chart of the fan's first face by the quarter turn that matches the two
+// copies of the edge it shares with the previous face (the map is seamless: they differ by exactly that).
+std::vector<std::complex<double>> independent_cone_coefficients(const Quad_case& q,
+                                                                const std::vector<std::array<double, 2>>& uv, int v,
+                                                                int k4, const std::vector<int>& harmonics)
+{
+  using MA = TCI::Mesh_arrays<Surface_mesh>;
+  const MA& m = q.arrays;
+  int first = -1;
+  for(int c = 0; c < 3 * m.nf && first < 0; ++c)
+    if(m.source_of(c) == v)
+      first = c;
+  std::vector<int> fan;
+  for(int c = first;;) {
+    fan.push_back(c);
+    c = m.opposite_corner[MA::prev_corner(c)];
+    if(c == first)
+      break;
+  }
+  const auto w = [&](int c) { return std::complex<double>(uv[std::size_t(c)][0], uv[std::size_t(c)][1]); };
+  const auto at = [&](int c) { return m.points[m.source_of(c)]; };
+  std::vector<std::array<std::complex<double>, 2>> d;
+  std::vector<std::array<double, 2>> radius;
+  std::vector<double> angle;
+  double total = 0, mean = 0;
+  std::complex<double> chart(1, 0);
+  for(std::size_t t = 0; t < fan.size(); ++t) {
+    const int c = fan[t], a = MA::next_corner(c), b = MA::prev_corner(c);
+    const V3 ea = Quad_case::q_sub(at(a), at(c)), eb = Quad_case::q_sub(at(b), at(c));
+    angle.push_back(std::acos(std::clamp(TCI::dot(ea, eb) / (norm(ea) * norm(eb)), -1., 1.)));
+    total += angle.back();
+    mean += norm(ea) / double(fan.size());
+    radius.push_back({{norm(ea), norm(eb)}});
+    if(t > 0) { // this face's copy of the shared edge against the previous face's, both in their own charts
+      const std::complex<double> turn = d.back()[1] / (w(a) - w(c));
+      const double quarter = std::round(std::arg(turn) / (CGAL_PI / 2));
+      EXPECT_NEAR(std::abs(turn - std::polar(1., quarter * CGAL_PI / 2)), 0., 1e-8) << "vertex " << v;
+      chart = std::polar(1., quarter * CGAL_PI / 2);
+    }
+    d.push_back({{chart * (w(a) - w(c)), chart * (w(b) - w(c))}});
+  }
+  const double k = k4 / 4., exponent = (1 - k) * 2 * CGAL_PI / total;
+  std::vector<std::complex<double>> coefficient;
+  for(int j : harmonics) {
+    std::complex<double> sum = 0;
+    double phi = 0;
+    for(std::size_t t = 0; t < fan.size(); ++t) {
+      const double delta = 2 * CGAL_PI * angle[t] / total;
+      for(int s = 0; s < 2; ++s)
+        sum += delta / 2 * d[t][std::size_t(s)] * std::polar(1., -(j - k) * (phi + s * delta)) /
+               std::pow(radius[t][std::size_t(s)] / mean, exponent);
+      phi += delta;
+    }
+    coefficient.push_back(sum / (2 * CGAL_PI));
+  }
+  return coefficient;
+}
+
+// Seamless_parametrization::cone_harmonic_rows() computes those coefficients (in the root's chart: the same up to
+// one quarter turn per vertex), and penalise_cone_modes() lowers the penalised ones as the weight grows (the
+// penalty of a weighted least squares never rises with its weight) while the cone's own, j = 1, stays.
+TEST(QuadUntangling, ConeHarmonicRows)
+{
+  const Soup soup = genus2_soup(3);
+  const Quad_case q(soup, genus_two_singularities(soup));
+  const std::vector<long long> k4 = scaled_indices(q.view.nv(), q.singularities, 4);
+  std::vector<std::pair<int, int>> cones;
+  for(int v = 0; v < q.arrays.nv; ++v)
+    if(k4[std::size_t(v)] != 0)
+      cones.emplace_back(v, int(k4[std::size_t(v)]));
+  ASSERT_FALSE(cones.empty());
+  const double H = 0.2;
+  const std::vector<int> harmonics = {1, 0, -1};
+  double previous_penalty = std::numeric_limits<double>::infinity(), first_penalty = 0, last_penalty = 0;
+  double first_cone = 0;
+  for(double weight : {0., 1., 10., 100., 1000.}) {
+    TCI::Seamless_parametrization param(q.arrays, q.cut, q.angle, H);
+    if(weight > 0)
+      param.penalise_cone_modes(q.arrays, cones, weight);
+    const TCI::Seamless_parametrization::Map map = param.solve();
+    Eigen::VectorXd x(2 * map.corner_uv.size());
+    for(std::size_t c = 0; c < map.corner_uv.size(); ++c)
+      x.segment<2>(2 * Eigen::Index(c)) = Eigen::Vector2d(map.corner_uv[c][0], map.corner_uv[c][1]);
+    double penalty = 0, cone = std::numeric_limits<double>::infinity();
+    for(const auto& [v, k] : cones) {
+      std::vector<Eigen::Triplet<double>> t;
+      param.cone_harmonic_rows(q.arrays, v, k, harmonics, 0, 1., t);
+      Eigen::SparseMatrix<double> rows(2 * Eigen::Index(harmonics.size()), x.size());
+      rows.setFromTriplets(t.begin(), t.end());
+      const Eigen::VectorXd y = rows * x;
+      const std::vector<std::complex<double>> expected = independent_cone_coefficients(q, map.corner_uv, v, k, harmonics);
+      std::complex<double> chart = 0; // root chart against the fan's first face: one quarter turn for all j
+      for(std::size_t h = 0; h < harmonics.size(); ++h) {
+        const std::complex<double> got(y[2 * Eigen::Index(h)], y[2 * Eigen::Index(h) + 1]);
+        EXPECT_NEAR(std::abs(got), std::abs(expected[h]), 1e-9 * (1 + std::abs(expected[h])))
+          << "vertex " << v << ", j = " << harmonics[h] << ", weight " << weight;
+        if(std::abs(expected[h]) > 1e-6) {
+          if(chart == 0.)
+            chart = got / expected[h];
+          EXPECT_NEAR(std::abs(got - chart * expected[h]), 0., 1e-9 * (1 + std::abs(got))) << "vertex " << v;
+        }
+        if(harmonics[h] == 0 || (harmonics[h] == -1 && k < 0))
+          penalty += std::norm(expected[h]);
+      }
+      cone = std::min(cone, std::abs(expected[0]));
+    }
+    std::cout << "weight " << weight << ": penalised coefficients, sum of squares " << penalty
+              << "; smallest cone coefficient (j = 1) " << cone << "\n";
+    EXPECT_LE(penalty, previous_penalty * (1 + 1e-9) + 1e-15) << "weight " << weight;
+    if(weight == 0) {
+      first_penalty = penalty;
+      first_cone = cone;
+    }
+    EXPECT_GT(cone, 0.5 * first_cone) << "weight " << weight << ": the cone's own harmonic stays";
+    last_penalty = penalty;
+    previous_penalty = penalty;
+  }
+  EXPECT_LT(last_penalty, 0.01 * first_penalty);
+}
+
 TEST(QuadUntangling, ConeModes)
 {
   auto run = [](const Quad_case& q, double H, double weight) {

@@ -96,6 +96,28 @@ Solution solve(const Options& o, Inputs& in, Solver& solver, const TC::Progress_
   return s;
 }
 
+// The quads of a solution; when --quad-cone-modes is not given and they have singular vertices wound the wrong
+// number of times (valence errors that the map's least squares already make: manual, Untangling), made again
+// with the map made to wind as the indices ask, and those kept when they have fewer flaws (elephant has more)
+Quads make_quads_trying_cone_modes(const Options& o, const Inputs& in, const Solution& s, Progress_printer& progress,
+                                   Timings& time)
+{
+  Quads quads = make_quad_mesh(o, in, s, progress, time);
+  if(o.quad_cone_modes < 0 && quads.report && quads.report->wrongly_wound_singularities > 0) {
+    std::optional<Quads> wound;
+    try {
+      wound = make_quad_mesh(o, in, s, progress, time, -1, automatic_quad_cone_mode_weight);
+    } catch(const TC::Invalid_input&) {
+      // a rounding fitted to another map can be infeasible where the first was not: the first quads stay
+    }
+    if(wound && quad_flaws(*wound) < quad_flaws(quads)) {
+      wound->flaws_without_cone_modes = quad_flaws(quads);
+      quads = std::move(*wound);
+    }
+  }
+  return quads;
+}
+
 int run(const Options& o, Progress_printer& progress)
 {
   const TC::Progress_callback solver_progress = progress.callback();
@@ -108,7 +130,7 @@ int run(const Options& o, Progress_printer& progress)
   const Singularities placed = in.singularities;
   design.moved_off_features = move_singularities_off_features(o, in);
   Solution solution = solve(o, in, solver, solver_progress, time);
-  Quads quads = make_quad_mesh(o, in, solution, progress, time);
+  Quads quads = make_quads_trying_cone_modes(o, in, solution, progress, time);
   if(design.moved_off_features > 0 && quad_flaws(quads) > 0) {
     // the move folds less at most sizes, not all (fandisk at the diagonal / 54: 54 folded triangles moved, 29 + 2
     // degenerate not): the quads without it, kept when they have fewer flaws (the solves reuse the factor)
@@ -117,7 +139,7 @@ int run(const Options& o, Progress_printer& progress)
     solution = solve(o, in, solver, solver_progress, time);
     std::optional<Quads> unmoved;
     try {
-      unmoved = make_quad_mesh(o, in, solution, progress, time);
+      unmoved = make_quads_trying_cone_modes(o, in, solution, progress, time);
     } catch(const TC::Invalid_input&) {
       // without the move the rounding can be infeasible (fandisk at the diagonal / 25): the moved quads stay
     }
@@ -130,21 +152,6 @@ int run(const Options& o, Progress_printer& progress)
     } else {
       in.singularities = moved; // the connection and field of the moved set again (x and field are shared maps)
       solution = solve(o, in, solver, solver_progress, time);
-    }
-  }
-  if(o.quad_cone_modes < 0 && quads.report && quads.report->wrongly_wound_singularities > 0) {
-    // A singular vertex wound the wrong number of times is a valence error that the map's least squares already
-    // make (manual, Untangling): the map made to wind as the indices ask, kept when it has fewer flaws (elephant
-    // has more with it)
-    std::optional<Quads> wound;
-    try {
-      wound = make_quad_mesh(o, in, solution, progress, time, quads.scale_smoothness, automatic_quad_cone_mode_weight);
-    } catch(const TC::Invalid_input&) {
-      // a rounding fitted to another map can be infeasible where the first was not: the first quads stay
-    }
-    if(wound && quad_flaws(*wound) < quad_flaws(quads)) {
-      wound->flaws_without_cone_modes = quad_flaws(quads);
-      quads = std::move(*wound);
     }
   }
   if(o.quad_scale_smoothness < 0 && quad_flaws(quads) > 0) {

@@ -218,7 +218,7 @@ CGAL_TRIVIAL_CONNECTIONS_NAMED_PARAMETER(quad_untangling)
 /// `double` W >= 0, default 0 (off): `compute_quad_mesh()` makes the map wind around every singular vertex as its
 /// index asks, in two stages: the least squares penalise with weight W the harmonics of the singular vertices'
 /// one-rings that wind wrongly, the continuous map is untangled with its rightly wound one-rings held, and the
-/// rounding fits that map (manual, Untangling; 30 removes most valence errors on fandisk, at about three times
+/// rounding fits that map (manual, Cone modes; 30 removes most valence errors on fandisk, at two to three times
 /// the quad step's time)
 /// \param value W, non-negative and finite
 /// \returns a sequence of named parameters holding `value`

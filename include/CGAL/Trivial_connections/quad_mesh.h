@@ -186,8 +186,9 @@ the other side's triangles (CGAL's AABB tree): a lower bound of each one-sided d
     in two stages: the least squares penalise, with weight W, the harmonics of the singular vertices' one-rings
     that wind a turn less or fold; the continuous map is untangled with the one-rings it winds right held by a
     strict barrier; the integers are rounded against that map's gradients; the rounded map is untangled against
-    the field with its rightly wound one-rings held. Measured on fandisk and bunny00 in the manual (Untangling),
-    where 30 is used; the reported energies include the penalty} \cgalParamDefault{0: off} \cgalParamNEnd
+    the field with its rightly wound one-rings held. Measured in the manual (\ref TCQuadConeModes): 30 removes
+    most of fandisk's valence errors and can add flaws elsewhere (elephant), so the program tries it only when
+    the quads have wrongly wound singular vertices; the reported energies include the penalty} \cgalParamDefault{0: off} \cgalParamNEnd
   \cgalParamNBegin{edge_is_constrained_map} \cgalParamType{a readable property map `edge_descriptor -> bool`}
     \cgalParamDescription{the feature edges (e.g. the sharp edges of `feature_curves()`): each is put on an integer
     iso-line, so that quad edges follow it. The field must be aligned with them (as `feature_aligned_faces()`

@@ -105,7 +105,7 @@ struct Quad_pipeline_result
 // integer iso-line like every border edge; scale_smoothness > 0: the target scaled per face first
 // (Seamless_parametrization::reduce_curl()); untangle: a rounded map with folded or degenerate triangles is moved
 // out of them where the integers allow it (Map_untangling); cone_mode_weight > 0: the map made to wind around every
-// singular vertex as its index asks, in two stages (manual: Untangling). The least squares penalise the one-rings'
+// singular vertex as its index asks, in two stages (manual: Cone modes). The least squares penalise the one-rings'
 // harmonics that wind wrongly (Seamless_parametrization::penalise_cone_modes()); the continuous map is untangled,
 // its rightly wound singular one-rings held; the rounding fits that map's gradients, so that its integers are those
 // near a fold-free map; and the rounded map is untangled against the field again with its rightly wound one-rings

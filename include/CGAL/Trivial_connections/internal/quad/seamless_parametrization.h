@@ -292,7 +292,7 @@ public:
   }
 
   /*
-    Cone modes (manual: Untangling). Around an interior vertex v of index k, in the cone's coordinate
+    Cone modes (manual: Cone modes, Untangling). Around an interior vertex v of index k, in the cone's coordinate
     zeta = r e^{i phi} (phi the angle around v scaled to 2 pi), a map with v's transitions, written in the chart of
     v's root relative to v's value (w = u + i v, the chart's quarter turn R = i), is a sum of harmonics
     e^{i (j - k) phi} over integers j. The cone wanted, zeta^(1 - k), is j = 1. zeta^(-k) (j = 0) winds a turn less

@@ -5,9 +5,11 @@
 #    with opposite directions, V - E + F = 2, the eight corners of valence 3 and every other vertex 4, every quad
 #    on one face of the cube facing out; the report line says the same (0 valence errors, 0 folds, 0 flipped,
 #    Hausdorff distance <= H/2); --target-faces 54 gives H = 1/3 and 54 quads; with --quad-scale-smoothness the
-#    same (the cube's field is a gradient already: the scale stays 1);
+#    same (the cube's field is a gradient already: the scale stays 1), and with --quad-cone-modes 30 (its map winds
+#    right around every corner already);
 #  - the usage errors (status 2): --quad-mesh without --n 4, without or with both of --quad-size and
-#    --target-faces, a bad H, --quad-scale-smoothness without --quad-mesh or negative; the input errors (status 1): H so small that the mesh would exceed the bound, a
+#    --target-faces, a bad H, --quad-scale-smoothness or --quad-cone-modes without --quad-mesh, negative or (the
+#    latter) infinite; the input errors (status 1): H so small that the mesh would exceed the bound, a
 #    surface with border the field does not follow; no file written on any error;
 #  - the open box with --align-boundary: 5 k^2 quads ending on its rim; the cube of 5 x 5 squares per face with
 #    H = 0.4 and --align-features: its 12 edges are chains of quad edges.
@@ -122,6 +124,8 @@ check_cube(4, ["--quad-size", "0.25"])
 check_cube(3, ["--target-faces", "54"])
 # the cube's field is a gradient already (flat faces, unit length): scaling it towards one leaves it alone
 check_cube(2, ["--quad-size", "0.5", "--quad-scale-smoothness", "0.1"])
+# the cone modes (the map made to wind around every singular vertex as its index asks): the cube's map does already
+check_cube(2, ["--quad-size", "0.5", "--quad-cone-modes", "30"])
 
 # errors: nothing written
 obj = os.path.join(out, "refused.obj")
@@ -142,6 +146,9 @@ for args, status, what in [
     (["--n", "4", "--quad-scale-smoothness", "0.1"], 2, "--quad-scale-smoothness without --quad-mesh"),
     (["--n", "4", "--quad-mesh", obj, "--quad-size", "0.5", "--quad-scale-smoothness", "-1"], 2,
      "a negative scale smoothness"),
+    (["--n", "4", "--quad-cone-modes", "30"], 2, "--quad-cone-modes without --quad-mesh"),
+    (["--n", "4", "--quad-mesh", obj, "--quad-size", "0.5", "--quad-cone-modes", "-1"], 2, "a negative cone weight"),
+    (["--n", "4", "--quad-mesh", obj, "--quad-size", "0.5", "--quad-cone-modes", "inf"], 2, "an infinite cone weight"),
     (["--n", "4", "--quad-mesh", obj, "--quad-size", "1e-5"], 1, "H too small"),
 ]:
     p = run(err + args, status)

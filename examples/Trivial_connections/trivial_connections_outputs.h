@@ -111,7 +111,8 @@ inline Quads make_quad_mesh(const Options& o, const Inputs& in, const Solution& 
 inline constexpr double automatic_quad_scale_smoothness = 0.1;
 
 // the quad_cone_mode_weight tried when the quads made without it have wrongly wound singular vertices and
-// --quad-cone-modes is not given (fandisk with its feature lines, 8 quad sizes: 2 or 3 valence errors -> 0 or 1)
+// --quad-cone-modes is not given (fandisk with its feature lines: kept at six of eight quad sizes, where its 2 or 3
+// valence errors become 0 or 1)
 inline constexpr double automatic_quad_cone_mode_weight = 30;
 
 // what the program counts against a quad mesh: folded and degenerate triangles of the map, valence errors

@@ -322,10 +322,8 @@ Quad_mesh_report compute_quad_mesh(const TriangleMesh& tm, HalfedgeAngleMap x, F
     for(int v = 0; v < m.nv; ++v) {
       if(g.on_boundary[std::size_t(v)] || winding.beside_inverted[std::size_t(v)])
         continue;
-      const double k = double(k4[std::size_t(v)]) / 4;
-      const long turns = std::lround((winding.angle_sum[std::size_t(v)] - 2 * CGAL_PI * (1 - k)) / (2 * CGAL_PI));
-      if(turns != 0)
-        ++(k != 0 ? report.wrongly_wound_singularities : report.branch_points);
+      if(winding.turns_off(std::size_t(v), k4[std::size_t(v)]) != 0)
+        ++(k4[std::size_t(v)] != 0 ? report.wrongly_wound_singularities : report.branch_points);
     }
   }
   report.feature_edges = feature_edges;

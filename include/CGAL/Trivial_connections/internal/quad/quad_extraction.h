@@ -231,6 +231,13 @@ struct Uv_windings
   std::vector<double> angle_sum;      // per vertex
   std::vector<char> beside_inverted;  // per vertex: a corner in a folded or degenerate triangle (the sum then
                                       // says nothing about the winding of the map's sheets)
+
+  // the whole turns by which the map winds around interior vertex v otherwise than its index k4 / 4 asks (0: as
+  // it asks)
+  long turns_off(std::size_t v, long long k4) const
+  {
+    return std::lround((angle_sum[v] - 2 * CGAL_PI * (1 - double(k4) / 4)) / (2 * CGAL_PI));
+  }
 };
 
 template <class TriangleMesh>

@@ -78,8 +78,7 @@ std::vector<int> rightly_wound_one_rings(const Mesh_arrays<TriangleMesh>& m, con
   const Uv_windings w = uv_windings(m, map);
   std::vector<char> right(std::size_t(m.nv), 0);
   for(int v : singular)
-    right[std::size_t(v)] = !w.beside_inverted[std::size_t(v)] &&
-                            std::abs(w.angle_sum[std::size_t(v)] - 2 * CGAL_PI * (1 - double(k4[std::size_t(v)]) / 4)) < CGAL_PI;
+    right[std::size_t(v)] = !w.beside_inverted[std::size_t(v)] && w.turns_off(std::size_t(v), k4[std::size_t(v)]) == 0;
   std::vector<int> faces;
   for(int c = 0; c < 3 * m.nf; ++c)
     if(right[std::size_t(m.source_of(c))])
